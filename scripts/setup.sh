@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package roifem builds, tests and plots with.
+# Idempotent: when everything is present it only checks and returns (no apt-get update).
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libsundials-dev          # ARKODE, IDA, SUNLinSol_KLU (6.4)
+  libeigen3-dev            # sparse matrices, CHOLMOD/KLU wrappers
+  libsuitesparse-dev       # CHOLMOD, KLU
+  libopenblas-dev          # fast BLAS for CHOLMOD's supernodal factorization
+  libgsl-dev               # odeiv2
+  libhdf5-dev              # results files
+  libgmsh-dev              # mesh generation and reading
+  libtomlplusplus-dev      # scenario files
+  libcli11-dev             # command line
+  libgtest-dev libgmock-dev
+  libbenchmark-dev
+  python3-h5py python3-matplotlib python3-numpy   # plots (Debian's /usr/bin/python3)
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}"
+  SUDO=""
+  [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+echo "setup: all packages present"

@@ -1,0 +1,14 @@
+#pragma once
+/// Sub-commands of the roifem CLI. Each registers its options on the app and returns the action
+/// that runs it; main() holds the single catch.
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace roifem::app {
+
+using Action = std::function<void()>;
+
+void add_mesh_command(CLI::App& app, Action& action);
+void add_info_command(CLI::App& app, Action& action);
+
+}  // namespace roifem::app

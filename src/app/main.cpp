@@ -1,0 +1,30 @@
+// roifem: region-of-interest finite element models of the brain for surgery simulation.
+// CLI only: every sub-command lives in a *_commands.cpp file and calls the libraries.
+#include <iostream>
+
+#include "app/commands.hpp"
+#include "common/errors.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "roifem: region-of-interest (ROI) finite element models of the brain for surgery simulation.\n"
+      "A linear-elastic tetrahedral brain whose ROI is dynamic and whose rest is condensed statically.\n"
+      "Start with:  roifem paper --out results/paper   (the Hansen & Larsen 1998 experiment)\n"
+      "Lengths on the command line and in files are millimetres; inside, everything is SI."};
+  app.require_subcommand(1);
+  roifem::app::Action action;
+  roifem::app::add_mesh_command(app, action);
+  roifem::app::add_info_command(app, action);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    action();
+  } catch (const std::exception& e) {
+    std::cerr << "roifem: error: " << e.what() << '\n';
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,44 @@
+#include "common/atomic_file.hpp"
+
+#include <unistd.h>
+
+#include <fstream>
+#include <system_error>
+
+#include "common/errors.hpp"
+
+namespace roifem {
+
+namespace fs = std::filesystem;
+
+AtomicFile::AtomicFile(fs::path final_path) : final_(std::move(final_path)) {
+  // Same directory (rename is atomic only within a file system), same extension (Gmsh, HDF5
+  // and XDMF readers look at it), a process id so two runs never share a temporary.
+  temporary_ = final_;
+  temporary_.replace_filename("." + final_.stem().string() + ".partial-" + std::to_string(::getpid()) +
+                              final_.extension().string());
+}
+
+AtomicFile::~AtomicFile() {
+  if (!committed_) {
+    std::error_code ignored;
+    fs::remove(temporary_, ignored);
+  }
+}
+
+void AtomicFile::commit() {
+  std::error_code ec;
+  fs::rename(temporary_, final_, ec);
+  if (ec) throw InputError(final_.string() + ": cannot move the finished file into place: " + ec.message());
+  committed_ = true;
+}
+
+void ensure_writable_directory(const fs::path& directory) {
+  std::error_code ec;
+  fs::create_directories(directory, ec);
+  if (ec) throw InputError(directory.string() + ": cannot create output directory: " + ec.message());
+  if (::access(directory.c_str(), W_OK) != 0)
+    throw InputError(directory.string() + ": output directory is not writable");
+}
+
+}  // namespace roifem

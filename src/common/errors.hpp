@@ -1,0 +1,29 @@
+#pragma once
+/// Error types. Every message names what is at fault: the file, element, node, parameter or step.
+///  - InputError:  the user's input is wrong (file, scenario key, parameter value).
+///  - ModelError:  the input is well-formed but the model it describes cannot be solved
+///                 (no fixed nodes, a singular static part, an empty ROI).
+///  - SolverError: a numerical method failed (factorization, divergence) at a named step / time.
+#include <stdexcept>
+#include <string>
+
+namespace roifem {
+
+class Error : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+class InputError : public Error {
+ public:
+  using Error::Error;
+};
+class ModelError : public Error {
+ public:
+  using Error::Error;
+};
+class SolverError : public Error {
+ public:
+  using Error::Error;
+};
+
+}  // namespace roifem

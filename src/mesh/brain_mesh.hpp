@@ -1,0 +1,35 @@
+#pragma once
+/// A simplified brain for surgery simulation, meshed with Gmsh's OpenCASCADE kernel:
+/// an ellipsoid (semi-axes 70 x 85 x 50 mm: 14 x 17 x 10 cm) with a narrow surgical opening, a
+/// slit along y cut into the top, its walls the planes x = -w/2 and x = +w/2.
+/// Named sets (Gmsh physical groups):
+///   brain          3D  the whole volume
+///   base           3D  the lowest 15% of the height (skull base and brain stem): held fixed
+///   opening_left   2D  the wall x = -w/2 of the slit (a spatula pulls it towards -x)
+///   opening_right  2D  the wall x = +w/2 of the slit (pulled towards +x)
+///   opening_floor  2D  the bottom of the slit
+#include <filesystem>
+
+#include "mesh/tet_mesh.hpp"
+
+namespace roifem::mesh {
+
+struct BrainShape {  // millimetres
+  double semi_axis_x = 70, semi_axis_y = 85, semi_axis_z = 50;
+  double slit_width = 4, slit_length = 30, slit_depth = 20;
+  double base_fraction = 0.15;
+};
+
+struct BrainMesh {
+  TetMesh mesh;
+  double element_size_mm = 0;  ///< the Gmsh size that gave the node count
+  int attempts = 0;            ///< meshings needed to land within the tolerance
+};
+
+/// Meshes the brain with `target_nodes` nodes within +-tolerance (relative), adjusting the element
+/// size by a secant on log(nodes) against log(size). Writes the mesh (MSH 4.1, millimetres) to
+/// `output` when it is not empty, atomically. Throws InputError for an impossible request.
+BrainMesh generate_brain_mesh(Index target_nodes, const std::filesystem::path& output = {},
+                              const BrainShape& shape = {}, double tolerance = 0.03);
+
+}  // namespace roifem::mesh

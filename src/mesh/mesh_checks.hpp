@@ -1,0 +1,19 @@
+#pragma once
+/// Checks a mesh before any FEM work: every tetrahedron must be positively oriented and of
+/// non-negligible volume. Errors name the tetrahedron (0-based index and its nodes).
+#include "mesh/tet_mesh.hpp"
+
+namespace roifem::mesh {
+
+struct MeshStatistics {
+  Index nodes = 0, tets = 0;
+  double volume = 0;                ///< m^3
+  double quality_min = 0, quality_median = 0;
+  Vec3 box_min = Vec3::Zero(), box_max = Vec3::Zero();  ///< m
+};
+
+/// Throws InputError for an inverted or degenerate (quality < 1e-6) tetrahedron.
+void check_mesh(const TetMesh& mesh);
+MeshStatistics mesh_statistics(const TetMesh& mesh);
+
+}  // namespace roifem::mesh

@@ -1,0 +1,50 @@
+#pragma once
+/// A linear tetrahedral mesh with named node and element sets.
+///   nodes: 3 x #N, metres
+///   tets:  #E x 4, 0-based node indices, positively oriented (det[x1-x0, x2-x0, x3-x0] > 0)
+/// Named sets come from Gmsh physical groups: a 3D group lists tetrahedra, a 2D group lists
+/// boundary triangles, and every set lists its nodes (sorted, unique).
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "common/types.hpp"
+
+namespace roifem::mesh {
+
+using Tet = std::array<int, 4>;
+using Triangle = std::array<int, 3>;
+
+struct NamedSet {
+  int dim = 0;                       ///< 0..3, the Gmsh physical group's dimension
+  std::vector<int> nodes;            ///< sorted, unique
+  std::vector<int> tets;             ///< indices into TetMesh::tets (dim 3)
+  std::vector<Triangle> triangles;   ///< boundary facets (dim 2)
+};
+
+struct TetMesh {
+  Eigen::Matrix3Xd nodes;                   ///< 3 x #N, metres
+  std::vector<Tet> tets;                    ///< #E x 4
+  std::map<std::string, NamedSet> sets;     ///< by physical name
+  std::string source = "<memory>";          ///< file it came from, for messages
+
+  Index num_nodes() const { return nodes.cols(); }
+  Index num_tets() const { return static_cast<Index>(tets.size()); }
+  Vec3 node(int i) const { return nodes.col(i); }
+  /// The named set, or InputError listing the sets that exist.
+  const NamedSet& set(const std::string& name) const;
+};
+
+/// Signed volume of tetrahedron e (positive when correctly oriented).
+double signed_volume(const TetMesh& mesh, Index e);
+/// Sum of the tetrahedra's volumes.
+double total_volume(const TetMesh& mesh);
+/// Shape quality 6 sqrt(2) V / l_rms^3: 1 for the regular tetrahedron, 0 for a flat one.
+double tet_quality(const TetMesh& mesh, Index e);
+/// Boundary faces: those that belong to exactly one tetrahedron, oriented outwards.
+std::vector<Triangle> boundary_faces(const TetMesh& mesh);
+/// Nodes on the boundary faces, sorted.
+std::vector<int> boundary_nodes(const TetMesh& mesh);
+
+}  // namespace roifem::mesh

@@ -1,0 +1,148 @@
+#include "solvers/cholesky.hpp"
+
+#include <cholmod.h>
+
+#include <cstring>
+#include <string>
+
+#include "common/errors.hpp"
+
+namespace roifem::solvers {
+
+namespace {
+/// A cholmod_sparse header over an Eigen matrix's arrays (no copy).
+cholmod_sparse view(const SparseMatrix& A) {
+  cholmod_sparse s{};
+  s.nrow = static_cast<std::size_t>(A.rows());
+  s.ncol = static_cast<std::size_t>(A.cols());
+  s.nzmax = static_cast<std::size_t>(A.nonZeros());
+  s.p = const_cast<int*>(A.outerIndexPtr());
+  s.i = const_cast<int*>(A.innerIndexPtr());
+  s.x = const_cast<double*>(A.valuePtr());
+  s.stype = -1;  // symmetric, lower triangle used
+  s.itype = CHOLMOD_INT;
+  s.xtype = CHOLMOD_REAL;
+  s.dtype = CHOLMOD_DOUBLE;
+  s.sorted = 1;
+  s.packed = 1;
+  return s;
+}
+
+cholmod_dense view(const double* data, Index rows, Index cols) {
+  cholmod_dense d{};
+  d.nrow = static_cast<std::size_t>(rows);
+  d.ncol = static_cast<std::size_t>(cols);
+  d.nzmax = d.nrow * d.ncol;
+  d.d = d.nrow;
+  d.x = const_cast<double*>(data);
+  d.xtype = CHOLMOD_REAL;
+  d.dtype = CHOLMOD_DOUBLE;
+  return d;
+}
+}  // namespace
+
+NotPositiveDefinite::NotPositiveDefinite(Index col, double rc)
+    : std::runtime_error(col >= 0 ? "matrix is not positive definite (factorization stopped at column " +
+                                        std::to_string(col) + ")"
+                                  : "matrix is singular to working precision (reciprocal condition " +
+                                        std::to_string(rc) + ")"),
+      column(col),
+      rcond(rc) {}
+
+struct Cholesky::Impl {
+  cholmod_common common{};
+  cholmod_factor* factor = nullptr;
+  // Workspaces of cholmod_solve2, kept between solves; mutable: solving changes no visible state.
+  mutable cholmod_dense* x = nullptr;
+  mutable cholmod_dense* y = nullptr;
+  mutable cholmod_dense* e = nullptr;
+
+  explicit Impl(Kind kind) {
+    cholmod_start(&common);
+    common.supernodal = kind == Kind::simplicial    ? CHOLMOD_SIMPLICIAL
+                        : kind == Kind::supernodal ? CHOLMOD_SUPERNODAL
+                                                   : CHOLMOD_AUTO;
+    common.print = 0;
+    common.error_handler = nullptr;
+  }
+  ~Impl() {
+    free_workspace();
+    if (factor) cholmod_free_factor(&factor, &common);
+    cholmod_finish(&common);
+  }
+  void free_workspace() const {
+    auto* c = const_cast<cholmod_common*>(&common);
+    if (x) cholmod_free_dense(&x, c);
+    if (y) cholmod_free_dense(&y, c);
+    if (e) cholmod_free_dense(&e, c);
+  }
+  void check(bool ok, const char* what) const {
+    if (!ok || common.status < CHOLMOD_OK)
+      throw SolverError(std::string("CHOLMOD ") + what + " failed (status " + std::to_string(common.status) +
+                        (common.status == CHOLMOD_OUT_OF_MEMORY ? ": out of memory" : "") + ")");
+  }
+};
+
+Cholesky::Cholesky(Kind kind) : impl_(std::make_unique<Impl>(kind)) {}
+Cholesky::Cholesky(Cholesky&&) noexcept = default;
+Cholesky& Cholesky::operator=(Cholesky&&) noexcept = default;
+Cholesky::~Cholesky() = default;
+
+void Cholesky::analyze(const SparseMatrix& A) {
+  if (A.rows() != A.cols()) throw Error("internal: Cholesky of a non-square matrix");
+  if (!A.isCompressed()) throw Error("internal: Cholesky needs a compressed matrix");
+  cholmod_sparse a = view(A);
+  impl_->free_workspace();
+  if (impl_->factor) cholmod_free_factor(&impl_->factor, &impl_->common);
+  impl_->factor = cholmod_analyze(&a, &impl_->common);
+  impl_->check(impl_->factor != nullptr, "analysis");
+}
+
+void Cholesky::factorize(const SparseMatrix& A) {
+  if (!impl_->factor || static_cast<Index>(impl_->factor->n) != A.rows()) analyze(A);
+  cholmod_sparse a = view(A);
+  const int ok = cholmod_factorize(&a, impl_->factor, &impl_->common);
+  if (impl_->common.status == CHOLMOD_NOT_POSDEF)
+    throw NotPositiveDefinite(static_cast<Index>(impl_->factor->minor), 0.0);
+  impl_->check(ok, "factorization");
+  // A positive semidefinite matrix (rigid-body modes) may factor with round-off-sized pivots.
+  if (const double rc = rcond(); !(rc > 1e-15)) throw NotPositiveDefinite(-1, rc);
+}
+
+Vector Cholesky::solve(const Eigen::Ref<const Vector>& b) const {
+  Vector x(b.size());
+  solve(b, x);
+  return x;
+}
+
+void Cholesky::solve(const Eigen::Ref<const Vector>& b, Eigen::Ref<Vector> x) const {
+  if (!impl_->factor) throw Error("internal: Cholesky::solve before factorize");
+  cholmod_dense rhs = view(b.data(), b.size(), 1);
+  auto* common = const_cast<cholmod_common*>(&impl_->common);
+  const int ok = cholmod_solve2(CHOLMOD_A, impl_->factor, &rhs, nullptr, &impl_->x, nullptr, &impl_->y, &impl_->e,
+                                common);
+  impl_->check(ok, "solve");
+  std::memcpy(x.data(), impl_->x->x, sizeof(double) * static_cast<std::size_t>(b.size()));
+}
+
+DenseMatrix Cholesky::solve_matrix(const Eigen::Ref<const DenseMatrix>& B) const {
+  if (!impl_->factor) throw Error("internal: Cholesky::solve before factorize");
+  const DenseMatrix Bc = B;  // contiguous, column-major
+  cholmod_dense rhs = view(Bc.data(), Bc.rows(), Bc.cols());
+  auto* common = const_cast<cholmod_common*>(&impl_->common);
+  cholmod_dense* X = cholmod_solve(CHOLMOD_A, impl_->factor, &rhs, common);
+  impl_->check(X != nullptr, "solve");
+  DenseMatrix result = Eigen::Map<const DenseMatrix>(static_cast<double*>(X->x), Bc.rows(), Bc.cols());
+  cholmod_free_dense(&X, common);
+  return result;
+}
+
+Index Cholesky::size() const { return impl_->factor ? static_cast<Index>(impl_->factor->n) : 0; }
+
+double Cholesky::factor_nonzeros() const { return impl_->common.lnz; }
+
+double Cholesky::rcond() const {
+  return impl_->factor ? cholmod_rcond(impl_->factor, const_cast<cholmod_common*>(&impl_->common)) : 0.0;
+}
+
+}  // namespace roifem::solvers

@@ -1,0 +1,58 @@
+#pragma once
+/// Sparse Cholesky factorization A = L L^T of a symmetric positive definite matrix, by CHOLMOD
+/// (supernodal where it pays, with BLAS; simplicial otherwise). RAII over cholmod_common and
+/// the factor; the pattern is analysed once (fill-reducing ordering) and re-factorized as values
+/// change; solves reuse CHOLMOD's workspace (cholmod_solve2), so a time step allocates nothing.
+/// A reads as symmetric from its lower triangle; full symmetric storage is fine.
+#include <memory>
+
+#include "common/types.hpp"
+
+namespace roifem::solvers {
+
+class Cholesky {
+ public:
+  enum class Kind { automatic, simplicial, supernodal };
+  explicit Cholesky(Kind kind = Kind::automatic);
+  Cholesky(const Cholesky&) = delete;
+  Cholesky& operator=(const Cholesky&) = delete;
+  Cholesky(Cholesky&&) noexcept;
+  Cholesky& operator=(Cholesky&&) noexcept;
+  ~Cholesky();
+
+  /// Symbolic analysis: ordering and the factor's pattern.
+  void analyze(const SparseMatrix& A);
+  /// Numeric factorization (analyze first, or it is done here). Throws NotPositiveDefinite.
+  void factorize(const SparseMatrix& A);
+  /// analyze + factorize.
+  void compute(const SparseMatrix& A) {
+    analyze(A);
+    factorize(A);
+  }
+
+  Vector solve(const Eigen::Ref<const Vector>& b) const;
+  /// x = A^-1 b into x (no allocation after the first call of the same size).
+  void solve(const Eigen::Ref<const Vector>& b, Eigen::Ref<Vector> x) const;
+  DenseMatrix solve_matrix(const Eigen::Ref<const DenseMatrix>& B) const;
+
+  Index size() const;
+  /// Non-zeros in L.
+  double factor_nonzeros() const;
+  /// CHOLMOD's reciprocal condition estimate (min/max of diag(L))^2.
+  double rcond() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Thrown when A is not (numerically) positive definite; `column` is the column where the
+/// factorization stopped (-1 when it finished but the reciprocal condition number is ~ 0).
+class NotPositiveDefinite : public std::runtime_error {
+ public:
+  NotPositiveDefinite(Index column, double rcond);
+  Index column;
+  double rcond;
+};
+
+}  // namespace roifem::solvers

@@ -1,0 +1,130 @@
+// Reading meshes, and every kind of bad mesh input stopping with a message that names the fault.
+#include <gtest/gtest.h>
+
+#include "common/errors.hpp"
+#include "mesh/brain_mesh.hpp"
+#include "mesh/gmsh_reader.hpp"
+#include "mesh/mesh_checks.hpp"
+#include "test_support.hpp"
+
+namespace roifem::mesh {
+namespace {
+
+using test::TempDir;
+using test::write_file;
+
+std::string error_of(auto&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "<no InputError>";
+}
+
+TEST(MeshReader, ReadsTheShippedBrainWithItsNamedSets) {
+  const TetMesh mesh = read_mesh(std::string(ROIFEM_MESH_DIR) + "/brain-800.msh");
+  check_mesh(mesh);
+  EXPECT_EQ(mesh.set("brain").tets.size(), mesh.tets.size());
+  EXPECT_EQ(mesh.set("brain").nodes.size(), static_cast<std::size_t>(mesh.num_nodes()));
+  EXPECT_FALSE(mesh.set("opening_left").triangles.empty());
+  // The base is the lowest 15% of the height: z <= -50 + 15 mm.
+  for (int n : mesh.set("base").nodes) EXPECT_LE(mesh.nodes(2, n), -0.035 + 1e-9);
+  // Walls of the opening are the planes x = -2 mm and x = +2 mm.
+  for (int n : mesh.set("opening_left").nodes) EXPECT_NEAR(mesh.nodes(0, n), -0.002, 1e-9);
+  for (int n : mesh.set("opening_right").nodes) EXPECT_NEAR(mesh.nodes(0, n), 0.002, 1e-9);
+}
+
+TEST(MeshReader, ReadsMsh22AndScalesLengths) {
+  TempDir dir;
+  const auto file = write_file(dir / "tet.msh", test::single_tet_msh(test::unit_tet_nodes, "1 2 3 4"));
+  const TetMesh mesh = read_mesh(file, 1e-3);
+  ASSERT_EQ(mesh.num_tets(), 1);
+  EXPECT_NEAR(total_volume(mesh), 1e-9 / 6, 1e-22);
+}
+
+TEST(MeshReader, MissingFileIsNamed) {
+  EXPECT_NE(error_of([] { read_mesh("/nonexistent/brain.msh"); }).find("/nonexistent/brain.msh: no such mesh file"),
+            std::string::npos);
+}
+
+TEST(MeshReader, EmptyFileIsNamed) {
+  TempDir dir;
+  const auto file = write_file(dir / "empty.msh", "");
+  EXPECT_NE(error_of([&] { read_mesh(file); }).find("empty.msh: the mesh file is empty"), std::string::npos);
+}
+
+TEST(MeshReader, GarbageFileIsNamedWithItsLine) {
+  TempDir dir;
+  const auto file = write_file(dir / "garbage.msh", "this is not a mesh\n");
+  const std::string msg = error_of([&] { read_mesh(file); });
+  EXPECT_NE(msg.find("garbage.msh"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("line 1"), std::string::npos) << msg;
+}
+
+TEST(MeshReader, TruncatedFileIsNamed) {
+  TempDir dir;
+  const std::string full = test::single_tet_msh(test::unit_tet_nodes, "1 2 3 4");
+  const auto file = write_file(dir / "truncated.msh", full.substr(0, full.find("3 0 1 0")));
+  const std::string msg = error_of([&] { read_mesh(file); });
+  EXPECT_NE(msg.find("truncated.msh"), std::string::npos) << msg;
+}
+
+TEST(MeshReader, TruncatedShippedBrainIsNamed) {
+  TempDir dir;
+  std::ifstream in(std::string(ROIFEM_MESH_DIR) + "/brain-800.msh");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto file = write_file(dir / "cut.msh", text.substr(0, text.size() / 2));
+  EXPECT_NE(error_of([&] { read_mesh(file); }).find("cut.msh"), std::string::npos);
+}
+
+TEST(MeshReader, FileWithoutTetrahedraIsNamed) {
+  TempDir dir;
+  const auto file = write_file(dir / "surface.msh",
+                               "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0 0\n2 1 0 0\n3 0 1 0\n$EndNodes\n"
+                               "$Elements\n1\n1 2 2 1 1 1 2 3\n$EndElements\n");
+  EXPECT_NE(error_of([&] { read_mesh(file); }).find("surface.msh: the mesh has no tetrahedra"), std::string::npos);
+}
+
+TEST(MeshChecks, InvertedTetrahedronIsNamedByIndex) {
+  TempDir dir;
+  const auto file = write_file(dir / "inverted.msh", test::single_tet_msh(test::unit_tet_nodes, "1 3 2 4"));
+  const TetMesh mesh = read_mesh(file);
+  const std::string msg = error_of([&] { check_mesh(mesh); });
+  EXPECT_NE(msg.find("inverted.msh: tetrahedron 0"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("inverted"), std::string::npos) << msg;
+}
+
+TEST(MeshChecks, ZeroVolumeTetrahedronIsNamedByIndex) {
+  TempDir dir;
+  const auto file =
+      write_file(dir / "flat.msh", test::single_tet_msh("1 0 0 0\n2 1 0 0\n3 0 1 0\n4 1 1 0\n", "1 2 3 4"));
+  const TetMesh mesh = read_mesh(file);
+  const std::string msg = error_of([&] { check_mesh(mesh); });
+  EXPECT_NE(msg.find("tetrahedron 0"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("zero volume"), std::string::npos) << msg;
+}
+
+TEST(MeshSets, MissingNamedSetListsTheExistingOnes) {
+  const TetMesh mesh = read_mesh(std::string(ROIFEM_MESH_DIR) + "/brain-800.msh");
+  const std::string msg = error_of([&] { mesh.set("skull"); });
+  EXPECT_NE(msg.find("no named set 'skull'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("opening_left"), std::string::npos) << msg;
+}
+
+TEST(BrainMesh, GeneratesTheRequestedNodeCountAndWritesAReadableFile) {
+  TempDir dir;
+  const BrainMesh generated = generate_brain_mesh(2000, dir / "brain.msh");
+  EXPECT_NEAR(static_cast<double>(generated.mesh.num_nodes()), 2000.0, 0.05 * 2000);
+  const TetMesh reread = read_mesh(dir / "brain.msh");
+  EXPECT_EQ(reread.num_nodes(), generated.mesh.num_nodes());
+  EXPECT_EQ(reread.num_tets(), generated.mesh.num_tets());
+  check_mesh(reread);
+  // Only the final file is left behind: no temporary.
+  int files = 0;
+  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir.path())) ++files;
+  EXPECT_EQ(files, 1);
+}
+
+}  // namespace
+}  // namespace roifem::mesh

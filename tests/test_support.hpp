@@ -1,0 +1,44 @@
+#pragma once
+/// Helpers shared by the tests: a temporary directory and small hand-written mesh files.
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+
+namespace roifem::test {
+
+/// A fresh directory under the system temp dir, removed with its contents on destruction.
+class TempDir {
+ public:
+  TempDir() {
+    std::random_device rd;
+    path_ = std::filesystem::temp_directory_path() / ("roifem-test-" + std::to_string(rd()) + std::to_string(rd()));
+    std::filesystem::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+inline std::filesystem::path write_file(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream(path) << text;
+  return path;
+}
+
+/// A one-tetrahedron mesh in MSH 2.2 ASCII with the nodes in the given order (1-based tags).
+inline std::string single_tet_msh(const std::string& node_block, const std::string& element_nodes) {
+  return "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n" + node_block + "$EndNodes\n$Elements\n1\n1 4 2 1 1 " +
+         element_nodes + "\n$EndElements\n";
+}
+
+inline const std::string unit_tet_nodes = "1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n";
+
+}  // namespace roifem::test
