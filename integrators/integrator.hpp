@@ -1,0 +1,29 @@
+#pragma once
+/// The integrator seam: every time integrator advances the same second-order system
+///   M u'' + C u' + K u = f(t)
+/// from a State, converting it to whatever form its method needs. Output, energy and error are
+/// observers of the run loop, never code inside an integrator.
+#include <string_view>
+
+#include "model/second_order_system.hpp"
+
+namespace roifem::integrators {
+
+/// Counters every integrator reports (zero where the method has no such thing).
+struct Stats {
+  long steps = 0, rhs_evals = 0, jac_evals = 0, lin_setups = 0, lin_solves = 0, failed_steps = 0;
+};
+
+class Integrator {
+ public:
+  virtual ~Integrator() = default;
+  virtual std::string_view name() const = 0;
+  /// Prepares for `system` from `initial` (factorizations, solver memory). The system must outlive
+  /// the integrator's use of it.
+  virtual void reset(const model::SecondOrderSystem& system, const model::State& initial) = 0;
+  /// Advances `state` to t_out; throws SolverError naming the method, t and step on failure.
+  virtual void advance_to(double t_out, model::State& state) = 0;
+  virtual Stats stats() const = 0;
+};
+
+}  // namespace roifem::integrators

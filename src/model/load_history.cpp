@@ -1,0 +1,32 @@
+#include "model/load_history.hpp"
+
+#include <algorithm>
+
+#include "common/errors.hpp"
+
+namespace roifem::model {
+
+double Ramp::value(double t) const {
+  if (t <= 0) return duration > 0 ? 0.0 : (t < 0 ? 0.0 : 1.0);
+  return duration > 0 ? std::min(t / duration, 1.0) : 1.0;
+}
+
+void LoadHistory::add(Vector pattern, Ramp ramp) {
+  if (pattern.size() != size_) throw Error("internal: load pattern of the wrong size");
+  if (!(ramp.duration >= 0)) throw InputError("load ramp duration " + std::to_string(ramp.duration) + " s must be >= 0");
+  terms_.push_back({std::move(pattern), ramp});
+}
+
+void LoadHistory::evaluate(double t, Eigen::Ref<Vector> f) const {
+  f.setZero();
+  for (const auto& term : terms_)
+    if (const double r = term.ramp.value(t); r != 0) f.noalias() += r * term.pattern;
+}
+
+Vector LoadHistory::at(double t) const {
+  Vector f(size_);
+  evaluate(t, f);
+  return f;
+}
+
+}  // namespace roifem::model

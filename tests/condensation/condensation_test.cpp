@@ -1,0 +1,106 @@
+#include "condensation/static_condensation.hpp"
+
+#include <gtest/gtest.h>
+
+#include "common/errors.hpp"
+#include "integrators/trapezoid.hpp"
+#include "mesh/gmsh_reader.hpp"
+#include "model/fem_model.hpp"
+
+namespace roifem::condensation {
+namespace {
+
+/// The shipped brain, base fixed, the opening's walls pulled apart.
+struct PaperBrain {
+  mesh::TetMesh mesh = mesh::read_mesh(std::string(ROIFEM_MESH_DIR) + "/brain-800.msh");
+  model::FemModel model = model::build_fem_model(
+      mesh, fem::material_preset("paper"), {"base"},
+      {{"opening_left", Vec3(-1e-3, 0, 0), model::Ramp{0.5}}, {"opening_right", Vec3(1e-3, 0, 0), model::Ramp{0.5}}});
+  roi::Partition partition(const roi::RoiSpec& spec) const {
+    return roi::partition_dofs(model.system.K, *model.dofs, roi::select_roi_nodes(mesh, *model.dofs, spec));
+  }
+};
+
+roi::RoiSpec nearest(Index count) {
+  return {.kind = roi::RoiSpec::Kind::nearest, .center = Vec3(0, 0, 0.040), .count = count, .set = {}};
+}
+
+TEST(StaticCondensation, CondensedStaticAnswerEqualsTheFullOneOnTheRoi) {
+  const PaperBrain brain;
+  const auto p = brain.partition(nearest(306));
+  ASSERT_EQ(p.roi_nodes.size(), 306u);
+  ASSERT_FALSE(p.interface.empty());
+  const StaticCondensation condensed(brain.model.system, p, *brain.model.dofs);
+  const double t = 1.0;  // loads fully applied
+  solvers::Cholesky full, reduced;
+  full.compute(brain.model.system.K);
+  reduced.compute(condensed.system().K);
+  const Vector u = full.solve(brain.model.system.load.at(t));
+  const Vector u_d = reduced.solve(condensed.system().load.at(t));
+  const Vector u_d_full = roi::gather(u, p.d);
+  EXPECT_LT((u_d - u_d_full).norm() / u_d_full.norm(), 1e-10);
+  // The static part recovered from the ROI equals the full answer there too.
+  const Vector u_s_full = roi::gather(u, p.s);
+  EXPECT_LT((condensed.recover_static(u_d, t) - u_s_full).norm() / u_s_full.norm(), 1e-10);
+  std::printf("condensed vs full static: ROI %.2e, static part %.2e (relative)\n",
+              (u_d - u_d_full).norm() / u_d_full.norm(),
+              (condensed.recover_static(u_d, t) - u_s_full).norm() / u_s_full.norm());
+}
+
+TEST(StaticCondensation, RoiOfAllNodesReproducesTheFullDynamicModel) {
+  const PaperBrain brain;
+  const auto p = brain.partition(roi::RoiSpec{});
+  EXPECT_TRUE(p.s.empty());
+  const StaticCondensation condensed(brain.model.system, p, *brain.model.dofs);
+  const Index n = brain.model.system.size();
+  model::State full{0, Vector::Zero(n), Vector::Zero(n)}, roi = full;
+  integrators::Trapezoid a(0.05), b(0.05);
+  a.reset(brain.model.system, full);
+  b.reset(condensed.system(), roi);
+  double worst = 0;
+  for (int k = 0; k < 100; ++k) {
+    a.step(full);
+    b.step(roi);
+    worst = std::max(worst, (condensed.expand(roi.u, roi.t) - full.u).norm() / full.u.norm());
+  }
+  EXPECT_LT(worst, 1e-12);
+}
+
+TEST(StaticCondensation, CondensedStiffnessIsSymmetricPositiveDefinite) {
+  const PaperBrain brain;
+  const StaticCondensation condensed(brain.model.system, brain.partition(nearest(228)), *brain.model.dofs);
+  const SparseMatrix& K = condensed.system().K;
+  EXPECT_LT((K - SparseMatrix(K.transpose())).norm(), 1e-12 * K.norm());
+  solvers::Cholesky cholesky;
+  EXPECT_NO_THROW(cholesky.compute(K));
+}
+
+TEST(RoiSelection, EmptyRoiIsAModelErrorNamingTheRoi) {
+  const PaperBrain brain;
+  const roi::RoiSpec far{.kind = roi::RoiSpec::Kind::ball, .center = Vec3(1, 1, 1), .radius = 0.001, .count = 0, .set = {}};
+  try {
+    roi::select_roi_nodes(brain.mesh, *brain.model.dofs, far);
+    FAIL() << "expected ModelError";
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find("contains no free node"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("ball of radius 1 mm"), std::string::npos) << e.what();
+  }
+}
+
+TEST(RoiSelection, NearestPicksTheClosestFreeNodes) {
+  const PaperBrain brain;
+  const auto spec = nearest(50);
+  const auto roi_nodes = roi::select_roi_nodes(brain.mesh, *brain.model.dofs, spec);
+  ASSERT_EQ(roi_nodes.size(), 50u);
+  double farthest_in = 0;
+  for (int n : roi_nodes) farthest_in = std::max(farthest_in, (brain.mesh.node(n) - spec.center).norm());
+  std::vector<bool> in(static_cast<std::size_t>(brain.mesh.num_nodes()), false);
+  for (int n : roi_nodes) in[static_cast<std::size_t>(n)] = true;
+  for (int n = 0; n < brain.mesh.num_nodes(); ++n)
+    if (!in[static_cast<std::size_t>(n)] && brain.model.dofs->free_dof(n, 0) >= 0) {
+      EXPECT_GE((brain.mesh.node(n) - spec.center).norm(), farthest_in);
+    }
+}
+
+}  // namespace
+}  // namespace roifem::condensation
