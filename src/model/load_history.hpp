@@ -27,6 +27,12 @@ class LoadHistory {
   Vector at(double t) const;
   Index size() const { return size_; }
   const std::vector<Term>& terms() const { return terms_; }
+  /// The same patterns, every one with `ramp`.
+  LoadHistory with_ramp(Ramp ramp) const {
+    LoadHistory out = *this;
+    for (auto& term : out.terms_) term.ramp = ramp;
+    return out;
+  }
   /// A history with every pattern mapped by `transform` (same ramps).
   template <class F>
   LoadHistory mapped(Index new_size, F&& transform) const {

@@ -1,0 +1,76 @@
+#!/usr/bin/python3
+"""Plots of `roifem paper` in the manner of Hansen & Larsen (1998), Figs. 5 and 6.
+
+usage: /usr/bin/python3 plot_paper.py DIR
+reads DIR/errors.csv and DIR/timing.csv; writes DIR/mean_error.png, DIR/max_error.png and
+DIR/step_time.png (each written to a temporary name, then renamed).
+"""
+import csv
+import os
+import sys
+from collections import defaultdict
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+PAPER_STEP_S = {"full": 0.440, "setup1": 0.071, "setup2": 0.037}
+
+
+def save(fig, path):
+    tmp = os.path.join(os.path.dirname(path), "." + os.path.basename(path) + ".partial.png")
+    fig.savefig(tmp, dpi=120, bbox_inches="tight")
+    plt.close(fig)
+    os.replace(tmp, path)
+
+
+def main(directory):
+    curves = defaultdict(lambda: ([], [], []))  # (setup, ramp) -> steps, mean, max
+    with open(os.path.join(directory, "errors.csv")) as f:
+        for row in csv.DictReader(f):
+            steps, mean, worst = curves[(row["setup"], float(row["ramp_s"]))]
+            steps.append(int(row["step"]))
+            mean.append(float(row["mean_mm"]))
+            worst.append(float(row["max_mm"]))
+    setups = sorted({s for s, _ in curves})
+    ramps = sorted({r for _, r in curves})
+    titles = {"setup1": "setup 1 (306-node ROI)", "setup2": "setup 2 (228-node ROI)"}
+
+    for column, name, label in ((1, "mean_error.png", "mean error (mm)"), (2, "max_error.png", "max error (mm)")):
+        fig, axes = plt.subplots(1, len(setups), figsize=(5.5 * len(setups), 4), sharey=True, squeeze=False)
+        for ax, setup in zip(axes[0], setups):
+            for ramp in ramps:
+                data = curves[(setup, ramp)]
+                ax.plot(data[0], data[column], label=f"ramp {ramp:g} s")
+            ax.set_title(titles.get(setup, setup))
+            ax.set_xlabel("iteration (dt = 0.05 s)")
+            ax.grid(alpha=0.3)
+            ax.legend()
+        axes[0][0].set_ylabel(label)
+        fig.suptitle(f"Condensed ROI model vs full dynamic model: {label.split(' (')[0]} over the ROI nodes")
+        save(fig, os.path.join(directory, name))
+
+    models, ours = [], []
+    with open(os.path.join(directory, "timing.csv")) as f:
+        for row in csv.DictReader(f):
+            models.append(row["model"])
+            ours.append(float(row["step_s_median"]))
+    fig, ax = plt.subplots(figsize=(6, 4))
+    x = range(len(models))
+    ax.bar([i - 0.2 for i in x], [PAPER_STEP_S.get(m, float("nan")) for m in models], 0.4, label="Hansen & Larsen 1998")
+    ax.bar([i + 0.2 for i in x], ours, 0.4, label="roifem (median, this machine)")
+    ax.axhline(0.05, color="k", lw=0.8, ls="--")
+    ax.text(len(models) - 0.5, 0.05, " real time (dt = 0.05 s)", va="bottom", ha="right", fontsize=8)
+    ax.set_yscale("log")
+    ax.set_xticks(list(x), models)
+    ax.set_ylabel("time per step (s)")
+    ax.legend()
+    ax.grid(alpha=0.3, which="both", axis="y")
+    save(fig, os.path.join(directory, "step_time.png"))
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    main(sys.argv[1])

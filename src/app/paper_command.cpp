@@ -1,0 +1,39 @@
+// roifem paper: the Hansen & Larsen (1998) experiment.
+#include <filesystem>
+#include <iostream>
+
+#include "app/commands.hpp"
+#include "experiments/paper_experiment.hpp"
+
+namespace roifem::app {
+
+namespace {
+/// The shipped 800-node brain: in the source tree, else where `cmake --install` put it.
+std::string default_brain_mesh() {
+  for (const char* dir : {ROIFEM_SOURCE_MESH_DIR, ROIFEM_INSTALLED_MESH_DIR})
+    if (std::filesystem::exists(std::filesystem::path(dir) / "brain-800.msh"))
+      return (std::filesystem::path(dir) / "brain-800.msh").string();
+  return "meshes/brain-800.msh";
+}
+}  // namespace
+
+void add_paper_command(CLI::App& app, Action& action) {
+  auto o = std::make_shared<experiments::PaperOptions>();
+  o->mesh = default_brain_mesh();
+  auto* cmd = app.add_subcommand(
+      "paper",
+      "Reproduce Hansen & Larsen (1998): the full dynamic brain against two condensed ROI models "
+      "(306 and 228 nodes) while two forces pull the opening apart (ramps 0.5, 1, 2 s; dt 0.05 s; 200 steps). "
+      "Prints Table 2 and writes errors.csv, timing.csv, results.h5/.xdmf and PNG plots");
+  cmd->add_option("--out", o->out, "Output directory")->required();
+  cmd->add_option("--mesh", o->mesh, "The 800-node brain mesh (mm)")->capture_default_str();
+  cmd->add_option("--material", o->material, "Material preset: paper (Table 1) or brain")->capture_default_str();
+  cmd->add_option("--opening-mm", o->opening_mm, "Static widening of the opening the force is chosen for (mm)")
+      ->capture_default_str();
+  cmd->add_option("--steps", o->steps, "Time steps per run")->capture_default_str();
+  cmd->add_option("--timing-steps", o->timing_steps, "Steps timed per model for Table 2 (medians)")->capture_default_str();
+  cmd->add_flag("!--no-plots", o->plots, "Skip the PNG plots");
+  cmd->callback([&action, o] { action = [o] { experiments::run_paper_experiment(*o, std::cout); }; });
+}
+
+}  // namespace roifem::app

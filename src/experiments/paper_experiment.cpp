@@ -1,0 +1,319 @@
+#include "experiments/paper_experiment.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <numeric>
+#include <set>
+#include <ostream>
+
+#include "common/atomic_file.hpp"
+#include "common/errors.hpp"
+#include "common/timer.hpp"
+#include "fem/static_solve.hpp"
+#include "condensation/static_condensation.hpp"
+#include "integrators/trapezoid.hpp"
+#include "io/csv.hpp"
+#include "io/hdf5_file.hpp"
+#include "io/plots.hpp"
+#include "io/xdmf.hpp"
+#include "mesh/gmsh_reader.hpp"
+#include "mesh/mesh_checks.hpp"
+#include "model/fem_model.hpp"
+#include "simulation/run_loop.hpp"
+
+namespace roifem::experiments {
+
+namespace {
+
+using io::format;
+
+/// Mean x-displacement of a set's nodes (m).
+double mean_x(const mesh::TetMesh& mesh, const Vector& u_full, const std::string& set) {
+  const auto& nodes = mesh.set(set).nodes;
+  double sum = 0;
+  for (int n : nodes) sum += u_full[3 * n];
+  return sum / static_cast<double>(nodes.size());
+}
+
+/// Displacement of all nodes, (N x 3) row-major in mm, for HDF5.
+std::vector<double> field_mm(const fem::DofMap& dofs, const Vector& u_free) {
+  const Vector full = dofs.expand(u_free) / mm;
+  return std::vector<double>(full.data(), full.data() + full.size());
+}
+
+/// Per ROI node, its three dof positions in d (the ROI numbering) and in the full free numbering.
+struct RoiNodeDofs {
+  std::vector<std::array<Index, 3>> in_d, in_full;
+};
+
+RoiNodeDofs roi_node_dofs(const roi::Partition& p, const fem::DofMap& dofs) {
+  std::vector<Index> position(static_cast<std::size_t>(dofs.num_free()), -1);
+  for (std::size_t k = 0; k < p.d.size(); ++k) position[static_cast<std::size_t>(p.d[k])] = static_cast<Index>(k);
+  RoiNodeDofs out;
+  for (int n : p.roi_nodes) {
+    std::array<Index, 3> d{}, f{};
+    for (int c = 0; c < 3; ++c) {
+      const int i = dofs.free_dof(n, c);
+      if (i < 0) throw ModelError("paper experiment: ROI node " + std::to_string(n) + " is partly fixed");
+      f[static_cast<std::size_t>(c)] = i;
+      d[static_cast<std::size_t>(c)] = position[static_cast<std::size_t>(i)];
+    }
+    out.in_d.push_back(d);
+    out.in_full.push_back(f);
+  }
+  return out;
+}
+
+struct Setup {
+  std::string name;
+  std::unique_ptr<condensation::StaticCondensation> condensation;
+  RoiNodeDofs node_dofs;
+  double setup_s = 0;
+};
+
+/// Per-step wall times of `steps` steps after a short warm-up (the load ramp still rising).
+std::vector<double> time_steps(const model::SecondOrderSystem& system, double dt, long steps) {
+  integrators::Trapezoid trapezoid(dt);
+  model::State state{0, Vector::Zero(system.size()), Vector::Zero(system.size())};
+  trapezoid.reset(system, state);
+  for (int k = 0; k < 20; ++k) trapezoid.step(state);
+  std::vector<double> seconds;
+  seconds.reserve(static_cast<std::size_t>(steps));
+  for (long k = 0; k < steps; ++k) {
+    Stopwatch clock;
+    trapezoid.step(state);
+    seconds.push_back(clock.seconds());
+  }
+  return seconds;
+}
+
+void print_findings(const PaperOptions& o, const PaperResults& r, std::ostream& log) {
+  log << "\nFindings (Hansen & Larsen 1998, Section 5), checked on this run:\n";
+  auto peak = [](const PaperCurve& c) { return *std::max_element(c.max_mm.begin(), c.max_mm.end()); };
+  bool steady_ok = true;
+  for (const auto& c : r.curves) {
+    double sum = 0;
+    long count = 0;
+    for (std::size_t k = 100; k < c.mean_mm.size(); ++k, ++count) sum += c.mean_mm[k];
+    const double steady = count ? sum / static_cast<double>(count) : 0.0;
+    steady_ok = steady_ok && steady < 0.2;
+    log << format("  %-8s ramp %.1f s: peak max error %6.3f mm, peak mean error %6.3f mm, steady mean error (steps > 100) %.4f mm\n",
+                  c.setup.c_str(), c.ramp_s, peak(c), *std::max_element(c.mean_mm.begin(), c.mean_mm.end()), steady);
+  }
+  log << format("  [%s] steady-state mean error below 0.2 mm for every ramp and setup\n", steady_ok ? "yes" : "NO");
+  bool ramp_order = true, setup_order = true;
+  const std::size_t n_ramps = o.ramps_s.size();
+  for (std::size_t s = 0; s < o.setup_nodes.size(); ++s)
+    for (std::size_t k = 0; k + 1 < n_ramps; ++k)
+      ramp_order = ramp_order && peak(r.curves[s * n_ramps + k]) > peak(r.curves[s * n_ramps + k + 1]);
+  for (std::size_t k = 0; k < n_ramps && o.setup_nodes.size() > 1; ++k)
+    setup_order = setup_order && peak(r.curves[n_ramps + k]) > peak(r.curves[k]);
+  log << format("  [%s] the faster the ramp, the higher the max-error peak (0.5 s highest, 2 s lowest)\n",
+                ramp_order ? "yes" : "NO");
+  log << format("  [%s] setup 2 (smaller ROI) peaks above setup 1\n", setup_order ? "yes" : "NO");
+  bool faster = true;
+  for (std::size_t k = 1; k < r.timing.size(); ++k) faster = faster && r.timing[k].step_s_median < r.timing[0].step_s_median;
+  log << format("  [%s] the condensed models step faster than the full model\n", faster ? "yes" : "NO");
+}
+
+void print_table2(const PaperResults& r, std::ostream& log) {
+  const double paper[] = {paper_full_step_s, paper_setup1_step_s, paper_setup2_step_s};
+  log << "\nTable 2: time per step (trapezoidal rule, dt = 0.05 s; real time at 20 Hz needs < 50 ms)\n";
+  log << format("  %-8s %6s %6s %12s %14s %11s %14s %10s\n", "model", "nodes", "dofs", "1998 (s)", "roifem (ms)",
+                "p99 (ms)", "frame rate", "vs full");
+  for (std::size_t k = 0; k < r.timing.size(); ++k) {
+    const auto& t = r.timing[k];
+    log << format("  %-8s %6lld %6lld %12.3f %14.4f %11.4f %11.0f Hz %9.2fx\n", t.model.c_str(),
+                  static_cast<long long>(t.nodes), static_cast<long long>(t.dofs), k < 3 ? paper[k] : 0.0,
+                  t.step_s_median * 1e3, t.step_s_p99 * 1e3, 1.0 / t.step_s_median,
+                  r.timing[0].step_s_median / t.step_s_median);
+  }
+  log << "  (1998: the paper's figures on its hardware; roifem: medians of per-step wall time on this machine)\n";
+}
+
+}  // namespace
+
+PaperResults run_paper_experiment(const PaperOptions& o, std::ostream& log) {
+  if (!(o.dt > 0)) throw InputError("paper: dt = " + std::to_string(o.dt) + " s must be positive");
+  if (o.steps <= 0) throw InputError("paper: steps must be positive");
+  if (o.timing_steps < 1) throw InputError("paper: timing steps must be positive");
+  if (!(o.opening_mm > 0)) throw InputError("paper: --opening-mm must be positive");
+  ensure_writable_directory(o.out);
+  PaperResults results;
+
+  const mesh::TetMesh mesh = mesh::read_mesh(o.mesh);
+  mesh::check_mesh(mesh);
+  // Unit forces (1 N per wall, opposite directions), scaled below to the requested opening.
+  model::FemModel full = model::build_fem_model(
+      mesh, fem::material_preset(o.material), {"base"},
+      {{"opening_left", Vec3(-1, 0, 0), model::Ramp{0}}, {"opening_right", Vec3(1, 0, 0), model::Ramp{0}}});
+  const fem::DofMap& dofs = *full.dofs;
+  {
+    solvers::Cholesky K;
+    fem::factorize_stiffness(K, full.system.K, dofs);
+    const Vector u = dofs.expand(K.solve(full.system.load.at(1.0)));
+    const double opening_per_newton = mean_x(mesh, u, "opening_right") - mean_x(mesh, u, "opening_left");
+    results.force_N = o.opening_mm * mm / opening_per_newton;
+    results.opening_mm = o.opening_mm;
+  }
+  full.system.load = full.system.load.mapped(dofs.num_free(), [&](const Vector& p) { return Vector(results.force_N * p); });
+  log << format("paper experiment: %s, %lld nodes (%lld free dofs), material '%s'\n", o.mesh.c_str(),
+                static_cast<long long>(mesh.num_nodes()), static_cast<long long>(dofs.num_free()), o.material.c_str());
+  log << format("  force %.4g mN on each wall of the opening (x: -left, +right) widens it statically by %.1f mm\n",
+                results.force_N * 1e3, o.opening_mm);
+
+  std::vector<Setup> setups;
+  for (std::size_t k = 0; k < o.setup_nodes.size(); ++k) {
+    Setup s;
+    s.name = "setup" + std::to_string(k + 1);
+    const roi::RoiSpec spec{.kind = roi::RoiSpec::Kind::nearest, .center = o.roi_target_mm * mm, .radius = 0,
+                            .count = o.setup_nodes[k], .set = {}};
+    Stopwatch clock;
+    const auto partition = roi::partition_dofs(full.system.K, dofs, roi::select_roi_nodes(mesh, dofs, spec));
+    s.condensation = std::make_unique<condensation::StaticCondensation>(full.system, partition, dofs);
+    s.setup_s = clock.seconds();
+    s.node_dofs = roi_node_dofs(partition, dofs);
+    std::set<int> interface_nodes;
+    for (Index i : partition.interface) interface_nodes.insert(static_cast<int>(dofs.full_dof(partition.d[static_cast<std::size_t>(i)]) / 3));
+    results.interface_nodes.push_back(static_cast<Index>(interface_nodes.size()));
+    log << format("  %s: ROI = %s: %zu dofs, %zu interface nodes, %zu static dofs; condensed in %.3f s\n", s.name.c_str(),
+                  spec.describe().c_str(), partition.d.size(), interface_nodes.size(), partition.s.size(), s.setup_s);
+    setups.push_back(std::move(s));
+  }
+
+  // Accuracy: each ramp, full model vs each setup, 200 steps.
+  io::XdmfSeries full_series{.h5_name = "results.h5", .nodes = mesh.num_nodes(), .tets = mesh.num_tets()};
+  io::XdmfSeries roi_series = full_series;
+  std::vector<std::pair<std::string, std::vector<double>>> fields;
+  for (double ramp : o.ramps_s) {
+    model::SecondOrderSystem system = full.system;
+    system.load = full.system.load.with_ramp(model::Ramp{ramp});
+    std::vector<Vector> reference;
+    {
+      integrators::Trapezoid trapezoid(o.dt);
+      model::State state{0, Vector::Zero(system.size()), Vector::Zero(system.size())};
+      trapezoid.reset(system, state);
+      simulation::run(trapezoid, state, o.dt, o.steps, {[&](long k, const model::State& s, double) {
+                        reference.push_back(s.u);
+                        if (ramp == o.ramps_s.front() && k % o.field_every == 0) {
+                          fields.emplace_back(format("fields/full/displacement_mm_%04ld", k), field_mm(dofs, s.u));
+                          full_series.times.push_back(s.t);
+                          full_series.fields.push_back("/" + fields.back().first);
+                        }
+                      }}, format("full model, ramp %.1f s", ramp));
+    }
+    for (std::size_t si = 0; si < setups.size(); ++si) {
+      const Setup& setup = setups[si];
+      model::SecondOrderSystem reduced = setup.condensation->system();
+      reduced.load = reduced.load.with_ramp(model::Ramp{ramp});
+      PaperCurve curve{.setup = setup.name, .ramp_s = ramp, .mean_mm = {}, .max_mm = {}};
+      integrators::Trapezoid trapezoid(o.dt);
+      model::State state{0, Vector::Zero(reduced.size()), Vector::Zero(reduced.size())};
+      trapezoid.reset(reduced, state);
+      simulation::run(trapezoid, state, o.dt, o.steps, {[&](long k, const model::State& s, double) {
+                        const Vector& u_ref = reference[static_cast<std::size_t>(k - 1)];
+                        double sum = 0, worst = 0;
+                        for (std::size_t n = 0; n < setup.node_dofs.in_d.size(); ++n) {
+                          Vec3 diff;
+                          for (int c = 0; c < 3; ++c)
+                            diff[c] = s.u[setup.node_dofs.in_d[n][static_cast<std::size_t>(c)]] -
+                                      u_ref[setup.node_dofs.in_full[n][static_cast<std::size_t>(c)]];
+                          sum += diff.norm();
+                          worst = std::max(worst, diff.norm());
+                        }
+                        curve.mean_mm.push_back(sum / static_cast<double>(setup.node_dofs.in_d.size()) / mm);
+                        curve.max_mm.push_back(worst / mm);
+                        if (si == 0 && ramp == o.ramps_s.front() && k % o.field_every == 0) {
+                          fields.emplace_back(format("fields/setup1/displacement_mm_%04ld", k),
+                                              field_mm(dofs, setup.condensation->expand(s.u, s.t)));
+                          roi_series.times.push_back(s.t);
+                          roi_series.fields.push_back("/" + fields.back().first);
+                        }
+                      }}, format("%s, ramp %.1f s", setup.name.c_str(), ramp));
+      results.curves.push_back(std::move(curve));
+    }
+  }
+  // Reorder curves setup-major (setup1: ramps..., setup2: ramps...).
+  std::stable_sort(results.curves.begin(), results.curves.end(),
+                   [](const PaperCurve& a, const PaperCurve& b) { return a.setup < b.setup; });
+
+  // Speed: per-step medians over timing_steps steps of each model.
+  {
+    const auto seconds = time_steps(full.system, o.dt, o.timing_steps);
+    results.timing.push_back({"full", mesh.num_nodes(), dofs.num_free(), simulation::median(seconds),
+                              simulation::percentile(seconds, 0.99), 0.0});
+  }
+  for (const auto& setup : setups) {
+    const auto seconds = time_steps(setup.condensation->system(), o.dt, o.timing_steps);
+    results.timing.push_back({setup.name, static_cast<Index>(setup.condensation->partition().roi_nodes.size()),
+                              setup.condensation->system().size(), simulation::median(seconds),
+                              simulation::percentile(seconds, 0.99), setup.setup_s});
+  }
+
+  // Files: every one written under a temporary name and moved into place when complete.
+  {
+    io::CsvWriter csv(o.out / "errors.csv", "setup,ramp_s,step,time_s,mean_mm,max_mm");
+    for (const auto& c : results.curves)
+      for (std::size_t k = 0; k < c.mean_mm.size(); ++k)
+        csv.row(format("%s,%g,%zu,%.4f,%.9g,%.9g", c.setup.c_str(), c.ramp_s, k + 1, static_cast<double>(k + 1) * o.dt,
+                       c.mean_mm[k], c.max_mm[k]));
+    csv.close();
+  }
+  {
+    io::CsvWriter csv(o.out / "timing.csv", "model,nodes,dofs,step_s_median,frame_rate_hz");
+    for (const auto& t : results.timing)
+      csv.row(format("%s,%lld,%lld,%.6e,%.1f", t.model.c_str(), static_cast<long long>(t.nodes),
+                     static_cast<long long>(t.dofs), t.step_s_median, 1.0 / t.step_s_median));
+    csv.close();
+  }
+  {
+    AtomicFile file(o.out / "results.h5");
+    {
+      io::Hdf5Writer h5(file.temporary_path());
+      const auto n = static_cast<hsize_t>(mesh.num_nodes());
+      const Eigen::Matrix3Xd nodes_mm = mesh.nodes / mm;
+      h5.write("mesh/nodes_mm", std::vector<double>(nodes_mm.data(), nodes_mm.data() + nodes_mm.size()), {n, 3});
+      std::vector<int> tets;
+      for (const auto& t : mesh.tets) tets.insert(tets.end(), t.begin(), t.end());
+      h5.write("mesh/tets", tets, {static_cast<hsize_t>(mesh.num_tets()), 4});
+      for (std::size_t k = 0; k < setups.size(); ++k) {
+        const auto& roi_nodes = setups[k].condensation->partition().roi_nodes;
+        h5.write(setups[k].name + "/roi_nodes", roi_nodes, {roi_nodes.size()});
+      }
+      for (const auto& c : results.curves) {
+        const std::string group = format("errors/%s/ramp_%gs/", c.setup.c_str(), c.ramp_s);
+        h5.write(group + "mean_mm", c.mean_mm, {c.mean_mm.size()});
+        h5.write(group + "max_mm", c.max_mm, {c.max_mm.size()});
+      }
+      std::vector<double> medians;
+      for (const auto& t : results.timing) medians.push_back(t.step_s_median);
+      h5.write("timing/step_s_median", medians, {medians.size()});
+      for (const auto& [name, data] : fields) h5.write(name, data, {n, 3});
+      h5.attribute("experiment", "Hansen & Larsen 1998, Section 5: full model vs condensed ROI setups");
+      h5.attribute("mesh", o.mesh.string());
+      h5.attribute("material", o.material);
+      h5.attribute("force_per_wall_N", format("%.9g", results.force_N));
+      h5.attribute("opening_mm", format("%g", o.opening_mm));
+      h5.attribute("dt_s", format("%g", o.dt));
+      h5.attribute("steps", std::to_string(o.steps));
+      h5.attribute("timing_models", "full, setup1, setup2");
+      h5.attribute("fields", "full and setup1 (static part recovered) displacement, ramp 0.5 s, every " +
+                                 std::to_string(o.field_every) + " steps");
+      h5.close();
+    }
+    file.commit();
+  }
+  io::write_xdmf(o.out / "results.xdmf", full_series);
+  roi_series.fields.empty() ? void() : io::write_xdmf(o.out / "results_setup1.xdmf", roi_series);
+
+  print_findings(o, results, log);
+  print_table2(results, log);
+  if (o.plots && io::run_plot_script("plot_paper.py", o.out, log))
+    log << "\nplots: " << (o.out / "mean_error.png").string() << ", " << (o.out / "max_error.png").string() << ", "
+        << (o.out / "step_time.png").string() << '\n';
+  log << "results: " << (o.out / "errors.csv").string() << ", " << (o.out / "timing.csv").string() << ", "
+      << (o.out / "results.h5").string() << " (ParaView: results.xdmf, results_setup1.xdmf)\n";
+  return results;
+}
+
+}  // namespace roifem::experiments

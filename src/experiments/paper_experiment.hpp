@@ -1,0 +1,59 @@
+#pragma once
+/// Hansen & Larsen (1998), the experiment of Section 5 reproduced: the 800-node brain, base fixed,
+/// the walls of the surgical opening pulled apart by equal and opposite forces ramped over 0.5, 1
+/// and 2 s and then held; dt = 0.05 s, 200 steps of the trapezoidal rule. The full dynamic model is
+/// the reference for two condensed ROI models (306 and 228 nodes nearest the opening's centre).
+/// Error per step: Euclidean distance between condensed and full displacements over the ROI nodes
+/// (mean and max). Timing: per-step median over >= 1000 steps of each model.
+#include <filesystem>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "common/types.hpp"
+
+namespace roifem::experiments {
+
+struct PaperOptions {
+  std::filesystem::path mesh;          ///< the 800-node brain (meshes/brain-800.msh)
+  std::filesystem::path out;           ///< output directory
+  std::string material = "paper";      ///< preset
+  double opening_mm = 4.0;             ///< static widening of the opening the force is chosen for
+  double dt = 0.05;                    ///< s
+  long steps = 200;
+  std::vector<double> ramps_s{0.5, 1.0, 2.0};
+  std::vector<Index> setup_nodes{306, 228};
+  Vec3 roi_target_mm{0, 0, 40};        ///< centre of the opening (slit from z = 30 to 50 mm)
+  long timing_steps = 1000;
+  long field_every = 10;               ///< full displacement field in results.h5 every k steps
+  bool plots = true;
+};
+
+struct PaperCurve {  ///< one setup, one ramp
+  std::string setup;
+  double ramp_s = 0;
+  std::vector<double> mean_mm, max_mm;  ///< per step 1..steps
+};
+
+struct PaperTiming {
+  std::string model;
+  Index nodes = 0, dofs = 0;
+  double step_s_median = 0, step_s_p99 = 0, setup_s = 0;
+};
+
+struct PaperResults {
+  double force_N = 0;                 ///< per wall
+  double opening_mm = 0;              ///< static widening it gives
+  std::vector<PaperCurve> curves;
+  std::vector<PaperTiming> timing;    ///< full first, then the setups
+  std::vector<Index> interface_nodes; ///< per setup
+};
+
+/// Runs the experiment, writes errors.csv, timing.csv, results.h5, results.xdmf and (if asked and
+/// Python with matplotlib is there) the PNG plots into options.out; progress and Table 2 go to `log`.
+PaperResults run_paper_experiment(const PaperOptions& options, std::ostream& log);
+
+/// Hansen & Larsen's Table 2 (1998 hardware): seconds per step.
+inline constexpr double paper_full_step_s = 0.440, paper_setup1_step_s = 0.071, paper_setup2_step_s = 0.037;
+
+}  // namespace roifem::experiments

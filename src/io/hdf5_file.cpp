@@ -1,0 +1,50 @@
+#include "io/hdf5_file.hpp"
+
+#include "common/errors.hpp"
+
+namespace roifem::io {
+
+namespace {
+/// HDF5 prints its error stack by default; roifem reports errors itself.
+void silence_hdf5() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+}  // namespace
+
+Hdf5Writer::Hdf5Writer(const std::filesystem::path& path) : path_(path.string()) {
+  silence_hdf5();
+  file_ = Handle(H5Fcreate(path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+  if (file_.get() < 0) throw InputError(path_ + ": cannot create HDF5 file");
+}
+
+void Hdf5Writer::write_raw(const std::string& name, hid_t type, const void* data, const std::vector<hsize_t>& dims) {
+  Handle lcpl(H5Pcreate(H5P_LINK_CREATE), H5Pclose);
+  H5Pset_create_intermediate_group(lcpl.get(), 1);
+  Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose);
+  Handle set(H5Dcreate2(file_.get(), name.c_str(), type, space.get(), lcpl.get(), H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
+  if (set.get() < 0 || H5Dwrite(set.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
+    throw InputError(path_ + ": cannot write dataset /" + name);
+}
+
+void Hdf5Writer::write(const std::string& name, const std::vector<double>& data, const std::vector<hsize_t>& dims) {
+  write_raw(name, H5T_NATIVE_DOUBLE, data.data(), dims);
+}
+
+void Hdf5Writer::write(const std::string& name, const std::vector<int>& data, const std::vector<hsize_t>& dims) {
+  write_raw(name, H5T_NATIVE_INT, data.data(), dims);
+}
+
+void Hdf5Writer::attribute(const std::string& name, const std::string& value) {
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(type.get(), value.empty() ? 1 : value.size());
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+  Handle attr(H5Acreate2(file_.get(), name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+  if (attr.get() < 0 || H5Awrite(attr.get(), type.get(), value.c_str()) < 0)
+    throw InputError(path_ + ": cannot write attribute " + name);
+}
+
+void Hdf5Writer::close() {
+  if (file_.get() < 0) return;
+  if (H5Fflush(file_.get(), H5F_SCOPE_GLOBAL) < 0) throw InputError(path_ + ": cannot flush HDF5 file (disk full?)");
+  if (H5Fclose(file_.release()) < 0) throw InputError(path_ + ": cannot close HDF5 file (disk full?)");
+}
+
+}  // namespace roifem::io

@@ -1,0 +1,60 @@
+#pragma once
+/// A small RAII layer over the HDF5 C API: every hid_t is closed by its owner, errors become
+/// roifem::InputError naming the file and the object. Datasets are row-major as HDF5 stores them.
+#include <hdf5.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace roifem::io {
+
+/// An owned HDF5 identifier, closed with the matching H5?close.
+class Handle {
+ public:
+  using Closer = herr_t (*)(hid_t);
+  Handle() = default;
+  Handle(hid_t id, Closer close) : id_(id), close_(close) {}
+  Handle(Handle&& o) noexcept : id_(o.id_), close_(o.close_) { o.id_ = H5I_INVALID_HID; }
+  Handle& operator=(Handle&& o) noexcept {
+    std::swap(id_, o.id_);
+    std::swap(close_, o.close_);
+    return *this;
+  }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  ~Handle() {
+    if (id_ >= 0 && close_) close_(id_);
+  }
+  hid_t get() const { return id_; }
+  /// Gives up ownership without closing.
+  hid_t release() {
+    const hid_t id = id_;
+    id_ = H5I_INVALID_HID;
+    return id;
+  }
+
+ private:
+  hid_t id_ = H5I_INVALID_HID;
+  Closer close_ = nullptr;
+};
+
+class Hdf5Writer {
+ public:
+  /// Creates (truncates) `path`.
+  explicit Hdf5Writer(const std::filesystem::path& path);
+  /// Creates intermediate groups as needed ("a/b/c").
+  void write(const std::string& name, const std::vector<double>& data, const std::vector<hsize_t>& dims);
+  void write(const std::string& name, const std::vector<int>& data, const std::vector<hsize_t>& dims);
+  /// A string attribute on the root group.
+  void attribute(const std::string& name, const std::string& value);
+  /// Flushes and closes (also done by the destructor, which cannot report errors).
+  void close();
+
+ private:
+  void write_raw(const std::string& name, hid_t type, const void* data, const std::vector<hsize_t>& dims);
+  std::string path_;
+  Handle file_;
+};
+
+}  // namespace roifem::io

@@ -1,0 +1,35 @@
+#include "io/xdmf.hpp"
+
+#include <fstream>
+
+#include "common/atomic_file.hpp"
+#include "common/errors.hpp"
+
+namespace roifem::io {
+
+void write_xdmf(const std::filesystem::path& path, const XdmfSeries& s) {
+  AtomicFile file(path);
+  {
+    std::ofstream out(file.temporary_path());
+    out << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
+        << "  <Grid Name=\"deformation\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    for (std::size_t k = 0; k < s.times.size(); ++k) {
+      out << "   <Grid Name=\"t" << k << "\" GridType=\"Uniform\">\n"
+          << "    <Time Value=\"" << s.times[k] << "\"/>\n"
+          << "    <Topology TopologyType=\"Tetrahedron\" NumberOfElements=\"" << s.tets << "\">\n"
+          << "     <DataItem Dimensions=\"" << s.tets << " 4\" NumberType=\"Int\" Format=\"HDF\">" << s.h5_name << ":"
+          << s.tets_dataset << "</DataItem>\n    </Topology>\n"
+          << "    <Geometry GeometryType=\"XYZ\">\n     <DataItem Dimensions=\"" << s.nodes
+          << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << s.h5_name << ":" << s.nodes_dataset
+          << "</DataItem>\n    </Geometry>\n"
+          << "    <Attribute Name=\"displacement_mm\" AttributeType=\"Vector\" Center=\"Node\">\n"
+          << "     <DataItem Dimensions=\"" << s.nodes << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">"
+          << s.h5_name << ":" << s.fields[k] << "</DataItem>\n    </Attribute>\n   </Grid>\n";
+    }
+    out << "  </Grid>\n </Domain>\n</Xdmf>\n";
+    if (!out.flush()) throw InputError(path.string() + ": cannot write XDMF file");
+  }
+  file.commit();
+}
+
+}  // namespace roifem::io

@@ -1,0 +1,44 @@
+#include "simulation/run_loop.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "common/errors.hpp"
+#include "common/timer.hpp"
+#include "simulation/progress.hpp"
+
+namespace roifem::simulation {
+
+RunSummary run(integrators::Integrator& integrator, model::State& state, double dt, long steps,
+               const std::vector<StepObserver>& observers, const std::string& progress_label) {
+  if (!(dt > 0)) throw InputError("time step dt = " + std::to_string(dt) + " s must be positive");
+  if (steps <= 0) throw InputError("number of steps " + std::to_string(steps) + " must be positive");
+  RunSummary summary;
+  summary.step_seconds.reserve(static_cast<std::size_t>(steps));
+  std::unique_ptr<ProgressReporter> progress;
+  if (!progress_label.empty()) progress = std::make_unique<ProgressReporter>(progress_label, steps);
+  const double t0 = state.t;
+  for (long k = 1; k <= steps; ++k) {
+    Stopwatch clock;
+    integrator.advance_to(t0 + static_cast<double>(k) * dt, state);
+    const double seconds = clock.seconds();
+    summary.step_seconds.push_back(seconds);
+    summary.steps = k;
+    for (const auto& observe : observers) observe(k, state, seconds);
+    if (progress) progress->update(k);
+  }
+  summary.stats = integrator.stats();
+  return summary;
+}
+
+double median(std::vector<double> values) { return percentile(std::move(values), 0.5); }
+
+double percentile(std::vector<double> values, double p) {
+  if (values.empty()) return 0.0;
+  const auto k = static_cast<std::size_t>(std::lround(p * static_cast<double>(values.size() - 1)));
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
+  return values[k];
+}
+
+}  // namespace roifem::simulation
