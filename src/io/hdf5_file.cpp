@@ -1,5 +1,7 @@
 #include "io/hdf5_file.hpp"
 
+#include <algorithm>
+
 #include "common/errors.hpp"
 
 namespace roifem::io {
@@ -39,6 +41,47 @@ void Hdf5Writer::attribute(const std::string& name, const std::string& value) {
   Handle attr(H5Acreate2(file_.get(), name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
   if (attr.get() < 0 || H5Awrite(attr.get(), type.get(), value.c_str()) < 0)
     throw InputError(path_ + ": cannot write attribute " + name);
+}
+
+AppendableDataset::AppendableDataset(hid_t file, const std::string& name, const std::vector<hsize_t>& record_shape,
+                                     hsize_t records_per_chunk, const std::string& file_name)
+    : record_shape_(record_shape), where_(file_name + ": dataset /" + name) {
+  std::vector<hsize_t> dims{0}, max_dims{H5S_UNLIMITED}, chunk{std::max<hsize_t>(records_per_chunk, 1)};
+  for (hsize_t d : record_shape) {
+    dims.push_back(d);
+    max_dims.push_back(d);
+    chunk.push_back(d);
+    record_size_ *= d;
+  }
+  Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), max_dims.data()), H5Sclose);
+  Handle dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
+  H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data());
+  H5Pset_fletcher32(dcpl.get());
+  Handle lcpl(H5Pcreate(H5P_LINK_CREATE), H5Pclose);
+  H5Pset_create_intermediate_group(lcpl.get(), 1);
+  set_ = Handle(H5Dcreate2(file, name.c_str(), H5T_NATIVE_DOUBLE, space.get(), lcpl.get(), dcpl.get(), H5P_DEFAULT),
+                H5Dclose);
+  if (set_.get() < 0) throw InputError(where_ + ": cannot create");
+}
+
+void AppendableDataset::append(const double* record) {
+  std::vector<hsize_t> dims{records_ + 1}, start{records_}, count{1};
+  for (hsize_t d : record_shape_) {
+    dims.push_back(d);
+    start.push_back(0);
+    count.push_back(d);
+  }
+  if (H5Dset_extent(set_.get(), dims.data()) < 0) throw InputError(where_ + ": cannot extend (disk full?)");
+  Handle file_space(H5Dget_space(set_.get()), H5Sclose);
+  H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
+  Handle memory_space(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr), H5Sclose);
+  if (H5Dwrite(set_.get(), H5T_NATIVE_DOUBLE, memory_space.get(), file_space.get(), H5P_DEFAULT, record) < 0)
+    throw InputError(where_ + ": cannot write record " + std::to_string(records_) + " (disk full?)");
+  ++records_;
+}
+
+void Hdf5Writer::flush() {
+  if (H5Fflush(file_.get(), H5F_SCOPE_GLOBAL) < 0) throw InputError(path_ + ": cannot flush HDF5 file (disk full?)");
 }
 
 void Hdf5Writer::close() {

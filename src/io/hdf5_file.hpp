@@ -39,6 +39,24 @@ class Handle {
   Closer close_ = nullptr;
 };
 
+/// A dataset that grows along its first dimension, one record at a time: chunked one record per
+/// chunk group, with the Fletcher32 checksum filter, so a reader detects a corrupted chunk.
+class AppendableDataset {
+ public:
+  /// `record_shape`: the shape of one record ({} for a scalar series, {n, 3} for a field).
+  AppendableDataset(hid_t file, const std::string& name, const std::vector<hsize_t>& record_shape,
+                    hsize_t records_per_chunk, const std::string& file_name);
+  /// Appends one record of prod(record_shape) doubles.
+  void append(const double* record);
+  hsize_t records() const { return records_; }
+
+ private:
+  Handle set_;
+  std::vector<hsize_t> record_shape_;
+  hsize_t record_size_ = 1, records_ = 0;
+  std::string where_;
+};
+
 class Hdf5Writer {
  public:
   /// Creates (truncates) `path`.
@@ -46,6 +64,13 @@ class Hdf5Writer {
   /// Creates intermediate groups as needed ("a/b/c").
   void write(const std::string& name, const std::vector<double>& data, const std::vector<hsize_t>& dims);
   void write(const std::string& name, const std::vector<int>& data, const std::vector<hsize_t>& dims);
+  /// An extendible dataset in this file.
+  AppendableDataset appendable(const std::string& name, const std::vector<hsize_t>& record_shape,
+                               hsize_t records_per_chunk = 64) {
+    return AppendableDataset(file_.get(), name, record_shape, records_per_chunk, path_);
+  }
+  /// Writes what is buffered to disk (the file stays open).
+  void flush();
   /// A string attribute on the root group.
   void attribute(const std::string& name, const std::string& value);
   /// Flushes and closes (also done by the destructor, which cannot report errors).

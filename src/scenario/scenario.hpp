@@ -1,0 +1,37 @@
+#pragma once
+/// A simulation scenario: plain data with defaults, read strictly from TOML (read_scenario).
+/// Lengths in the file are millimetres, everything else SI; see scenarios/README.md for the keys.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fem/material.hpp"
+#include "model/fem_model.hpp"
+#include "roi/roi.hpp"
+
+namespace roifem::scenario {
+
+struct Scenario {
+  std::filesystem::path file;                 ///< where it was read from
+  std::filesystem::path mesh;                 ///< resolved against the scenario's directory
+  std::string material_name = "paper";        ///< preset, or "custom"
+  fem::Material material;
+  std::vector<std::string> fixed_sets{"base"};
+  std::vector<model::SetLoad> loads;
+  std::optional<roi::RoiSpec> roi;            ///< none: the full dynamic model
+  std::string integrator = "trapezoid";
+  double dt = 0.05;                           ///< s
+  long steps = 200;
+  long field_every = 10;                      ///< full displacement field every k steps (0: none)
+  /// The scenario as resolved (defaults filled in), as TOML text: stored with the results.
+  std::string resolved_toml() const;
+};
+
+/// Reads and checks a scenario. Throws InputError naming the file, line, table and key for syntax
+/// errors, unknown keys, wrong types, missing required keys and non-finite or out-of-range values.
+Scenario read_scenario(const std::filesystem::path& file);
+/// The same from text (`source` names it in messages; relative paths resolve against `directory`).
+Scenario parse_scenario(std::string_view text, const std::string& source, const std::filesystem::path& directory);
+
+}  // namespace roifem::scenario

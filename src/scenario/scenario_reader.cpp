@@ -1,0 +1,306 @@
+#include <toml++/toml.h>
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "common/errors.hpp"
+#include "scenario/scenario.hpp"
+
+namespace roifem::scenario {
+
+namespace {
+
+/// Reads one TOML table strictly: every key must be asked for by name, and close() rejects the
+/// rest. Messages carry "file:line:column" and the table's name.
+class StrictTable {
+ public:
+  StrictTable(const toml::table& table, std::string source, std::string name)
+      : table_(table), source_(std::move(source)), name_(std::move(name)) {}
+
+  std::string where(const toml::node& node) const {
+    const auto& b = node.source().begin;
+    return source_ + ":" + std::to_string(b.line) + ":" + std::to_string(b.column);
+  }
+  std::string key_name(const std::string& key) const { return name_.empty() ? key : name_ + "." + key; }
+  const toml::node* find(const std::string& key) {
+    known_.insert(key);
+    return table_.get(key);
+  }
+  [[noreturn]] void missing(const std::string& key) const {
+    throw InputError(source_ + ": missing required key '" + key_name(key) + "'");
+  }
+  [[noreturn]] void wrong(const toml::node& node, const std::string& key, const std::string& what) const {
+    throw InputError(where(node) + ": key '" + key_name(key) + "' " + what);
+  }
+
+  std::optional<double> number(const std::string& key) {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    std::optional<double> v = node->value<double>();  // integers convert too
+    if (!node->is_number() || !v) wrong(*node, key, "must be a number");
+    if (!std::isfinite(*v)) wrong(*node, key, "must be finite (got " + std::to_string(*v) + ")");
+    return v;
+  }
+  double number(const std::string& key, double fallback) { return number(key).value_or(fallback); }
+  double required_number(const std::string& key) {
+    auto v = number(key);
+    if (!v) missing(key);
+    return *v;
+  }
+  std::optional<long> integer(const std::string& key) {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    if (!node->is_integer()) wrong(*node, key, "must be an integer");
+    return static_cast<long>(*node->value<int64_t>());
+  }
+  std::optional<std::string> string(const std::string& key) {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    if (!node->is_string()) wrong(*node, key, "must be a string");
+    return *node->value<std::string>();
+  }
+  std::optional<Vec3> vec3(const std::string& key) {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    const toml::array* a = node->as_array();
+    if (!a || a->size() != 3) wrong(*node, key, "must be an array of three numbers");
+    Vec3 v;
+    for (std::size_t i = 0; i < 3; ++i) {
+      const auto x = (*a)[i].value<double>();
+      if (!(*a)[i].is_number() || !x) wrong(*node, key, "must be an array of three numbers");
+      if (!std::isfinite(*x)) wrong(*node, key, "must hold finite numbers");
+      v[static_cast<Index>(i)] = *x;
+    }
+    return v;
+  }
+  std::vector<std::string> strings(const std::string& key) {
+    const toml::node* node = find(key);
+    if (!node) return {};
+    const toml::array* a = node->as_array();
+    if (!a) wrong(*node, key, "must be an array of strings");
+    std::vector<std::string> out;
+    for (const auto& item : *a) {
+      if (!item.is_string()) wrong(*node, key, "must be an array of strings");
+      out.push_back(*item.value<std::string>());
+    }
+    return out;
+  }
+  const toml::table* subtable(const std::string& key) {
+    const toml::node* node = find(key);
+    if (!node) return nullptr;
+    if (!node->is_table()) wrong(*node, key, "must be a table [" + key_name(key) + "]");
+    return node->as_table();
+  }
+  const toml::array* table_array(const std::string& key) {
+    const toml::node* node = find(key);
+    if (!node) return nullptr;
+    if (!node->is_array_of_tables()) wrong(*node, key, "must be an array of tables [[" + key_name(key) + "]]");
+    return node->as_array();
+  }
+  /// Rejects every key that was not asked for, listing the valid ones.
+  void close() const {
+    for (const auto& [key, node] : table_) {
+      const std::string k(key.str());
+      if (known_.count(k)) continue;
+      std::string valid;
+      for (const auto& name : known_) valid += (valid.empty() ? "" : ", ") + name;
+      throw InputError(where(node) + ": unknown key '" + key_name(k) + "'" + (valid.empty() ? "" : " (valid: " + valid + ")"));
+    }
+  }
+  const std::string& source() const { return source_; }
+
+ private:
+  const toml::table& table_;
+  std::string source_, name_;
+  std::set<std::string> known_;
+};
+
+fem::Material read_material(StrictTable& t, std::string& name) {
+  const auto preset = t.string("preset");
+  const auto lambda = t.number("lambda_Pa"), mu = t.number("mu_Pa");
+  const auto young = t.number("young_Pa"), poisson = t.number("poisson");
+  const auto rho = t.number("rho_kg_m3"), alpha = t.number("alpha_per_s");
+  t.close();
+  if ((lambda || mu) && (young || poisson))
+    throw InputError(t.source() + ": [material] gives both lambda_Pa/mu_Pa and young_Pa/poisson; give one pair");
+  fem::Material m;
+  if (preset) {
+    m = fem::material_preset(*preset);
+    name = *preset;
+  } else {
+    name = "custom";
+    if (!((lambda && mu) || (young && poisson)))
+      throw InputError(t.source() + ": [material] needs 'preset', or lambda_Pa and mu_Pa, or young_Pa and poisson");
+    if (!rho) throw InputError(t.source() + ": missing required key 'material.rho_kg_m3'");
+    if (!alpha) throw InputError(t.source() + ": missing required key 'material.alpha_per_s'");
+  }
+  if (lambda || mu) {
+    m.lambda = lambda.value_or(m.lambda);
+    m.mu = mu.value_or(m.mu);
+  }
+  if (young || poisson) {
+    const double E = young.value_or(m.young()), nu = poisson.value_or(m.poisson());
+    const fem::Material elastic = fem::Material::from_young_poisson(E, nu, 1.0, 0.0);
+    m.lambda = elastic.lambda;
+    m.mu = elastic.mu;
+  }
+  m.rho = rho.value_or(m.rho);
+  m.alpha = alpha.value_or(m.alpha);
+  if (preset && (lambda || mu || young || poisson || rho || alpha)) name = *preset + " (modified)";
+  try {
+    m.validate();
+  } catch (const InputError& e) {
+    throw InputError(t.source() + ": [" + std::string("material") + "] " + e.what());
+  }
+  return m;
+}
+
+roi::RoiSpec read_roi(StrictTable& t) {
+  roi::RoiSpec spec;
+  const std::string kind = t.string("kind").value_or("");
+  if (kind == "all") {
+    spec.kind = roi::RoiSpec::Kind::all;
+  } else if (kind == "ball") {
+    spec.kind = roi::RoiSpec::Kind::ball;
+    spec.center = t.vec3("center_mm").value_or(Vec3::Constant(NAN)) * mm;
+    spec.radius = t.number("radius_mm", NAN) * mm;
+    if (!spec.center.allFinite()) t.missing("center_mm");
+    if (!(spec.radius > 0)) throw InputError(t.source() + ": key 'roi.radius_mm' must be given and positive");
+  } else if (kind == "nearest") {
+    spec.kind = roi::RoiSpec::Kind::nearest;
+    spec.center = t.vec3("target_mm").value_or(Vec3::Constant(NAN)) * mm;
+    if (!spec.center.allFinite()) t.missing("target_mm");
+    const auto count = t.integer("nodes");
+    if (!count) t.missing("nodes");
+    if (*count <= 0) throw InputError(t.source() + ": key 'roi.nodes' must be positive (got " + std::to_string(*count) + ")");
+    spec.count = *count;
+  } else if (kind == "set") {
+    spec.kind = roi::RoiSpec::Kind::set;
+    const auto set = t.string("set");
+    if (!set) t.missing("set");
+    spec.set = *set;
+  } else {
+    throw InputError(t.source() + ": key 'roi.kind' must be one of all, ball, nearest, set (got '" + kind + "')");
+  }
+  t.close();
+  return spec;
+}
+
+std::string toml_number(double v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << v;
+  std::string out = s.str();
+  if (out.find_first_of(".eEn") == std::string::npos) out += ".0";
+  return out;
+}
+
+}  // namespace
+
+Scenario parse_scenario(std::string_view text, const std::string& source, const std::filesystem::path& directory) {
+  toml::table root;
+  try {
+    root = toml::parse(text, source);
+  } catch (const toml::parse_error& e) {
+    const auto& b = e.source().begin;
+    throw InputError(source + ":" + std::to_string(b.line) + ":" + std::to_string(b.column) + ": TOML syntax error: " +
+                     std::string(e.description()));
+  }
+  Scenario s;
+  s.file = source;
+  StrictTable top(root, source, "");
+  const auto mesh = top.string("mesh");
+  if (!mesh) top.missing("mesh");
+  s.mesh = std::filesystem::path(*mesh).is_absolute() ? std::filesystem::path(*mesh) : directory / *mesh;
+
+  if (const toml::table* t = top.subtable("material")) {
+    StrictTable material(*t, source, "material");
+    s.material = read_material(material, s.material_name);
+  } else {
+    s.material = fem::material_preset(s.material_name);
+  }
+  if (const toml::table* t = top.subtable("boundary")) {
+    StrictTable boundary(*t, source, "boundary");
+    s.fixed_sets = boundary.strings("fixed");
+    boundary.close();
+  }
+  if (const toml::array* loads = top.table_array("load")) {
+    for (const auto& node : *loads) {
+      StrictTable load(*node.as_table(), source, "load");
+      model::SetLoad l;
+      const auto set = load.string("set");
+      if (!set) load.missing("set");
+      l.set = *set;
+      const auto force = load.vec3("force_N");
+      if (!force) load.missing("force_N");
+      l.force = *force;
+      l.ramp.duration = load.number("ramp_s", 0.0);
+      if (l.ramp.duration < 0) throw InputError(load.where(node) + ": key 'load.ramp_s' must be >= 0");
+      load.close();
+      s.loads.push_back(l);
+    }
+  }
+  if (const toml::table* t = top.subtable("roi")) {
+    StrictTable roi_table(*t, source, "roi");
+    s.roi = read_roi(roi_table);
+  }
+  if (const toml::table* t = top.subtable("time")) {
+    StrictTable time(*t, source, "time");
+    s.integrator = time.string("integrator").value_or(s.integrator);
+    s.dt = time.number("dt_s", s.dt);
+    s.steps = time.integer("steps").value_or(s.steps);
+    time.close();
+    if (!(s.dt > 0)) throw InputError(source + ": key 'time.dt_s' must be positive (got " + std::to_string(s.dt) + ")");
+    if (s.steps <= 0) throw InputError(source + ": key 'time.steps' must be positive (got " + std::to_string(s.steps) + ")");
+  }
+  if (const toml::table* t = top.subtable("output")) {
+    StrictTable output(*t, source, "output");
+    s.field_every = output.integer("field_every").value_or(s.field_every);
+    output.close();
+    if (s.field_every < 0) throw InputError(source + ": key 'output.field_every' must be >= 0");
+  }
+  top.close();
+  return s;
+}
+
+Scenario read_scenario(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw InputError(file.string() + ": cannot open scenario file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_scenario(text.str(), file.string(), file.parent_path());
+}
+
+std::string Scenario::resolved_toml() const {
+  std::ostringstream o;
+  o << "mesh = \"" << mesh.string() << "\"\n\n[material]  # " << material_name << "\nlambda_Pa = " << toml_number(material.lambda)
+    << "\nmu_Pa = " << toml_number(material.mu) << "\nrho_kg_m3 = " << toml_number(material.rho)
+    << "\nalpha_per_s = " << toml_number(material.alpha) << "\n\n[boundary]\nfixed = [";
+  for (std::size_t i = 0; i < fixed_sets.size(); ++i) o << (i ? ", " : "") << '"' << fixed_sets[i] << '"';
+  o << "]\n";
+  for (const auto& l : loads)
+    o << "\n[[load]]\nset = \"" << l.set << "\"\nforce_N = [" << toml_number(l.force.x()) << ", " << toml_number(l.force.y())
+      << ", " << toml_number(l.force.z()) << "]\nramp_s = " << toml_number(l.ramp.duration) << "\n";
+  if (roi) {
+    o << "\n[roi]\n";
+    switch (roi->kind) {
+      case roi::RoiSpec::Kind::all: o << "kind = \"all\"\n"; break;
+      case roi::RoiSpec::Kind::ball:
+        o << "kind = \"ball\"\ncenter_mm = [" << toml_number(roi->center.x() / mm) << ", " << toml_number(roi->center.y() / mm)
+          << ", " << toml_number(roi->center.z() / mm) << "]\nradius_mm = " << toml_number(roi->radius / mm) << "\n";
+        break;
+      case roi::RoiSpec::Kind::nearest:
+        o << "kind = \"nearest\"\ntarget_mm = [" << toml_number(roi->center.x() / mm) << ", "
+          << toml_number(roi->center.y() / mm) << ", " << toml_number(roi->center.z() / mm) << "]\nnodes = " << roi->count << "\n";
+        break;
+      case roi::RoiSpec::Kind::set: o << "kind = \"set\"\nset = \"" << roi->set << "\"\n"; break;
+    }
+  }
+  o << "\n[time]\nintegrator = \"" << integrator << "\"\ndt_s = " << toml_number(dt) << "\nsteps = " << steps
+    << "\n\n[output]\nfield_every = " << field_every << "\n";
+  return o.str();
+}
+
+}  // namespace roifem::scenario

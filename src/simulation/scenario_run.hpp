@@ -1,0 +1,29 @@
+#pragma once
+/// `roifem run`: one scenario, full or condensed, integrated and written to DIR/results.h5 and
+/// DIR/results.xdmf. results.h5 holds (lengths in mm, energies in J):
+///   /mesh/nodes_mm (N x 3), /mesh/tets (E x 4)
+///   /time_s (K+1), /step_wall_time_s (K+1, 0 at t_0)
+///   /energy/{kinetic_J, strain_J, dissipated_J, external_work_J} (K+1)
+///   /roi/nodes (R), /roi/displacement_mm (K+1 x R x 3)             (with an ROI)
+///   /fields/displacement_mm_NNNNNN (N x 3) every output.field_every steps, static part recovered
+///   attributes: scenario (the resolved TOML), integrator, counters, status
+/// Series are extendible, chunked, Fletcher32-checksummed datasets appended step by step.
+#include <filesystem>
+#include <iosfwd>
+
+#include "integrators/integrator.hpp"
+#include "scenario/scenario.hpp"
+
+namespace roifem::simulation {
+
+struct ScenarioRunSummary {
+  Index dofs = 0, roi_nodes = 0;
+  long steps = 0;
+  double setup_s = 0, step_s_median = 0;
+  double final_kinetic_J = 0, final_strain_J = 0;
+  integrators::Stats stats;
+};
+
+ScenarioRunSummary run_scenario(const scenario::Scenario& scenario, const std::filesystem::path& out, std::ostream& log);
+
+}  // namespace roifem::simulation

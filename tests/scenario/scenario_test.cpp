@@ -1,0 +1,134 @@
+#include "scenario/scenario.hpp"
+
+#include <gtest/gtest.h>
+
+#include "common/errors.hpp"
+
+namespace roifem::scenario {
+namespace {
+
+const std::string valid = R"(
+mesh = "brain.msh"
+[material]
+young_Pa = 3000.0
+poisson = 0.45
+rho_kg_m3 = 1040
+alpha_per_s = 2.5
+[boundary]
+fixed = ["base"]
+[[load]]
+set = "opening_left"
+force_N = [-0.01, 0, 0]
+ramp_s = 0.5
+[roi]
+kind = "ball"
+center_mm = [0, 0, 40]
+radius_mm = 25
+[time]
+dt_s = 0.01
+steps = 30
+[output]
+field_every = 5
+)";
+
+std::string error_of(const std::string& text) {
+  try {
+    parse_scenario(text, "s.toml", "/data");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "<no InputError>";
+}
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+TEST(ScenarioReader, ReadsEveryKeyWithUnits) {
+  const Scenario s = parse_scenario(valid, "s.toml", "/data");
+  EXPECT_EQ(s.mesh, std::filesystem::path("/data/brain.msh"));
+  EXPECT_NEAR(s.material.young(), 3000, 1e-9);
+  EXPECT_NEAR(s.material.poisson(), 0.45, 1e-12);
+  EXPECT_EQ(s.material.rho, 1040);
+  EXPECT_EQ(s.material.alpha, 2.5);
+  ASSERT_EQ(s.loads.size(), 1u);
+  EXPECT_EQ(s.loads[0].force, Vec3(-0.01, 0, 0));
+  EXPECT_EQ(s.loads[0].ramp.duration, 0.5);
+  ASSERT_TRUE(s.roi.has_value());
+  EXPECT_EQ(s.roi->kind, roi::RoiSpec::Kind::ball);
+  EXPECT_NEAR(s.roi->radius, 0.025, 1e-15);
+  EXPECT_NEAR(s.roi->center.z(), 0.040, 1e-15);
+  EXPECT_EQ(s.dt, 0.01);
+  EXPECT_EQ(s.steps, 30);
+  EXPECT_EQ(s.field_every, 5);
+}
+
+TEST(ScenarioReader, ResolvedTomlReadsBackToTheSameScenario) {
+  const Scenario s = parse_scenario(valid, "s.toml", "/data");
+  const Scenario again = parse_scenario(s.resolved_toml(), "resolved.toml", "/elsewhere");
+  EXPECT_EQ(again.mesh, s.mesh);
+  EXPECT_DOUBLE_EQ(again.material.lambda, s.material.lambda);
+  EXPECT_DOUBLE_EQ(again.material.mu, s.material.mu);
+  EXPECT_EQ(again.loads[0].force, s.loads[0].force);
+  EXPECT_EQ(again.roi->radius, s.roi->radius);
+  EXPECT_EQ(again.steps, s.steps);
+}
+
+TEST(ScenarioReader, SyntaxErrorNamesFileAndLine) {
+  const std::string msg = error_of("mesh = \"a.msh\"\n[time\ndt_s = 1\n");
+  EXPECT_NE(msg.find("s.toml:2:"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("syntax error"), std::string::npos) << msg;
+}
+
+TEST(ScenarioReader, UnknownKeysAreErrorsNamingFileLineAndKey) {
+  std::string msg = error_of(replaced(valid, "steps = 30", "steps = 30\nstpes = 3"));
+  EXPECT_NE(msg.find("s.toml:21:"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("unknown key 'time.stpes'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("valid: dt_s, integrator, steps"), std::string::npos) << msg;
+  msg = error_of("colour = \"red\"\n" + valid);
+  EXPECT_NE(msg.find("unknown key 'colour'"), std::string::npos) << msg;
+}
+
+TEST(ScenarioReader, WrongTypesAreErrorsNamingTheKey) {
+  EXPECT_NE(error_of(replaced(valid, "dt_s = 0.01", "dt_s = \"fast\"")).find("'time.dt_s' must be a number"), std::string::npos);
+  EXPECT_NE(error_of(replaced(valid, "steps = 30", "steps = 30.5")).find("'time.steps' must be an integer"), std::string::npos);
+  EXPECT_NE(error_of(replaced(valid, "force_N = [-0.01, 0, 0]", "force_N = [1, 2]")).find("'load.force_N' must be an array of three"),
+            std::string::npos);
+  EXPECT_NE(error_of(replaced(valid, "fixed = [\"base\"]", "fixed = \"base\"")).find("'boundary.fixed' must be an array"),
+            std::string::npos);
+}
+
+TEST(ScenarioReader, MissingRequiredKeysAreNamed) {
+  EXPECT_NE(error_of(replaced(valid, "mesh = \"brain.msh\"", "")).find("missing required key 'mesh'"), std::string::npos);
+  EXPECT_NE(error_of(replaced(valid, "set = \"opening_left\"", "")).find("missing required key 'load.set'"), std::string::npos);
+  EXPECT_NE(error_of(replaced(valid, "rho_kg_m3 = 1040", "")).find("material.rho_kg_m3"), std::string::npos);
+}
+
+TEST(ScenarioReader, NonFiniteAndNonPhysicalValuesAreRejected) {
+  EXPECT_NE(error_of(replaced(valid, "dt_s = 0.01", "dt_s = nan")).find("'time.dt_s' must be finite"), std::string::npos);
+  EXPECT_NE(error_of(replaced(valid, "ramp_s = 0.5", "ramp_s = inf")).find("'load.ramp_s' must be finite"), std::string::npos);
+  EXPECT_NE(error_of(replaced(valid, "force_N = [-0.01, 0, 0]", "force_N = [nan, 0, 0]")).find("finite"), std::string::npos);
+  EXPECT_NE(error_of(replaced(valid, "poisson = 0.45", "poisson = 0.5")).find("Poisson"), std::string::npos);
+  EXPECT_NE(error_of(replaced(valid, "poisson = 0.45", "poisson = -1.0")).find("Poisson"), std::string::npos);
+  EXPECT_NE(error_of(replaced(valid, "young_Pa = 3000.0", "young_Pa = -3.0")).find("Young"), std::string::npos);
+  EXPECT_NE(error_of(replaced(valid, "rho_kg_m3 = 1040", "rho_kg_m3 = 0")).find("density"), std::string::npos);
+  EXPECT_NE(error_of(replaced(valid, "alpha_per_s = 2.5", "alpha_per_s = -1")).find("alpha"), std::string::npos);
+  EXPECT_NE(error_of(replaced(valid, "dt_s = 0.01", "dt_s = 0")).find("'time.dt_s' must be positive"), std::string::npos);
+  EXPECT_NE(error_of(replaced(valid, "steps = 30", "steps = 0")).find("'time.steps' must be positive"), std::string::npos);
+  EXPECT_NE(error_of(replaced(valid, "radius_mm = 25", "radius_mm = -2")).find("roi.radius_mm"), std::string::npos);
+  EXPECT_NE(error_of(replaced(valid, "kind = \"ball\"", "kind = \"cube\"")).find("'roi.kind' must be one of"), std::string::npos);
+}
+
+TEST(ScenarioReader, MissingFileIsNamed) {
+  try {
+    read_scenario("/nonexistent/s.toml");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/s.toml: cannot open"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace roifem::scenario

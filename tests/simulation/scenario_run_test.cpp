@@ -1,0 +1,103 @@
+#include "simulation/scenario_run.hpp"
+
+#include <gtest/gtest.h>
+#include <hdf5.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "common/errors.hpp"
+#include "test_support.hpp"
+
+namespace roifem::simulation {
+namespace {
+
+std::vector<double> read_dataset(const std::filesystem::path& file, const std::string& name) {
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  EXPECT_GE(f, 0) << file;
+  const hid_t d = H5Dopen2(f, name.c_str(), H5P_DEFAULT);
+  EXPECT_GE(d, 0) << name;
+  const hid_t space = H5Dget_space(d);
+  const hssize_t n = H5Sget_simple_extent_npoints(space);
+  std::vector<double> data(static_cast<std::size_t>(n));
+  H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data());
+  H5Sclose(space);
+  H5Dclose(d);
+  H5Fclose(f);
+  return data;
+}
+
+scenario::Scenario paper_scenario(const std::string& roi_block, long steps) {
+  const std::string text = "mesh = \"" + std::string(ROIFEM_MESH_DIR) + "/brain-800.msh\"\n" +
+                           R"([material]
+preset = "paper"
+[[load]]
+set = "opening_left"
+force_N = [-0.02, 0, 0]
+ramp_s = 0.5
+[[load]]
+set = "opening_right"
+force_N = [0.02, 0, 0]
+ramp_s = 0.5
+)" + roi_block + "[time]\ndt_s = 0.05\nsteps = " + std::to_string(steps) + "\n[output]\nfield_every = 10\n";
+  return scenario::parse_scenario(text, "test.toml", ".");
+}
+
+TEST(ScenarioRun, RoiOfAllNodesWritesTheSameFieldsAsTheFullModel) {
+  test::TempDir dir;
+  std::ostringstream log;
+  run_scenario(paper_scenario("", 40), dir / "full", log);
+  run_scenario(paper_scenario("[roi]\nkind = \"all\"\n", 40), dir / "all", log);
+  const auto a = read_dataset(dir / "full/results.h5", "/fields/displacement_mm_000040");
+  const auto b = read_dataset(dir / "all/results.h5", "/fields/displacement_mm_000040");
+  ASSERT_EQ(a.size(), b.size());
+  double diff = 0, norm = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    diff = std::max(diff, std::abs(a[i] - b[i]));
+    norm = std::max(norm, std::abs(a[i]));
+  }
+  EXPECT_GT(norm, 0.1);  // millimetres: the walls did move
+  EXPECT_LT(diff, 1e-12 * norm);
+}
+
+TEST(ScenarioRun, StoredEnergiesSatisfyTheDiscreteBalance) {
+  test::TempDir dir;
+  std::ostringstream log;
+  run_scenario(paper_scenario("[roi]\nkind = \"nearest\"\ntarget_mm = [0, 0, 40]\nnodes = 306\n", 60), dir.path(), log);
+  const auto K = read_dataset(dir / "results.h5", "/energy/kinetic_J");
+  const auto U = read_dataset(dir / "results.h5", "/energy/strain_J");
+  const auto D = read_dataset(dir / "results.h5", "/energy/dissipated_J");
+  const auto W = read_dataset(dir / "results.h5", "/energy/external_work_J");
+  ASSERT_EQ(K.size(), 61u);
+  for (std::size_t k = 0; k < K.size(); ++k) EXPECT_NEAR(K[k] + U[k] + D[k] - W[k], 0.0, 1e-8 * W.back()) << k;
+  const auto roi = read_dataset(dir / "results.h5", "/roi/displacement_mm");
+  EXPECT_EQ(roi.size(), 61u * 306u * 3u);
+  EXPECT_EQ(read_dataset(dir / "results.h5", "/time_s").back(), 60 * 0.05);
+}
+
+TEST(ScenarioRun, FailedRunLeavesAnExistingResultUntouched) {
+  test::TempDir dir;
+  test::write_file(dir / "results.h5", "a good result from an earlier run");
+  scenario::Scenario s = paper_scenario("", 10);
+  s.loads[0].set = "no_such_set";
+  std::ostringstream log;
+  EXPECT_THROW(run_scenario(s, dir.path(), log), InputError);
+  s = paper_scenario("", 10);
+  s.integrator = "euler";
+  try {
+    run_scenario(s, dir.path(), log);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("integrator 'euler' is unknown (valid: trapezoid"), std::string::npos) << e.what();
+  }
+  std::ifstream in(dir / "results.h5");
+  std::string content;
+  std::getline(in, content);
+  EXPECT_EQ(content, "a good result from an earlier run");
+  int files = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path())) ++files;
+  EXPECT_EQ(files, 1);
+}
+
+}  // namespace
+}  // namespace roifem::simulation
