@@ -102,11 +102,14 @@ class StrictTable {
   /// Rejects every key that was not asked for, listing the valid ones.
   void close() const {
     for (const auto& [key, node] : table_) {
+      (void)node;
       const std::string k(key.str());
       if (known_.count(k)) continue;
       std::string valid;
       for (const auto& name : known_) valid += (valid.empty() ? "" : ", ") + name;
-      throw InputError(where(node) + ": unknown key '" + key_name(k) + "'" + (valid.empty() ? "" : " (valid: " + valid + ")"));
+      const auto& at = key.source().begin;  // the key's own position, not its value's
+      throw InputError(source_ + ":" + std::to_string(at.line) + ":" + std::to_string(at.column) + ": unknown key '" +
+                       key_name(k) + "'" + (valid.empty() ? "" : " (valid: " + valid + ")"));
     }
   }
   const std::string& source() const { return source_; }
