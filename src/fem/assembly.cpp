@@ -1,6 +1,7 @@
 #include "fem/assembly.hpp"
 
 #include <algorithm>
+#include <numeric>
 
 #include "fem/tet4.hpp"
 
@@ -37,6 +38,14 @@ StiffnessAssembler::StiffnessAssembler(const mesh::TetMesh& mesh, const DofMap& 
     std::sort(adjacency_.begin() + static_cast<std::ptrdiff_t>(begin), adjacency_.end());
     adjacency_start_[u(b) + 1] = static_cast<int>(adjacency_.size());
   }
+  // Visit tetrahedra in the order of their lowest node, so that consecutive elements write into
+  // nearby columns (the values array of a 100k-node brain is 100 MB: scattered writes miss cache).
+  element_order_.resize(mesh.tets.size());
+  std::iota(element_order_.begin(), element_order_.end(), 0);
+  std::vector<int> lowest(mesh.tets.size());
+  for (std::size_t e = 0; e < mesh.tets.size(); ++e) lowest[e] = *std::min_element(mesh.tets[e].begin(), mesh.tets[e].end());
+  std::stable_sort(element_order_.begin(), element_order_.end(),
+                   [&](int a, int b) { return lowest[u(a)] < lowest[u(b)]; });
   // Free components per node, then the rows of each column: every free component of every
   // neighbour, in node order (the free numbering is node-major, so the rows come out sorted).
   auto free_components = [&](int node) {
@@ -74,7 +83,8 @@ SparseMatrix StiffnessAssembler::stiffness(const Material& material) const {
   double* values = K.valuePtr();
   std::fill(values, values + row_index_.size(), 0.0);
 
-  for (const auto& t : mesh_.tets) {
+  for (const int e : element_order_) {
+    const auto& t = mesh_.tets[u(e)];
     const Tet4Geometry g = tet4_geometry(mesh_.node(t[0]), mesh_.node(t[1]), mesh_.node(t[2]), mesh_.node(t[3]));
     const ElementMatrix Ke = tet4_stiffness(g, material);
     for (int b = 0; b < 4; ++b) {

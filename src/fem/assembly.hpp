@@ -31,6 +31,7 @@ class StiffnessAssembler {
   std::vector<int> adjacency_start_, adjacency_;  ///< node graph (CSR, sorted, self included)
   std::vector<int> adjacency_offset_;             ///< free rows before adjacency entry k in its column
   std::vector<int> column_start_, row_index_;     ///< the CSC pattern of K_ff
+  std::vector<int> element_order_;                ///< tetrahedra by lowest node: neighbouring columns stay in cache
 };
 
 /// Lumped mass per node, rho V / 4 from each tetrahedron (kg).

@@ -3,6 +3,8 @@
 #include <gmsh.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <numbers>
 
@@ -111,33 +113,53 @@ BrainMesh generate_brain_mesh(Index target_nodes, const std::filesystem::path& o
     gmsh::option::setNumber("Mesh.ElementOrder", 1);
     gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
     gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 1);
-    // HXT (Marot et al. 2019) is Gmsh's fast 3D Delaunay mesher; one thread keeps meshes reproducible.
-    gmsh::option::setNumber("Mesh.Algorithm3D", 10);
+    // Gmsh's default Delaunay mesher on one thread: the same request gives the same mesh, bit
+    // for bit (HXT, algorithm 10, is faster but its node count varies from run to run).
+    gmsh::option::setNumber("Mesh.Algorithm3D", 1);
     gmsh::option::setNumber("General.NumThreads", 1);
 
-    // Initial size: a regular tetrahedral lattice has about one node per 0.12 h^3 ... refined by a
-    // secant on log(nodes) = a + p log(h) (p close to -3, smaller in magnitude on coarse meshes).
+    // Initial size from N(h) ~ a/h^3 + b/h^2 (interior plus surface nodes), fitted on this
+    // geometry's meshes (800 nodes at h = 15.6 mm, 99k at 2.15 mm) and scaled with its volume
+    // and surface; then a secant on log(nodes) against log(h), kept inside the bracket
+    // [too many nodes, too few] and replaced by bisection when it would leave it. N(h) is a
+    // staircase; on coarse meshes its steps can jump over the target (718 -> 889 nodes for a
+    // 0.001 mm change), so when the bracket collapses the search starts again with another
+    // surface mesher, whose staircase lies elsewhere.
     const double volume = 4.0 / 3.0 * std::numbers::pi * shape.semi_axis_x * shape.semi_axis_y * shape.semi_axis_z;
-    double h = std::cbrt(volume / (0.15 * static_cast<double>(target_nodes)));
-    double slope = -2.5;
-    double prev_h = 0, prev_n = 0;
-    for (result.attempts = 1; result.attempts <= 12; ++result.attempts) {
-      const auto n = static_cast<double>(mesh_with_size(h));
-      if (std::abs(n / static_cast<double>(target_nodes) - 1) <= tolerance) {
-        result.element_size_mm = h;
-        break;
+    const double reference_volume = 4.0 / 3.0 * std::numbers::pi * 70.0 * 85.0 * 50.0;
+    const double a = 6.55e5 * volume / reference_volume, b = 1.53e5 * std::pow(volume / reference_volume, 2.0 / 3.0);
+    const double target = static_cast<double>(target_nodes);
+    double x = std::cbrt(target / a);  // x = 1/h: Newton on a x^3 + b x^2 = target
+    for (int k = 0; k < 50; ++k) x -= (a * x * x * x + b * x * x - target) / (3 * a * x * x + 2 * b * x);
+    double h = 1.0 / x;
+    const int surface_algorithms[] = {6, 5, 1};  // Frontal-Delaunay (Gmsh's default), Delaunay, MeshAdapt
+    for (int algorithm : surface_algorithms) {
+      gmsh::option::setNumber("Mesh.Algorithm", algorithm);
+      double slope = -2.5, prev_h = 0, prev_n = 0;
+      double h_fine = 0, h_coarse = 0;  // bracket: h_fine gave too many nodes, h_coarse too few
+      for (int attempt = 0; attempt < 12; ++attempt) {
+        const auto n = static_cast<double>(mesh_with_size(h));
+        ++result.attempts;
+        if (std::abs(n / target - 1) <= tolerance) {
+          result.element_size_mm = h;
+          break;
+        }
+        (n > target ? h_fine : h_coarse) = h;
+        if (h_fine > 0 && h_coarse > 0 && h_coarse / h_fine - 1 < 1e-3) break;  // a gap in N(h)
+        if (prev_n > 0 && std::abs(std::log(h / prev_h)) > 1e-4) {
+          const double measured = std::log(n / prev_n) / std::log(h / prev_h);
+          if (measured < -1.0 && measured > -4.0) slope = measured;
+        }
+        prev_h = h;
+        prev_n = n;
+        h *= std::exp(std::log(target / n) / slope);
+        if (h_fine > 0 && h_coarse > 0 && !(h > h_fine && h < h_coarse)) h = std::sqrt(h_fine * h_coarse);
       }
-      if (prev_n > 0 && std::abs(std::log(h / prev_h)) > 1e-3) {
-        const double measured = std::log(n / prev_n) / std::log(h / prev_h);
-        if (measured < -1.0 && measured > -4.0) slope = measured;
-      }
-      prev_h = h;
-      prev_n = n;
-      h *= std::exp(std::log(static_cast<double>(target_nodes) / n) / slope);
+      if (result.element_size_mm > 0) break;
     }
     if (result.element_size_mm == 0)
       throw InputError("brain mesh: could not reach " + std::to_string(target_nodes) + " nodes within " +
-                       std::to_string(tolerance * 100) + "% in 12 meshings");
+                       std::to_string(tolerance * 100) + "% in " + std::to_string(result.attempts) + " meshings");
     if (!output.empty()) {
       AtomicFile file(output);
       gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
