@@ -1,16 +1,25 @@
 #include "fem/material.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 #include "common/errors.hpp"
+
+namespace {
+std::string str(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", v);
+  return buffer;
+}
+}  // namespace
 
 namespace roifem::fem {
 
 Material Material::from_young_poisson(double young, double poisson, double rho, double alpha) {
   if (!(young > 0) || !std::isfinite(young))
-    throw InputError("material: Young's modulus E = " + std::to_string(young) + " Pa must be positive and finite");
+    throw InputError("material: Young's modulus E = " + str(young) + " Pa must be positive and finite");
   if (!(poisson > -1.0 && poisson < 0.5))
-    throw InputError("material: Poisson's ratio nu = " + std::to_string(poisson) + " must lie in (-1, 0.5)");
+    throw InputError("material: Poisson's ratio nu = " + str(poisson) + " must lie in (-1, 0.5)");
   Material m;
   m.lambda = young * poisson / ((1 + poisson) * (1 - 2 * poisson));
   m.mu = young / (2 * (1 + poisson));
@@ -28,13 +37,13 @@ void Material::validate() const {
   finite(mu, "mu");
   finite(rho, "rho");
   finite(alpha, "alpha");
-  if (!(mu > 0)) throw InputError("material: shear modulus mu = " + std::to_string(mu) + " Pa must be positive");
+  if (!(mu > 0)) throw InputError("material: shear modulus mu = " + str(mu) + " Pa must be positive");
   // nu in (-1, 0.5) <=> mu > 0 and 3 lambda + 2 mu > 0 (positive bulk modulus); nu -> 0.5 as lambda -> inf.
   if (!(3 * lambda + 2 * mu > 0))
-    throw InputError("material: Poisson's ratio nu = " + std::to_string(poisson()) +
-                     " must lie in (-1, 0.5) (lambda = " + std::to_string(lambda) + " Pa is too negative)");
-  if (!(rho > 0)) throw InputError("material: density rho = " + std::to_string(rho) + " kg/m^3 must be positive");
-  if (!(alpha >= 0)) throw InputError("material: damping alpha = " + std::to_string(alpha) + " 1/s must be >= 0");
+    throw InputError("material: Poisson's ratio nu = " + str(poisson()) +
+                     " must lie in (-1, 0.5) (lambda = " + str(lambda) + " Pa is too negative)");
+  if (!(rho > 0)) throw InputError("material: density rho = " + str(rho) + " kg/m^3 must be positive");
+  if (!(alpha >= 0)) throw InputError("material: damping alpha = " + str(alpha) + " 1/s must be >= 0");
 }
 
 Material material_preset(std::string_view name) {

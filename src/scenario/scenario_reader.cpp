@@ -120,7 +120,7 @@ class StrictTable {
   std::set<std::string> known_;
 };
 
-fem::Material read_material(StrictTable& t, std::string& name) {
+fem::Material read_material_values(StrictTable& t, std::string& name) {
   const auto preset = t.string("preset");
   const auto lambda = t.number("lambda_Pa"), mu = t.number("mu_Pa");
   const auto young = t.number("young_Pa"), poisson = t.number("poisson");
@@ -152,12 +152,19 @@ fem::Material read_material(StrictTable& t, std::string& name) {
   m.rho = rho.value_or(m.rho);
   m.alpha = alpha.value_or(m.alpha);
   if (preset && (lambda || mu || young || poisson || rho || alpha)) name = *preset + " (modified)";
-  try {
-    m.validate();
-  } catch (const InputError& e) {
-    throw InputError(t.source() + ": [" + std::string("material") + "] " + e.what());
-  }
+  m.validate();
   return m;
+}
+
+/// The material table; a non-physical value is reported with the file's name.
+fem::Material read_material(StrictTable& t, std::string& name) {
+  try {
+    return read_material_values(t, name);
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    if (message.rfind(t.source(), 0) == 0) throw;
+    throw InputError(t.source() + ": [material] " + message);
+  }
 }
 
 roi::RoiSpec read_roi(StrictTable& t) {

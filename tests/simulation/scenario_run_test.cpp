@@ -60,6 +60,35 @@ TEST(ScenarioRun, RoiOfAllNodesWritesTheSameFieldsAsTheFullModel) {
   EXPECT_LT(diff, 1e-12 * norm);
 }
 
+TEST(ScenarioRun, XdmfPointsAtDatasetsThatExistWithTheRightShape) {
+  test::TempDir dir;
+  std::ostringstream log;
+  run_scenario(paper_scenario("[roi]\nkind = \"nearest\"\ntarget_mm = [0, 0, 40]\nnodes = 100\n", 30), dir.path(), log);
+  std::ifstream xdmf(dir / "results.xdmf");
+  const std::string text((std::istreambuf_iterator<char>(xdmf)), std::istreambuf_iterator<char>());
+  const hid_t file = H5Fopen((dir / "results.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  int references = 0;
+  for (std::size_t at = text.find("results.h5:"); at != std::string::npos; at = text.find("results.h5:", at + 1)) {
+    const std::size_t begin = at + 11, end = text.find('<', begin);
+    const std::string path = text.substr(begin, end - begin);
+    // The DataItem's Dimensions attribute precedes the reference: "N 3" or "E 4".
+    const std::size_t dims_at = text.rfind("Dimensions=\"", at) + 12;
+    const std::string dims = text.substr(dims_at, text.find('"', dims_at) - dims_at);
+    ASSERT_GT(H5Lexists(file, path.c_str(), H5P_DEFAULT), 0) << path;
+    const hid_t set = H5Dopen2(file, path.c_str(), H5P_DEFAULT);
+    const hid_t space = H5Dget_space(set);
+    hsize_t shape[2] = {0, 0};
+    H5Sget_simple_extent_dims(space, shape, nullptr);
+    EXPECT_EQ(std::to_string(shape[0]) + " " + std::to_string(shape[1]), dims) << path;
+    H5Sclose(space);
+    H5Dclose(set);
+    ++references;
+  }
+  H5Fclose(file);
+  EXPECT_EQ(references, 4 * 3);  // fields at steps 0, 10, 20, 30: topology, geometry, displacement each
+}
+
 TEST(ScenarioRun, StoredEnergiesSatisfyTheDiscreteBalance) {
   test::TempDir dir;
   std::ostringstream log;
