@@ -118,19 +118,20 @@ BrainMesh generate_brain_mesh(Index target_nodes, const std::filesystem::path& o
     gmsh::option::setNumber("Mesh.Algorithm3D", 1);
     gmsh::option::setNumber("General.NumThreads", 1);
 
-    // Initial size from N(h) ~ a/h^3 + b/h^2 (interior plus surface nodes), fitted on this
-    // geometry's meshes (800 nodes at h = 15.6 mm, 99k at 2.15 mm) and scaled with its volume
-    // and surface; then a secant on log(nodes) against log(h), kept inside the bracket
+    // Initial size from N(h) ~ a/h^3 + b/h^2 + c/h (interior, surface and edge nodes), fitted on
+    // this geometry's meshes from 800 nodes (h = 15.6 mm) to 300k (h = 1.48 mm), within 4%, and
+    // scaled with its volume, surface and size; then a secant on log(nodes) against log(h), kept inside the bracket
     // [too many nodes, too few] and replaced by bisection when it would leave it. N(h) is a
     // staircase; on coarse meshes its steps can jump over the target (718 -> 889 nodes for a
     // 0.001 mm change), so when the bracket collapses the search starts again with another
     // surface mesher, whose staircase lies elsewhere.
     const double volume = 4.0 / 3.0 * std::numbers::pi * shape.semi_axis_x * shape.semi_axis_y * shape.semi_axis_z;
     const double reference_volume = 4.0 / 3.0 * std::numbers::pi * 70.0 * 85.0 * 50.0;
-    const double a = 6.55e5 * volume / reference_volume, b = 1.53e5 * std::pow(volume / reference_volume, 2.0 / 3.0);
+    const double scale = std::cbrt(volume / reference_volume);
+    const double a = 7.873e5 * std::pow(scale, 3), b = 1.095e5 * std::pow(scale, 2), c = 2.114e3 * scale;
     const double target = static_cast<double>(target_nodes);
-    double x = std::cbrt(target / a);  // x = 1/h: Newton on a x^3 + b x^2 = target
-    for (int k = 0; k < 50; ++k) x -= (a * x * x * x + b * x * x - target) / (3 * a * x * x + 2 * b * x);
+    double x = std::cbrt(target / a);  // x = 1/h: Newton on a x^3 + b x^2 + c x = target
+    for (int k = 0; k < 50; ++k) x -= (a * x * x * x + b * x * x + c * x - target) / (3 * a * x * x + 2 * b * x + c);
     double h = 1.0 / x;
     const int surface_algorithms[] = {6, 5, 1};  // Frontal-Delaunay (Gmsh's default), Delaunay, MeshAdapt
     for (int algorithm : surface_algorithms) {
