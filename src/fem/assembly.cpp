@@ -1,8 +1,8 @@
 #include "fem/assembly.hpp"
 
 #include <algorithm>
-#include <numeric>
 
+#include "common/huge_pages.hpp"
 #include "fem/tet4.hpp"
 
 namespace roifem::fem {
@@ -14,7 +14,10 @@ std::size_t u(Index i) { return static_cast<std::size_t>(i); }
 StiffnessAssembler::StiffnessAssembler(const mesh::TetMesh& mesh, const DofMap& dofs) : mesh_(mesh), dofs_(dofs) {
   const Index n = mesh.num_nodes();
   // Node -> tetrahedra incidence.
-  std::vector<int> tet_start(u(n) + 1, 0), tet_list(mesh.tets.size() * 4);
+  std::vector<int>& tet_start = tet_start_;
+  std::vector<int>& tet_list = tet_list_;
+  tet_start.assign(u(n) + 1, 0);
+  tet_list.resize(mesh.tets.size() * 4);
   for (const auto& t : mesh.tets)
     for (int a : t) ++tet_start[u(a) + 1];
   for (Index i = 0; i < n; ++i) tet_start[u(i) + 1] += tet_start[u(i)];
@@ -38,14 +41,6 @@ StiffnessAssembler::StiffnessAssembler(const mesh::TetMesh& mesh, const DofMap& 
     std::sort(adjacency_.begin() + static_cast<std::ptrdiff_t>(begin), adjacency_.end());
     adjacency_start_[u(b) + 1] = static_cast<int>(adjacency_.size());
   }
-  // Visit tetrahedra in the order of their lowest node, so that consecutive elements write into
-  // nearby columns (the values array of a 100k-node brain is 100 MB: scattered writes miss cache).
-  element_order_.resize(mesh.tets.size());
-  std::iota(element_order_.begin(), element_order_.end(), 0);
-  std::vector<int> lowest(mesh.tets.size());
-  for (std::size_t e = 0; e < mesh.tets.size(); ++e) lowest[e] = *std::min_element(mesh.tets[e].begin(), mesh.tets[e].end());
-  std::stable_sort(element_order_.begin(), element_order_.end(),
-                   [&](int a, int b) { return lowest[u(a)] < lowest[u(b)]; });
   // Free components per node, then the rows of each column: every free component of every
   // neighbour, in node order (the free numbering is node-major, so the rows come out sorted).
   auto free_components = [&](int node) {
@@ -77,31 +72,63 @@ StiffnessAssembler::StiffnessAssembler(const mesh::TetMesh& mesh, const DofMap& 
 SparseMatrix StiffnessAssembler::stiffness(const Material& material) const {
   const Index n_free = dofs_.num_free();
   SparseMatrix K(n_free, n_free);
-  K.resizeNonZeros(static_cast<Index>(row_index_.size()));
+  K.resizeNonZeros(static_cast<Index>(row_index_.size()));  // uninitialised: each column fills its own below
   std::copy(column_start_.begin(), column_start_.end(), K.outerIndexPtr());
-  std::copy(row_index_.begin(), row_index_.end(), K.innerIndexPtr());
+  int* rows = K.innerIndexPtr();
   double* values = K.valuePtr();
-  std::fill(values, values + row_index_.size(), 0.0);
+  advise_huge_pages(values, row_index_.size() * sizeof(double));
+  advise_huge_pages(rows, row_index_.size() * sizeof(int));
 
-  for (const int e : element_order_) {
-    const auto& t = mesh_.tets[u(e)];
-    const Tet4Geometry g = tet4_geometry(mesh_.node(t[0]), mesh_.node(t[1]), mesh_.node(t[2]), mesh_.node(t[3]));
-    const ElementMatrix Ke = tet4_stiffness(g, material);
-    for (int b = 0; b < 4; ++b) {
-      const int node_b = t[u(b)];
-      const int* adj_begin = adjacency_.data() + adjacency_start_[u(node_b)];
-      const int* adj_end = adjacency_.data() + adjacency_start_[u(node_b) + 1];
-      int offset[4];  // where node a's rows start within node b's columns
-      for (int a = 0; a < 4; ++a)
-        offset[a] = adjacency_offset_[u(std::lower_bound(adj_begin, adj_end, t[u(a)]) - adjacency_.data())];
-      for (int cb = 0; cb < 3; ++cb) {
-        const int col = dofs_.free_dof(node_b, cb);
-        if (col < 0) continue;
-        double* column = values + column_start_[u(col)];
-        for (int a = 0; a < 4; ++a) {
-          int local = offset[a];
-          for (int ca = 0; ca < 3; ++ca)
-            if (dofs_.free_dof(t[u(a)], ca) >= 0) column[local++] += Ke(3 * a + ca, 3 * b + cb);
+  const Index n_nodes = mesh_.num_nodes();
+  // Nodes whose three components are all free (the common case) take a branch-free path.
+  std::vector<char> all_free(u(n_nodes));
+  for (Index n = 0; n < n_nodes; ++n)
+    all_free[u(n)] = dofs_.free_dof(n, 0) >= 0 && dofs_.free_dof(n, 1) >= 0 && dofs_.free_dof(n, 2) >= 0;
+  const double lambda = material.lambda, mu = material.mu;
+#pragma omp parallel for schedule(dynamic, 64)
+  for (Index b = 0; b < n_nodes; ++b) {
+    int column[3] = {-1, -1, -1};
+    bool any_free = false;
+    for (int cb = 0; cb < 3; ++cb) any_free |= (column[cb] = dofs_.free_dof(b, cb)) >= 0;
+    if (!any_free) continue;
+    // First touch of this node's columns happens here, on this thread: copy the row indices and
+    // zero the values (a separate memset of the 100 MB array cost as much as the assembly).
+    for (int cb = 0; cb < 3; ++cb)
+      if (column[cb] >= 0) {
+        const int begin = column_start_[u(column[cb])], end = column_start_[u(column[cb]) + 1];
+        std::copy(row_index_.begin() + begin, row_index_.begin() + end, rows + begin);
+        std::fill(values + begin, values + end, 0.0);
+      }
+    const int* adj_begin = adjacency_.data() + adjacency_start_[u(b)];
+    const int* adj_end = adjacency_.data() + adjacency_start_[u(b) + 1];
+    for (int k = tet_start_[u(b)]; k < tet_start_[u(b) + 1]; ++k) {
+      const auto& t = mesh_.tets[u(tet_list_[u(k)])];
+      const int local_b = static_cast<int>(std::find(t.begin(), t.end(), static_cast<int>(b)) - t.begin());
+      const Tet4Geometry g = tet4_geometry(mesh_.node(t[0]), mesh_.node(t[1]), mesh_.node(t[2]), mesh_.node(t[3]));
+      const double V = std::abs(g.volume);
+      const double gb[3] = {g.grad(local_b, 0), g.grad(local_b, 1), g.grad(local_b, 2)};
+      for (int a = 0; a < 4; ++a) {
+        const int node_a = t[u(a)];
+        const double ga[3] = {g.grad(a, 0), g.grad(a, 1), g.grad(a, 2)};
+        const double shear = mu * (ga[0] * gb[0] + ga[1] * gb[1] + ga[2] * gb[2]);
+        double K_ab[3][3];  // K_ab(i, j) = V (lambda ga_i gb_j + mu ga_j gb_i + mu (ga . gb) delta_ij)
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) K_ab[i][j] = V * (lambda * ga[i] * gb[j] + mu * ga[j] * gb[i] + (i == j ? shear : 0.0));
+        const int offset = adjacency_offset_[u(std::lower_bound(adj_begin, adj_end, node_a) - adjacency_.data())];
+        if (all_free[u(node_a)] && all_free[u(b)]) {
+          for (int cb = 0; cb < 3; ++cb) {
+            double* target = values + column_start_[u(column[cb])] + offset;
+            target[0] += K_ab[0][cb];
+            target[1] += K_ab[1][cb];
+            target[2] += K_ab[2][cb];
+          }
+          continue;
+        }
+        for (int cb = 0; cb < 3; ++cb) {
+          if (column[cb] < 0) continue;
+          double* target = values + column_start_[u(column[cb])] + offset;
+          for (int ca = 0, local = 0; ca < 3; ++ca)
+            if (dofs_.free_dof(node_a, ca) >= 0) target[local++] += K_ab[ca][cb];
         }
       }
     }

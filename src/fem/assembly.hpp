@@ -1,7 +1,12 @@
 #pragma once
 /// Global matrices over the free dofs of a DofMap.
 ///  K:  stiffness, assembled directly into a compressed column pattern built once from the node
-///      graph (no triplet list: a 100k-node brain would need 1.4 GB of triplets).
+///      graph (no triplet list: a 100k-node brain would need 1.4 GB of triplets). Column by
+///      column: node b gathers the blocks K_ab of its own tetrahedra, so every write lands in
+///      b's few hundred contiguous values (scattering element by element missed cache on every
+///      write and cost 14x the element matrices). Columns are independent, so OpenMP threads share
+///      them without races, and each column sums in a fixed order: results do not depend on the
+///      thread count.
 ///  M:  lumped mass, M_ii = sum over the node's tetrahedra of rho V / 4 (a diagonal, as a vector).
 ///  f_D = -K_fp u_p: the load that prescribed (non-zero) Dirichlet values put on the free dofs.
 #include <vector>
@@ -31,7 +36,7 @@ class StiffnessAssembler {
   std::vector<int> adjacency_start_, adjacency_;  ///< node graph (CSR, sorted, self included)
   std::vector<int> adjacency_offset_;             ///< free rows before adjacency entry k in its column
   std::vector<int> column_start_, row_index_;     ///< the CSC pattern of K_ff
-  std::vector<int> element_order_;                ///< tetrahedra by lowest node: neighbouring columns stay in cache
+  std::vector<int> tet_start_, tet_list_;         ///< node -> tetrahedra incidence (CSR)
 };
 
 /// Lumped mass per node, rho V / 4 from each tetrahedron (kg).

@@ -19,13 +19,8 @@ Tet4Geometry tet4_geometry(const Vec3& x0, const Vec3& x1, const Vec3& x2, const
 
 ElementMatrix tet4_stiffness(const Tet4Geometry& g, const Material& m) {
   ElementMatrix K;
-  const double V = std::abs(g.volume);
   for (int a = 0; a < 4; ++a)
-    for (int b = 0; b < 4; ++b) {
-      const Vec3 ga = g.grad.row(a).transpose(), gb = g.grad.row(b).transpose();
-      K.block<3, 3>(3 * a, 3 * b) =
-          V * (m.lambda * ga * gb.transpose() + m.mu * gb * ga.transpose() + m.mu * ga.dot(gb) * Mat3::Identity());
-    }
+    for (int b = 0; b < 4; ++b) K.block<3, 3>(3 * a, 3 * b) = tet4_stiffness_block(g, m, a, b);
   return K;
 }
 

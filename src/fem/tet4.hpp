@@ -19,6 +19,12 @@ using ElementMatrix = Eigen::Matrix<double, 12, 12>;  ///< dof order: node a, co
 
 Tet4Geometry tet4_geometry(const Vec3& x0, const Vec3& x1, const Vec3& x2, const Vec3& x3);
 ElementMatrix tet4_stiffness(const Tet4Geometry& g, const Material& m);
+/// The 3x3 block K_ab of tet4_stiffness (rows: node a's components, columns: node b's).
+inline Mat3 tet4_stiffness_block(const Tet4Geometry& g, const Material& m, int a, int b) {
+  const Vec3 ga = g.grad.row(a).transpose(), gb = g.grad.row(b).transpose();
+  return std::abs(g.volume) *
+         (m.lambda * ga * gb.transpose() + m.mu * gb * ga.transpose() + m.mu * ga.dot(gb) * Mat3::Identity());
+}
 /// Strain (Voigt: xx, yy, zz, 2yz, 2xz, 2xy) from the 12 nodal displacements.
 Eigen::Matrix<double, 6, 1> tet4_strain(const Tet4Geometry& g, const Eigen::Matrix<double, 12, 1>& u);
 
