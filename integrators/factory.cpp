@@ -1,17 +1,65 @@
 #include "integrators/factory.hpp"
 
+#include <arkode/arkode_butcher_dirk.h>
+#include <arkode/arkode_butcher_erk.h>
+
+#include <map>
+
 #include "common/errors.hpp"
 #include "integrators/trapezoid.hpp"
 
 namespace roifem::integrators {
 
-std::vector<std::string> integrator_names() { return {"trapezoid"}; }
+namespace {
 
-std::unique_ptr<Integrator> make_integrator(const std::string& name, double dt) {
-  if (name == "trapezoid") return std::make_unique<Trapezoid>(dt);
+const std::map<std::string, ArkodeMethod>& arkode_methods() {
+  static const std::map<std::string, ArkodeMethod> methods = [] {
+    std::map<std::string, ArkodeMethod> m;
+    auto add = [&](const std::string& name, bool implicit, int table, int order, bool trapezoid = false) {
+      m[name] = {name, implicit, table, trapezoid, false, order};
+      if (implicit) m[name + "-mass"] = {name + "-mass", implicit, table, trapezoid, true, order};
+    };
+    add("arkode-erk2", false, ARKODE_HEUN_EULER_2_1_2, 2);
+    add("arkode-erk3", false, ARKODE_BOGACKI_SHAMPINE_4_2_3, 3);
+    add("arkode-erk4", false, ARKODE_ZONNEVELD_5_3_4, 4);
+    add("arkode-erk5", false, ARKODE_DORMAND_PRINCE_7_4_5, 5);
+    add("arkode-sdirk2", true, ARKODE_SDIRK_2_1_2, 2);
+    add("arkode-ark3", true, ARKODE_ARK324L2SA_DIRK_4_2_3, 3);
+    add("arkode-esdirk4", true, ARKODE_ESDIRK436L2SA_6_3_4, 4);
+    add("arkode-esdirk5", true, ARKODE_ESDIRK547L2SA_7_4_5, 5);
+    add("arkode-trapezoid", true, -1, 2, true);
+    return m;
+  }();
+  return methods;
+}
+
+}  // namespace
+
+std::vector<std::string> integrator_names() {
+  std::vector<std::string> names{"trapezoid"};
+  for (const auto& [name, method] : arkode_methods()) names.push_back(name);
+  return names;
+}
+
+std::unique_ptr<Integrator> make_integrator(const std::string& name, const StepControl& control) {
+  if (name == "trapezoid") {
+    if (control.adaptive) throw InputError("integrator 'trapezoid' has a fixed step only (no rtol/atol)");
+    return std::make_unique<Trapezoid>(control.dt);
+  }
+  if (auto it = arkode_methods().find(name); it != arkode_methods().end()) {
+    if (control.adaptive && it->second.trapezoid)
+      throw InputError("integrator 'arkode-trapezoid' has no embedded error estimate: fixed step only");
+    return std::make_unique<Arkode>(it->second, control);
+  }
   std::string valid;
   for (const auto& n : integrator_names()) valid += (valid.empty() ? "" : ", ") + n;
   throw InputError("integrator '" + name + "' is unknown (valid: " + valid + ")");
+}
+
+int integrator_order(const std::string& name) {
+  if (name == "trapezoid") return 2;
+  if (auto it = arkode_methods().find(name); it != arkode_methods().end()) return it->second.order;
+  throw InputError("integrator '" + name + "' is unknown");
 }
 
 }  // namespace roifem::integrators

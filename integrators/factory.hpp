@@ -1,14 +1,27 @@
 #pragma once
 /// Integrators chosen by name. An unknown name is an InputError listing the valid ones.
+///   trapezoid                 the hand-written trapezoidal rule (Newmark average acceleration)
+///   arkode-erk2 .. erk5       ARKODE explicit RK: Heun-Euler 2, Bogacki-Shampine 3, Zonneveld 4, Dormand-Prince 5
+///   arkode-sdirk2, -ark3, -esdirk4, -esdirk5   ARKODE implicit: SDIRK-2-1-2, ARK324 (implicit table),
+///                             ESDIRK436L2SA (order 4), ESDIRK547L2SA (order 5); KLU, linear
+///   arkode-trapezoid          ARKODE with the trapezoidal rule as a user Butcher table
+///   <implicit>-mass           the same with M given to ARKODE as a mass matrix
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "integrators/arkode.hpp"
 #include "integrators/integrator.hpp"
 
 namespace roifem::integrators {
 
 std::vector<std::string> integrator_names();
-std::unique_ptr<Integrator> make_integrator(const std::string& name, double dt);
+/// Fixed step control.dt, or adaptive (rtol, atol) where the method has an error estimate.
+std::unique_ptr<Integrator> make_integrator(const std::string& name, const StepControl& control);
+inline std::unique_ptr<Integrator> make_integrator(const std::string& name, double dt) {
+  return make_integrator(name, StepControl{.dt = dt});
+}
+/// The theoretical order of a named method (for convergence tests and plots).
+int integrator_order(const std::string& name);
 
 }  // namespace roifem::integrators

@@ -1,0 +1,211 @@
+#include "integrators/arkode.hpp"
+
+#include <arkode/arkode_arkstep.h>
+#include <sunlinsol/sunlinsol_klu.h>
+
+#include <climits>
+#include <cmath>
+#include <utility>
+
+#include "common/errors.hpp"
+
+namespace roifem::integrators {
+
+namespace {
+
+/// [[A, B], [C, D]] from four n x n blocks (any may be empty: pass a 0 x 0 matrix).
+SparseMatrix block_matrix(Index n, const SparseMatrix& A, const SparseMatrix& B, const SparseMatrix& C,
+                          const SparseMatrix& D) {
+  std::vector<Eigen::Triplet<double>> t;
+  auto add = [&](const SparseMatrix& X, Index r0, Index c0) {
+    for (Index j = 0; j < X.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(X, j); it; ++it) t.emplace_back(r0 + it.row(), c0 + it.col(), it.value());
+  };
+  add(A, 0, 0);
+  add(B, 0, n);
+  add(C, n, 0);
+  add(D, n, n);
+  SparseMatrix out(2 * n, 2 * n);
+  out.setFromTriplets(t.begin(), t.end());
+  out.makeCompressed();
+  return out;
+}
+
+bool is_diagonal(const SparseMatrix& M) {
+  for (Index j = 0; j < M.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(M, j); it; ++it)
+      if (it.row() != it.col() && it.value() != 0) return false;
+  return true;
+}
+
+}  // namespace
+
+Arkode::Arkode(ArkodeMethod method, StepControl control)
+    : method_(std::move(method)), control_(control), context_(sundials::make_context()) {
+  if (!(control_.dt > 0) || !std::isfinite(control_.dt))
+    throw InputError(method_.name + ": time step dt = " + std::to_string(control_.dt) + " s must be positive");
+  if (control_.adaptive && !(control_.rtol > 0 && control_.atol > 0))
+    throw InputError(method_.name + ": tolerances rtol and atol must be positive");
+}
+
+Arkode::~Arkode() {
+  if (memory_) ARKStepFree(&memory_);
+}
+
+void Arkode::check(int flag, const char* call, double t) const {
+  if (flag < 0)
+    throw SolverError(method_.name + ": " + call + " failed at t = " + std::to_string(t) + " s: " +
+                      ARKStepGetReturnFlagName(flag));
+}
+
+void Arkode::evaluate_rhs(double t, const double* y, double* ydot) {
+  const Index n = system_->size();
+  const Eigen::Map<const Vector> u(y, n), v(y + n, n);
+  Eigen::Map<Vector> du(ydot, n), dv(ydot + n, n);
+  system_->load.evaluate(t, force_);
+  work_.noalias() = force_ - system_->K * u;
+  work_.noalias() -= system_->C * v;
+  du = v;
+  if (method_.mass_matrix)
+    dv = work_;
+  else
+    dv = inverse_mass_.cwiseProduct(work_);
+}
+
+int Arkode::rhs(double t, N_Vector y, N_Vector ydot, void* self) {
+  auto* me = static_cast<Arkode*>(self);
+  try {
+    me->evaluate_rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+    return 0;
+  } catch (...) {
+    me->pending_ = std::current_exception();
+    return -1;
+  }
+}
+
+int Arkode::jacobian(double, N_Vector, N_Vector, SUNMatrix J, void* self, N_Vector, N_Vector, N_Vector) {
+  auto* me = static_cast<Arkode*>(self);
+  sundials::copy_into(me->jacobian_, J);  // constant: the problem is linear
+  return 0;
+}
+
+int Arkode::mass(double, SUNMatrix M, void* self, N_Vector, N_Vector, N_Vector) {
+  auto* me = static_cast<Arkode*>(self);
+  sundials::copy_into(me->mass_matrix_, M);
+  return 0;
+}
+
+void Arkode::reset(const model::SecondOrderSystem& system, const model::State& initial) {
+  system_ = &system;
+  const Index n = system.size();
+  if (!method_.mass_matrix && !is_diagonal(system.M))
+    throw InputError(method_.name + ": needs a diagonal (lumped) mass matrix; use the -mass variant for a full M");
+  inverse_mass_ = SparseMatrix(system.M).diagonal().cwiseInverse();
+  force_.resize(n);
+  work_.resize(n);
+  if (memory_) ARKStepFree(&memory_);
+  solver_.reset();
+  mass_solver_.reset();
+  J_.reset();
+  M_.reset();
+  pending_ = nullptr;
+
+  y_ = sundials::make_vector(2 * n, context_.get());
+  auto y = sundials::view(y_.get());
+  y.head(n) = initial.u;
+  y.tail(n) = initial.v;
+  memory_ = method_.implicit ? ARKStepCreate(nullptr, rhs, initial.t, y_.get(), context_.get())
+                             : ARKStepCreate(rhs, nullptr, initial.t, y_.get(), context_.get());
+  if (!memory_) throw SolverError(method_.name + ": ARKStepCreate failed");
+  check(ARKStepSetUserData(memory_, this), "ARKStepSetUserData", initial.t);
+  check(ARKStepSetMaxNumSteps(memory_, 1000000), "ARKStepSetMaxNumSteps", initial.t);
+  if (control_.adaptive) {
+    check(ARKStepSStolerances(memory_, control_.rtol, control_.atol), "ARKStepSStolerances", initial.t);
+    check(ARKStepSetInitStep(memory_, control_.dt), "ARKStepSetInitStep", initial.t);
+  } else {
+    check(ARKStepSetFixedStep(memory_, control_.dt), "ARKStepSetFixedStep", initial.t);
+  }
+
+  if (method_.trapezoid) {
+    double c[2] = {0.0, 1.0}, A[4] = {0.0, 0.0, 0.5, 0.5}, b[2] = {0.5, 0.5};
+    ARKodeButcherTable table = ARKodeButcherTable_Create(2, 2, 0, c, A, b, nullptr);
+    const int flag = ARKStepSetTables(memory_, 2, 0, table, nullptr);
+    ARKodeButcherTable_Free(table);
+    check(flag, "ARKStepSetTables", initial.t);
+  } else if (method_.implicit) {
+    check(ARKStepSetTableNum(memory_, static_cast<ARKODE_DIRKTableID>(method_.table), ARKODE_ERK_NONE),
+          "ARKStepSetTableNum", initial.t);
+  } else {
+    check(ARKStepSetTableNum(memory_, ARKODE_DIRK_NONE, static_cast<ARKODE_ERKTableID>(method_.table)),
+          "ARKStepSetTableNum", initial.t);
+  }
+
+  if (method_.implicit) {
+    const SparseMatrix I = model::diagonal_matrix(Vector::Ones(n));
+    if (method_.mass_matrix) {
+      jacobian_ = block_matrix(n, SparseMatrix(n, n), I, -system.K, -system.C);
+      mass_matrix_ = block_matrix(n, I, SparseMatrix(n, n), SparseMatrix(n, n), system.M);
+      M_ = sundials::make_sparse(mass_matrix_, context_.get());
+      mass_solver_.reset(SUNLinSol_KLU(y_.get(), M_.get(), context_.get()));
+      if (!mass_solver_) throw SolverError(method_.name + ": cannot create the KLU mass solver");
+      SUNLinSol_KLUSetOrdering(mass_solver_.get(), 0);
+      check(ARKStepSetMassLinearSolver(memory_, mass_solver_.get(), M_.get(), SUNFALSE), "ARKStepSetMassLinearSolver",
+            initial.t);
+      check(ARKStepSetMassFn(memory_, mass), "ARKStepSetMassFn", initial.t);
+    } else {
+      const SparseMatrix Minv = model::diagonal_matrix(inverse_mass_);
+      jacobian_ = block_matrix(n, SparseMatrix(n, n), I, -(Minv * system.K), -(Minv * system.C));
+    }
+    J_ = sundials::make_sparse(jacobian_, context_.get());
+    solver_.reset(SUNLinSol_KLU(y_.get(), J_.get(), context_.get()));
+    if (!solver_) throw SolverError(method_.name + ": cannot create the KLU solver");
+    SUNLinSol_KLUSetOrdering(solver_.get(), 0);  // AMD
+    check(ARKStepSetLinearSolver(memory_, solver_.get(), J_.get()), "ARKStepSetLinearSolver", initial.t);
+    check(ARKStepSetJacFn(memory_, jacobian), "ARKStepSetJacFn", initial.t);
+    check(ARKStepSetLinear(memory_, 0), "ARKStepSetLinear", initial.t);  // linear, constant Jacobian
+    // Refactor only when gamma = h a_ii changes (never at a fixed step of an SDIRK/ESDIRK table).
+    check(ARKStepSetLSetupFrequency(memory_, INT_MAX / 2), "ARKStepSetLSetupFrequency", initial.t);
+    if (!control_.adaptive) check(ARKStepSetDeltaGammaMax(memory_, 1e-8), "ARKStepSetDeltaGammaMax", initial.t);
+  }
+}
+
+void Arkode::advance_to(double t_out, model::State& state) {
+  if (!memory_) throw Error("internal: " + method_.name + ": advance_to before reset");
+  check(ARKStepSetStopTime(memory_, t_out), "ARKStepSetStopTime", state.t);
+  double t_reached = state.t;
+  const int flag = ARKStepEvolve(memory_, t_out, y_.get(), &t_reached, ARK_NORMAL);
+  if (pending_) std::rethrow_exception(std::exchange(pending_, nullptr));
+  long steps = 0;
+  ARKStepGetNumSteps(memory_, &steps);
+  if (flag < 0)
+    throw SolverError(method_.name + ": failed at t = " + std::to_string(t_reached) + " s (step " + std::to_string(steps) +
+                      "): " + ARKStepGetReturnFlagName(flag));
+  const Index n = system_->size();
+  const auto y = sundials::view(y_.get());
+  if (!y.allFinite())
+    throw SolverError(method_.name + ": the solution diverged (non-finite values) by t = " + std::to_string(t_reached) +
+                      " s, step " + std::to_string(steps) + "; the step is beyond the method's stability limit");
+  state.t = t_reached;
+  state.u = y.head(n);
+  state.v = y.tail(n);
+}
+
+Stats Arkode::stats() const {
+  Stats s;
+  if (!memory_) return s;
+  long nfe = 0, nfi = 0, attempts = 0, value = 0;
+  ARKStepGetNumSteps(memory_, &s.steps);
+  ARKStepGetNumRhsEvals(memory_, &nfe, &nfi);
+  s.rhs_evals = nfe + nfi;
+  ARKStepGetNumStepAttempts(memory_, &attempts);
+  s.failed_steps = attempts - s.steps;
+  if (method_.implicit) {
+    ARKStepGetNumJacEvals(memory_, &s.jac_evals);
+    ARKStepGetNumLinSolvSetups(memory_, &s.lin_setups);
+    ARKStepGetNumNonlinSolvIters(memory_, &value);  // one linear solve per Newton iteration
+    s.lin_solves = value;
+  }
+  return s;
+}
+
+}  // namespace roifem::integrators

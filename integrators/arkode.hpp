@@ -1,0 +1,69 @@
+#pragma once
+/// SUNDIALS ARKODE (ARKStep) on the first-order form y = [u; v]:
+///   u' = v,   M v' = f(t) - C v - K u.
+/// Explicit (ERK) methods use y' = [v; M^-1 (f - C v - K u)] with the lumped (diagonal) M.
+/// Implicit (DIRK/ESDIRK) methods solve with the constant Jacobian J = [[0, I], [-M^-1 K, -M^-1 C]]
+/// held as a SUNSparseMatrix, factored by KLU with AMD ordering (I - gamma J has a symmetric
+/// pattern; KLU's default COLAMD is slower on 3D meshes), the problem declared linear so that at a
+/// fixed step one factorization serves every step. With `mass_matrix`, M is handed to ARKODE as its
+/// mass matrix instead (J = [[0, I], [-K, -C]], a second KLU for [[I, 0], [0, M]]), for comparison.
+/// The trapezoidal rule is available as a user Butcher table: c = [0, 1], A = [[0, 0], [1/2, 1/2]],
+/// b = [1/2, 1/2] (an ESDIRK; equals the hand-written Newmark average-acceleration rule).
+#include <exception>
+#include <memory>
+#include <string>
+
+#include "integrators/integrator.hpp"
+#include "integrators/sundials/handles.hpp"
+
+namespace roifem::integrators {
+
+struct StepControl {
+  double dt = 0.05;       ///< fixed step, or the first step / output interval when adaptive
+  bool adaptive = false;  ///< error-controlled steps with rtol / atol
+  double rtol = 1e-6, atol = 1e-9;
+};
+
+struct ArkodeMethod {
+  std::string name;        ///< e.g. "arkode-dirk-sdirk2"
+  bool implicit = false;
+  int table = -1;          ///< ARKODE_ERKTableID or ARKODE_DIRKTableID; -1 with `trapezoid`
+  bool trapezoid = false;  ///< the user table above
+  bool mass_matrix = false;
+  int order = 0;           ///< of the method (for the docs and tests)
+};
+
+class Arkode final : public Integrator {
+ public:
+  Arkode(ArkodeMethod method, StepControl control);
+  ~Arkode() override;
+  std::string_view name() const override { return method_.name; }
+  void reset(const model::SecondOrderSystem& system, const model::State& initial) override;
+  void advance_to(double t_out, model::State& state) override;
+  Stats stats() const override;
+  /// Seconds spent in the first numeric factorization (KLU), for the reports.
+  double factorization_seconds() const { return factorization_s_; }
+
+ private:
+  static int rhs(double t, N_Vector y, N_Vector ydot, void* self);
+  static int jacobian(double t, N_Vector y, N_Vector fy, SUNMatrix J, void* self, N_Vector, N_Vector, N_Vector);
+  static int mass(double t, SUNMatrix M, void* self, N_Vector, N_Vector, N_Vector);
+  void evaluate_rhs(double t, const double* y, double* ydot);
+  void check(int flag, const char* call, double t) const;
+
+  ArkodeMethod method_;
+  StepControl control_;
+  sundials::Context context_;  // first member: destroyed last
+  sundials::Vector y_;
+  sundials::Matrix J_, M_;
+  sundials::LinearSolver solver_, mass_solver_;
+  void* memory_ = nullptr;
+  const model::SecondOrderSystem* system_ = nullptr;
+  Vector inverse_mass_, force_, work_;
+  SparseMatrix jacobian_, mass_matrix_;
+  std::exception_ptr pending_;  // an exception from a callback, rethrown after the C call
+  double factorization_s_ = 0;
+  long steps_at_reset_ = 0;
+};
+
+}  // namespace roifem::integrators

@@ -1,0 +1,65 @@
+#pragma once
+/// RAII over SUNDIALS 6.4 C handles. The Context is declared first in every owner so that it is
+/// destroyed last. Debian's SUNDIALS uses 64-bit sunindextype: CSC index arrays are in that type.
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sundials/sundials_linearsolver.h>
+#include <sundials/sundials_matrix.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+
+#include <memory>
+#include <string>
+
+#include "common/errors.hpp"
+#include "common/types.hpp"
+
+namespace roifem::integrators::sundials {
+
+struct ContextDeleter {
+  void operator()(SUNContext c) const { SUNContext_Free(&c); }
+};
+struct VectorDeleter {
+  void operator()(N_Vector v) const { N_VDestroy(v); }
+};
+struct MatrixDeleter {
+  void operator()(SUNMatrix m) const { SUNMatDestroy(m); }
+};
+struct LinearSolverDeleter {
+  void operator()(SUNLinearSolver s) const { SUNLinSolFree(s); }
+};
+
+using Context = std::unique_ptr<std::remove_pointer_t<SUNContext>, ContextDeleter>;
+using Vector = std::unique_ptr<std::remove_pointer_t<N_Vector>, VectorDeleter>;
+using Matrix = std::unique_ptr<std::remove_pointer_t<SUNMatrix>, MatrixDeleter>;
+using LinearSolver = std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, LinearSolverDeleter>;
+
+inline Context make_context() {
+  SUNContext c = nullptr;
+  if (SUNContext_Create(nullptr, &c) != 0) throw SolverError("SUNDIALS: cannot create a context");
+  return Context(c);
+}
+
+inline Vector make_vector(Index n, SUNContext ctx) {
+  N_Vector v = N_VNew_Serial(static_cast<sunindextype>(n), ctx);
+  if (!v) throw SolverError("SUNDIALS: cannot allocate a vector of " + std::to_string(n));
+  return Vector(v);
+}
+
+/// A view of an N_Vector's data as an Eigen vector.
+inline Eigen::Map<Eigen::VectorXd> view(N_Vector v) {
+  return {N_VGetArrayPointer(v), static_cast<Index>(N_VGetLength(v))};
+}
+
+/// Throws SolverError "<what> failed (flag F)" when flag < 0.
+inline void check(int flag, const std::string& what) {
+  if (flag < 0) throw SolverError(what + " failed (flag " + std::to_string(flag) + ")");
+}
+
+/// Copies an Eigen CSC matrix into a SUNSparseMatrix (CSC, 64-bit indices).
+Matrix make_sparse(const SparseMatrix& A, SUNContext ctx);
+/// Overwrites `target` (allocated with A's non-zero count) with A: pattern and values. SUNDIALS
+/// zeroes a sparse matrix, index arrays included, before it calls a Jacobian or mass function,
+/// so copying the values alone would leave an empty matrix.
+void copy_into(const SparseMatrix& A, SUNMatrix target);
+
+}  // namespace roifem::integrators::sundials

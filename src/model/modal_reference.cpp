@@ -1,0 +1,94 @@
+#include "model/modal_reference.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <complex>
+
+#include "common/errors.hpp"
+
+namespace roifem::model {
+
+namespace {
+
+using complex = std::complex<double>;
+
+/// The two roots of l^2 + alpha l + w^2 = 0, kept apart at critical damping.
+std::pair<complex, complex> roots(double w, double alpha) {
+  const double a = alpha / 2;
+  complex s = std::sqrt(complex(a * a - w * w, 0.0));
+  if (std::abs(s) < 1e-7 * w) s = complex(0.0, 1e-7 * w);  // critical damping: a vanishingly small split
+  return {-a + s, -a - s};
+}
+
+/// Response from rest to the unit step (slope = false) or the unit slope t H(t) (slope = true).
+double forced(double w, double alpha, double t, bool slope) {
+  if (t <= 0) return 0.0;
+  const auto [l1, l2] = roots(w, alpha);
+  const double w2 = w * w;
+  const complex A = l2 / (w2 * (l1 - l2)), B = -1.0 / w2 - A;
+  if (!slope) return (1.0 / w2 + A * std::exp(l1 * t) + B * std::exp(l2 * t)).real();
+  return (t / w2 + A * (std::exp(l1 * t) - 1.0) / l1 + B * (std::exp(l2 * t) - 1.0) / l2).real();
+}
+
+/// Free response from q0, v0.
+double free_response(double w, double alpha, double q0, double v0, double t) {
+  const auto [l1, l2] = roots(w, alpha);
+  const complex C1 = (v0 - l2 * q0) / (l1 - l2), C2 = q0 - C1;
+  return (C1 * std::exp(l1 * t) + C2 * std::exp(l2 * t)).real();
+}
+
+}  // namespace
+
+ModalReference::ModalReference(const SecondOrderSystem& system, const State& initial, Index max_dofs) {
+  const Index n = system.size();
+  if (n > max_dofs)
+    throw ModelError("modal reference: " + std::to_string(n) + " dofs is more than the dense eigensolver's limit of " +
+                     std::to_string(max_dofs));
+  const DenseMatrix M(system.M), C(system.C);
+  const Vector m = M.diagonal();
+  if ((M - DenseMatrix(m.asDiagonal())).norm() > 1e-14 * m.norm())
+    throw InputError("modal reference: needs a diagonal (lumped) mass matrix");
+  alpha_ = C.diagonal().dot(m) / m.squaredNorm();
+  if ((C - alpha_ * M).norm() > 1e-12 * (C.norm() + 1e-300))
+    throw InputError("modal reference: needs mass-proportional damping C = alpha M");
+  const Vector s = m.cwiseSqrt(), si = s.cwiseInverse();
+  const Eigen::SelfAdjointEigenSolver<DenseMatrix> eig(si.asDiagonal() * DenseMatrix(system.K) * si.asDiagonal());
+  if (eig.info() != Eigen::Success) throw SolverError("modal reference: the eigensolver failed");
+  if (eig.eigenvalues()[0] <= 0) throw ModelError("modal reference: K is not positive definite (a rigid-body mode)");
+  omega_ = eig.eigenvalues().cwiseSqrt();
+  modes_ = si.asDiagonal() * eig.eigenvectors();  // phi^T M phi = I
+  const DenseMatrix phiT_M = eig.eigenvectors().transpose() * s.asDiagonal();  // phi^T M
+  t0_ = initial.t;
+  if (t0_ != 0 && !system.load.terms().empty())
+    throw InputError("modal reference: a loaded system must start at t = 0 (the ramps' origin)");
+  q0_ = phiT_M * initial.u;
+  v0_ = phiT_M * initial.v;
+  const auto& terms = system.load.terms();
+  load_.resize(n, static_cast<Index>(terms.size()));
+  for (std::size_t k = 0; k < terms.size(); ++k) {
+    load_.col(static_cast<Index>(k)) = modes_.transpose() * terms[k].pattern;
+    ramp_duration_.push_back(terms[k].ramp.duration);
+  }
+}
+
+Vector ModalReference::displacement(double t) const {
+  const double tau = t - t0_;
+  Vector q(omega_.size());
+  for (Index i = 0; i < q.size(); ++i) {
+    const double w = omega_[i];
+    double value = free_response(w, alpha_, q0_[i], v0_[i], tau);
+    for (Index k = 0; k < load_.cols(); ++k) {
+      const double T = ramp_duration_[static_cast<std::size_t>(k)];
+      double response;
+      if (T > 0) {
+        response = (forced(w, alpha_, t, true) - forced(w, alpha_, t - T, true)) / T;
+      } else {
+        response = forced(w, alpha_, t, false);
+      }
+      value += load_(i, k) * response;
+    }
+    q[i] = value;
+  }
+  return modes_ * q;
+}
+
+}  // namespace roifem::model

@@ -1,0 +1,132 @@
+#include "integrators/arkode.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+#include "common/errors.hpp"
+#include "integrators/factory.hpp"
+#include "integrators/trapezoid.hpp"
+#include "mesh/box_mesh.hpp"
+#include "model/fem_model.hpp"
+#include "model/modal_reference.hpp"
+
+namespace roifem::integrators {
+namespace {
+
+struct Cantilever {
+  mesh::TetMesh mesh = mesh::structured_box_mesh(4, 2, 2, 0.04, 0.02, 0.02);
+  model::FemModel model;
+  Cantilever(double force, double ramp) {
+    model = model::build_fem_model(mesh, fem::Material::from_young_poisson(3000, 0.45, 1000, 0.8), {"x0"},
+                                   {{"x1", Vec3(0, 0, force), model::Ramp{ramp}}});
+  }
+  const model::SecondOrderSystem& sys() const { return model.system; }
+  model::State rest() const { return {0, Vector::Zero(sys().size()), Vector::Zero(sys().size())}; }
+};
+
+Vector run(Integrator& integrator, const model::SecondOrderSystem& sys, model::State s, double T) {
+  integrator.reset(sys, s);
+  integrator.advance_to(T, s);
+  return s.u;
+}
+
+TEST(Arkode, TrapezoidButcherTableEqualsTheHandWrittenRule) {
+  const Cantilever c(1e-3, 0.3);
+  Trapezoid hand(0.01);
+  auto table = make_integrator("arkode-trapezoid", 0.01);
+  const Vector a = run(hand, c.sys(), c.rest(), 0.5), b = run(*table, c.sys(), c.rest(), 0.5);
+  std::printf("hand-written vs ARKODE trapezoid table: relative difference %.2e\n", (a - b).norm() / a.norm());
+  EXPECT_LT((a - b).norm() / a.norm(), 1e-9);
+}
+
+TEST(Arkode, MassMatrixVariantAgreesWithTheLumpedInverse) {
+  const Cantilever c(1e-3, 0.3);
+  auto lumped = make_integrator("arkode-esdirk4", 0.01);
+  auto mass = make_integrator("arkode-esdirk4-mass", 0.01);
+  const Vector a = run(*lumped, c.sys(), c.rest(), 0.5), b = run(*mass, c.sys(), c.rest(), 0.5);
+  EXPECT_LT((a - b).norm() / a.norm(), 1e-9);
+}
+
+/// Observed order between the last two step sizes, against an exact reference.
+double observed_order(const std::string& method, const model::SecondOrderSystem& sys, const model::State& start,
+                      const Vector& exact, double T, std::initializer_list<double> dts) {
+  std::vector<double> errors;
+  for (double dt : dts) {
+    auto integrator = make_integrator(method, dt);
+    errors.push_back((run(*integrator, sys, start, T) - exact).norm() / exact.norm());
+  }
+  const double order = std::log(errors[errors.size() - 2] / errors.back()) / std::log(2.0);
+  std::printf("%-18s errors", method.c_str());
+  for (double e : errors) std::printf(" %.2e", e);
+  std::printf("  observed order %.2f (theory %d)\n", order, integrator_order(method));
+  return order;
+}
+
+const char* const methods[] = {"arkode-erk2",   "arkode-erk3",    "arkode-erk4",    "arkode-erk5",     "arkode-sdirk2",
+                               "arkode-ark3",   "arkode-esdirk4", "arkode-esdirk5", "arkode-trapezoid", "trapezoid"};
+
+TEST(Arkode, EveryMethodShowsItsOrderOnADampedOscillator) {
+  model::SecondOrderSystem s;
+  s.M = model::diagonal_matrix(Vector::Constant(1, 1.0));
+  s.K = model::diagonal_matrix(Vector::Constant(1, 25.0));  // w = 5 rad/s
+  s.C = model::diagonal_matrix(Vector::Constant(1, 0.8));
+  s.load = model::LoadHistory(1);
+  const model::State start{0, Vector::Constant(1, 1e-3), Vector::Zero(1)};
+  const Vector exact = model::ModalReference(s, start).displacement(2.0);
+  for (const char* method : methods) {
+    const double order = observed_order(method, s, start, exact, 2.0, {0.02, 0.01, 0.005});
+    EXPECT_NEAR(order, integrator_order(method), 0.3) << method;
+  }
+}
+
+TEST(Arkode, EveryMethodShowsItsOrderOnAMeshAgainstTheModalSolution) {
+  const Cantilever c(0, 0);
+  // Start from three modes, the lowest and two faster ones (so that fifth-order errors stay above
+  // round-off at steps the explicit methods can take: 4 dt <= 1 / w_max).
+  const Vector m = DenseMatrix(c.sys().M).diagonal();
+  const Eigen::SelfAdjointEigenSolver<DenseMatrix> eig(m.cwiseSqrt().cwiseInverse().asDiagonal() * DenseMatrix(c.sys().K) *
+                                                       m.cwiseSqrt().cwiseInverse().asDiagonal());
+  const Vector u0 = 1e-3 * m.cwiseSqrt().cwiseInverse().asDiagonal() *
+                    (eig.eigenvectors().col(0) + 0.5 * eig.eigenvectors().col(eig.eigenvalues().size() / 8) +
+                     0.25 * eig.eigenvectors().col(eig.eigenvalues().size() / 4));
+  const double w_max = std::sqrt(eig.eigenvalues().maxCoeff());
+  const model::State start{0, u0 / u0.norm() * 1e-3, Vector::Zero(u0.size())};
+  const double dt = std::pow(2.0, std::floor(std::log2(0.25 / w_max)));  // 4 dt <= 1 / w_max
+  const double T = 1024 * dt;                                              // on every grid
+  const Vector exact = model::ModalReference(c.sys(), start).displacement(T);
+  std::printf("w_max = %.0f rad/s, dt = %.2e s, T = %.3f s\n", w_max, dt, T);
+  for (const char* method : methods) {
+    const double order = observed_order(method, c.sys(), start, exact, T, {4 * dt, 2 * dt, dt});
+    EXPECT_NEAR(order, integrator_order(method), 0.3) << method;
+  }
+}
+
+TEST(Arkode, ExplicitMethodPastItsStabilityLimitStopsNamingMethodTimeAndStep) {
+  const Cantilever c(1e-3, 0.0);
+  auto erk = make_integrator("arkode-erk2", 0.01);  // far above 2 / w_max
+  model::State s = c.rest();
+  erk->reset(c.sys(), s);
+  try {
+    erk->advance_to(50.0, s);
+    FAIL() << "expected SolverError";
+  } catch (const SolverError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("arkode-erk2"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("t = "), std::string::npos) << msg;
+    EXPECT_NE(msg.find("step "), std::string::npos) << msg;
+  }
+}
+
+TEST(IntegratorFactory, UnknownNameListsTheValidOnes) {
+  try {
+    make_integrator("rk45", 0.01);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("valid: trapezoid, arkode-ark3"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace roifem::integrators
