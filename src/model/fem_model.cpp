@@ -25,7 +25,9 @@ FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::Material& materia
   model.system.C = diagonal_matrix(material.alpha * m);
   model.system.load = LoadHistory(dofs.num_free());
   for (const auto& load : loads)
-    model.system.load.add(dofs.restrict_to_free(fem::set_force(mesh, load.set, load.force)), load.ramp);
+    model.system.load.add(dofs.restrict_to_free(load.gravity ? fem::gravity_force(mesh, material.rho, *load.gravity)
+                                                             : fem::set_force(mesh, load.set, load.force)),
+                          load.ramp);
   return model;
 }
 

@@ -2,6 +2,7 @@
 /// The full dynamic model of a mesh: free dofs after fixing named sets, lumped M, C = alpha M,
 /// K assembled, and forces on named sets with their ramps.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,11 +13,13 @@
 
 namespace roifem::model {
 
-/// A total force (N) spread over a named set, ramped.
+/// A ramped load: a total force (N) spread over a named set, or, with an empty set name,
+/// gravity (m/s^2) acting on the lumped masses of the whole mesh.
 struct SetLoad {
   std::string set;
   Vec3 force = Vec3::Zero();
   Ramp ramp;
+  std::optional<Vec3> gravity;  ///< set: body force rho g instead of `force` on `set`
 };
 
 struct FemModel {

@@ -241,11 +241,16 @@ Scenario parse_scenario(std::string_view text, const std::string& source, const 
       StrictTable load(*node.as_table(), source, "load");
       model::SetLoad l;
       const auto set = load.string("set");
-      if (!set) load.missing("set");
-      l.set = *set;
       const auto force = load.vec3("force_N");
-      if (!force) load.missing("force_N");
-      l.force = *force;
+      l.gravity = load.vec3("gravity_m_s2");
+      if (l.gravity && (set || force))
+        throw InputError(load.where(node) + ": a [[load]] is either gravity_m_s2 or set and force_N, not both");
+      if (!l.gravity) {
+        if (!set) load.missing("set");
+        if (!force) load.missing("force_N");
+        l.set = *set;
+        l.force = *force;
+      }
       l.ramp.duration = load.number("ramp_s", 0.0);
       if (l.ramp.duration < 0) throw InputError(load.where(node) + ": key 'load.ramp_s' must be >= 0");
       load.close();
@@ -290,9 +295,15 @@ std::string Scenario::resolved_toml() const {
     << "\nalpha_per_s = " << toml_number(material.alpha) << "\n\n[boundary]\nfixed = [";
   for (std::size_t i = 0; i < fixed_sets.size(); ++i) o << (i ? ", " : "") << '"' << fixed_sets[i] << '"';
   o << "]\n";
-  for (const auto& l : loads)
-    o << "\n[[load]]\nset = \"" << l.set << "\"\nforce_N = [" << toml_number(l.force.x()) << ", " << toml_number(l.force.y())
-      << ", " << toml_number(l.force.z()) << "]\nramp_s = " << toml_number(l.ramp.duration) << "\n";
+  for (const auto& l : loads) {
+    if (l.gravity)
+      o << "\n[[load]]\ngravity_m_s2 = [" << toml_number(l.gravity->x()) << ", " << toml_number(l.gravity->y()) << ", "
+        << toml_number(l.gravity->z()) << "]";
+    else
+      o << "\n[[load]]\nset = \"" << l.set << "\"\nforce_N = [" << toml_number(l.force.x()) << ", "
+        << toml_number(l.force.y()) << ", " << toml_number(l.force.z()) << "]";
+    o << "\nramp_s = " << toml_number(l.ramp.duration) << "\n";
+  }
   if (roi) {
     o << "\n[roi]\n";
     switch (roi->kind) {

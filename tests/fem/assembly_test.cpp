@@ -1,4 +1,5 @@
 #include "fem/assembly.hpp"
+#include "fem/loads.hpp"
 
 #include <gtest/gtest.h>
 
@@ -131,6 +132,36 @@ TEST(StaticSolve, TooFewConstraintsAreDetectedAsSingular) {
   const DofMap dofs(constraints);
   const SparseMatrix K = StiffnessAssembler(mesh, dofs).stiffness(Material::from_young_poisson(1e3, 0.3, 1e3, 0));
   EXPECT_THROW(solve_static(K, Vector::Ones(dofs.num_free()), dofs), ModelError);
+}
+
+}  // namespace
+}  // namespace roifem::fem
+
+namespace roifem::fem {
+namespace {
+
+TEST(Loads, GravitySumsToTotalMassTimesG) {
+  const mesh::TetMesh mesh = mesh::read_mesh(mesh_dir / "brain-800.msh");
+  const Vec3 g(0, 0, -9.81);
+  const Vector f = gravity_force(mesh, 1040, g);
+  Vec3 total = Vec3::Zero();
+  for (Index n = 0; n < mesh.num_nodes(); ++n) total += f.segment<3>(3 * n);
+  const Vec3 expected = 1040 * mesh::total_volume(mesh) * g;
+  EXPECT_LT((total - expected).norm(), 1e-12 * expected.norm());
+}
+
+TEST(Loads, SetForceSumsToTheTotalAndActsOnlyOnTheSet) {
+  const mesh::TetMesh mesh = mesh::read_mesh(mesh_dir / "brain-800.msh");
+  const Vector f = set_force(mesh, "opening_left", Vec3(-0.02, 0.001, 0));
+  Vec3 total = Vec3::Zero();
+  const auto& nodes = mesh.set("opening_left").nodes;
+  for (Index n = 0; n < mesh.num_nodes(); ++n) {
+    total += f.segment<3>(3 * n);
+    if (!std::binary_search(nodes.begin(), nodes.end(), static_cast<int>(n))) {
+      EXPECT_TRUE(f.segment<3>(3 * n).isZero(0));
+    }
+  }
+  EXPECT_LT((total - Vec3(-0.02, 0.001, 0)).norm(), 1e-15);
 }
 
 }  // namespace

@@ -121,6 +121,17 @@ TEST(ScenarioReader, NonFiniteAndNonPhysicalValuesAreRejected) {
   EXPECT_NE(error_of(replaced(valid, "kind = \"ball\"", "kind = \"cube\"")).find("'roi.kind' must be one of"), std::string::npos);
 }
 
+TEST(ScenarioReader, GravityIsALoadOfItsOwn) {
+  const Scenario s = parse_scenario(valid + "[[load]]\ngravity_m_s2 = [0, 0, -9.81]\nramp_s = 1.0\n", "s.toml", "/data");
+  ASSERT_EQ(s.loads.size(), 2u);
+  ASSERT_TRUE(s.loads[1].gravity.has_value());
+  EXPECT_EQ(*s.loads[1].gravity, Vec3(0, 0, -9.81));
+  EXPECT_NE(error_of(valid + "[[load]]\ngravity_m_s2 = [0, 0, -9.81]\nset = \"base\"\n").find("either gravity_m_s2"),
+            std::string::npos);
+  const Scenario again = parse_scenario(s.resolved_toml(), "r.toml", "/");
+  EXPECT_EQ(*again.loads[1].gravity, Vec3(0, 0, -9.81));
+}
+
 TEST(ScenarioReader, MissingFileIsNamed) {
   try {
     read_scenario("/nonexistent/s.toml");
