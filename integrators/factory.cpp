@@ -6,6 +6,7 @@
 #include <map>
 
 #include "common/errors.hpp"
+#include "integrators/ida.hpp"
 #include "integrators/trapezoid.hpp"
 
 namespace roifem::integrators {
@@ -36,7 +37,7 @@ const std::map<std::string, ArkodeMethod>& arkode_methods() {
 }  // namespace
 
 std::vector<std::string> integrator_names() {
-  std::vector<std::string> names{"trapezoid"};
+  std::vector<std::string> names{"trapezoid", "ida-bdf5", "ida-bdf2"};
   for (const auto& [name, method] : arkode_methods()) names.push_back(name);
   return names;
 }
@@ -45,6 +46,14 @@ std::unique_ptr<Integrator> make_integrator(const std::string& name, const StepC
   if (name == "trapezoid") {
     if (control.adaptive) throw InputError("integrator 'trapezoid' has a fixed step only (no rtol/atol)");
     return std::make_unique<Trapezoid>(control.dt);
+  }
+  if (name == "ida-bdf5" || name == "ida-bdf2") {
+    StepControl adaptive = control;
+    if (!control.adaptive) {  // IDA is always error-controlled: a "fixed step" request gets tight tolerances
+      adaptive.rtol = 1e-8;
+      adaptive.atol = 1e-12;
+    }
+    return std::make_unique<Ida>(name, name == "ida-bdf5" ? 5 : 2, adaptive);
   }
   if (auto it = arkode_methods().find(name); it != arkode_methods().end()) {
     if (control.adaptive && it->second.trapezoid)
@@ -57,7 +66,8 @@ std::unique_ptr<Integrator> make_integrator(const std::string& name, const StepC
 }
 
 int integrator_order(const std::string& name) {
-  if (name == "trapezoid") return 2;
+  if (name == "trapezoid" || name == "ida-bdf2") return 2;
+  if (name == "ida-bdf5") return 5;
   if (auto it = arkode_methods().find(name); it != arkode_methods().end()) return it->second.order;
   throw InputError("integrator '" + name + "' is unknown");
 }

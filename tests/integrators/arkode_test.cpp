@@ -130,3 +130,39 @@ TEST(IntegratorFactory, UnknownNameListsTheValidOnes) {
 
 }  // namespace
 }  // namespace roifem::integrators
+
+namespace roifem::integrators {
+namespace {
+
+TEST(Ida, MeetsItsToleranceAgainstTheModalSolution) {
+  const Cantilever c(1e-3, 0.25);  // a ramped load
+  const model::State start = c.rest();
+  const Vector exact = model::ModalReference(c.sys(), start).displacement(0.5);
+  for (const char* name : {"ida-bdf5", "ida-bdf2"}) {
+    double previous = 1;
+    for (double rtol : {1e-4, 1e-6, 1e-8}) {
+      auto ida = make_integrator(name, StepControl{.dt = 1e-3, .adaptive = true, .rtol = rtol, .atol = rtol * 1e-4});
+      const double err = (run(*ida, c.sys(), start, 0.5) - exact).norm() / exact.norm();
+      const auto st = ida->stats();
+      std::printf("%s rtol %.0e: relative error %.2e, %ld steps, %ld residuals, %ld setups\n", name, rtol, err, st.steps,
+                  st.rhs_evals, st.lin_setups);
+      EXPECT_LT(err, 200 * rtol) << name << " rtol " << rtol;  // global error ~ tolerance times a modest factor
+      EXPECT_LT(err, previous);                                 // tighter tolerance, smaller error
+      previous = err;
+    }
+  }
+}
+
+TEST(Arkode, AdaptiveModeMeetsItsToleranceAgainstTheModalSolution) {
+  const Cantilever c(1e-3, 0.25);
+  const Vector exact = model::ModalReference(c.sys(), c.rest()).displacement(0.5);
+  for (const char* name : {"arkode-esdirk4", "arkode-sdirk2", "arkode-erk5"}) {
+    auto method = make_integrator(name, StepControl{.dt = 1e-4, .adaptive = true, .rtol = 1e-6, .atol = 1e-10});
+    const double err = (run(*method, c.sys(), c.rest(), 0.5) - exact).norm() / exact.norm();
+    std::printf("%s adaptive rtol 1e-6: relative error %.2e in %ld steps\n", name, err, method->stats().steps);
+    EXPECT_LT(err, 1e-4) << name;
+  }
+}
+
+}  // namespace
+}  // namespace roifem::integrators

@@ -1,0 +1,43 @@
+#pragma once
+/// SUNDIALS IDA (variable-order, variable-step BDF) on the residual form of the second-order system
+///   F(t, y, y') = [u' - v;  M v' + C v + K u - f(t)] = 0,   y = [u; v],
+/// with the Newton matrix dF/dy + c_j dF/dy' = [[c_j I, -I], [K, c_j M + C]] assembled as a sparse
+/// matrix and factored by KLU (AMD ordering). BDF orders 1-5 (`max_order` 5), or capped at 2,
+/// the highest A-stable BDF. IDA has no fixed-step mode: it is always error-controlled.
+#include <exception>
+
+#include "integrators/arkode.hpp"  // StepControl
+#include "integrators/integrator.hpp"
+#include "integrators/sundials/handles.hpp"
+
+namespace roifem::integrators {
+
+class Ida final : public Integrator {
+ public:
+  Ida(std::string name, int max_order, StepControl control);
+  ~Ida() override;
+  std::string_view name() const override { return name_; }
+  void reset(const model::SecondOrderSystem& system, const model::State& initial) override;
+  void advance_to(double t_out, model::State& state) override;
+  Stats stats() const override;
+
+ private:
+  static int residual(double t, N_Vector y, N_Vector yp, N_Vector r, void* self);
+  static int jacobian(double t, double c_j, N_Vector, N_Vector, N_Vector, SUNMatrix J, void* self, N_Vector, N_Vector,
+                      N_Vector);
+
+  std::string name_;
+  int max_order_;
+  StepControl control_;
+  sundials::Context context_;  // first: destroyed last
+  sundials::Vector y_, yp_;
+  sundials::Matrix J_;
+  sundials::LinearSolver solver_;
+  void* memory_ = nullptr;
+  const model::SecondOrderSystem* system_ = nullptr;
+  SparseMatrix dF_dy_, dF_dyp_;  ///< same pattern (union), so J = dF_dy + c_j dF_dyp keeps it
+  Vector force_;
+  std::exception_ptr pending_;
+};
+
+}  // namespace roifem::integrators
