@@ -6,6 +6,7 @@
 #include <map>
 
 #include "common/errors.hpp"
+#include "integrators/gsl_odeiv2.hpp"
 #include "integrators/ida.hpp"
 #include "integrators/trapezoid.hpp"
 
@@ -34,11 +35,25 @@ const std::map<std::string, ArkodeMethod>& arkode_methods() {
   return methods;
 }
 
+struct GslMethod {
+  const gsl_odeiv2_step_type* type;
+  int order;
+};
+
+const std::map<std::string, GslMethod>& gsl_methods() {
+  static const std::map<std::string, GslMethod> methods = {
+      {"gsl-rk4", {gsl_odeiv2_step_rk4, 4}},       {"gsl-rk8pd", {gsl_odeiv2_step_rk8pd, 8}},
+      {"gsl-rk4imp", {gsl_odeiv2_step_rk4imp, 4}}, {"gsl-bsimp", {gsl_odeiv2_step_bsimp, 6}},
+      {"gsl-msadams", {gsl_odeiv2_step_msadams, 12}}, {"gsl-msbdf", {gsl_odeiv2_step_msbdf, 5}}};
+  return methods;
+}
+
 }  // namespace
 
 std::vector<std::string> integrator_names() {
   std::vector<std::string> names{"trapezoid", "ida-bdf5", "ida-bdf2"};
   for (const auto& [name, method] : arkode_methods()) names.push_back(name);
+  for (const auto& [name, method] : gsl_methods()) names.push_back(name);
   return names;
 }
 
@@ -55,6 +70,8 @@ std::unique_ptr<Integrator> make_integrator(const std::string& name, const StepC
     }
     return std::make_unique<Ida>(name, name == "ida-bdf5" ? 5 : 2, adaptive);
   }
+  if (auto it = gsl_methods().find(name); it != gsl_methods().end())
+    return std::make_unique<GslOdeiv2>(name, it->second.type, control);
   if (auto it = arkode_methods().find(name); it != arkode_methods().end()) {
     if (control.adaptive && it->second.trapezoid)
       throw InputError("integrator 'arkode-trapezoid' has no embedded error estimate: fixed step only");
@@ -69,6 +86,7 @@ int integrator_order(const std::string& name) {
   if (name == "trapezoid" || name == "ida-bdf2") return 2;
   if (name == "ida-bdf5") return 5;
   if (auto it = arkode_methods().find(name); it != arkode_methods().end()) return it->second.order;
+  if (auto it = gsl_methods().find(name); it != gsl_methods().end()) return it->second.order;
   throw InputError("integrator '" + name + "' is unknown");
 }
 

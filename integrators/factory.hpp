@@ -8,6 +8,8 @@
 ///   <implicit>-mass           the same with M given to ARKODE as a mass matrix
 ///   ida-bdf5, ida-bdf2        IDA, variable-order BDF up to 5 / capped at 2 (A-stable); always
 ///                             error-controlled (rtol, atol; a fixed-step request runs at 1e-8, 1e-12)
+///   gsl-rk4, gsl-rk8pd, gsl-rk4imp, gsl-bsimp, gsl-msadams, gsl-msbdf   GSL odeiv2 (dense Jacobian,
+///                             systems up to max_gsl_dofs)
 #include <memory>
 #include <string>
 #include <vector>

@@ -1,0 +1,108 @@
+#include "integrators/gsl_odeiv2.hpp"
+
+#include <gsl/gsl_errno.h>
+
+#include <cmath>
+#include <cstring>
+#include <utility>
+
+#include "common/errors.hpp"
+
+namespace roifem::integrators {
+
+GslOdeiv2::GslOdeiv2(std::string name, const gsl_odeiv2_step_type* stepper, StepControl control)
+    : name_(std::move(name)), stepper_(stepper), control_(control) {
+  gsl_set_error_handler_off();  // GSL's default handler aborts the process; roifem reports errors itself
+  if (!(control_.dt > 0) || !std::isfinite(control_.dt))
+    throw InputError(name_ + ": time step dt = " + std::to_string(control_.dt) + " s must be positive");
+}
+
+GslOdeiv2::~GslOdeiv2() {
+  if (driver_) gsl_odeiv2_driver_free(driver_);
+}
+
+int GslOdeiv2::rhs(double t, const double y[], double dydt[], void* self) {
+  auto* me = static_cast<GslOdeiv2*>(self);
+  try {
+    const Index n = me->system_->size();
+    const Eigen::Map<const Vector> u(y, n), v(y + n, n);
+    me->system_->load.evaluate(t, me->force_);
+    me->work_.noalias() = me->force_ - me->system_->K * u;
+    me->work_.noalias() -= me->system_->C * v;
+    Eigen::Map<Vector>(dydt, n) = v;
+    Eigen::Map<Vector>(dydt + n, n) = me->inverse_mass_.cwiseProduct(me->work_);
+    ++me->stats_.rhs_evals;
+    return GSL_SUCCESS;
+  } catch (...) {
+    me->pending_ = std::current_exception();
+    return GSL_EBADFUNC;
+  }
+}
+
+int GslOdeiv2::jacobian(double, const double*, double* dfdy, double dfdt[], void* self) {
+  auto* me = static_cast<GslOdeiv2*>(self);
+  const Index m = me->jacobian_.rows();
+  std::memcpy(dfdy, me->jacobian_.data(), sizeof(double) * static_cast<std::size_t>(m * m));
+  std::fill(dfdt, dfdt + m, 0.0);  // the load's time derivative: ignored by the Newton matrix it feeds
+  ++me->stats_.jac_evals;
+  return GSL_SUCCESS;
+}
+
+void GslOdeiv2::reset(const model::SecondOrderSystem& system, const model::State& initial) {
+  const Index n = system.size();
+  if (n > max_gsl_dofs)
+    throw InputError(name_ + ": GSL's dense Jacobian is limited to " + std::to_string(max_gsl_dofs) +
+                     " dofs; this system has " + std::to_string(n) + " (use an ARKODE or IDA method)");
+  system_ = &system;
+  const DenseMatrix M(system.M);
+  if ((M - DenseMatrix(M.diagonal().asDiagonal())).norm() > 0)
+    throw InputError(name_ + ": needs a diagonal (lumped) mass matrix");
+  inverse_mass_ = M.diagonal().cwiseInverse();
+  force_.resize(n);
+  work_.resize(n);
+  jacobian_.setZero(2 * n, 2 * n);
+  jacobian_.topRightCorner(n, n).setIdentity();
+  jacobian_.bottomLeftCorner(n, n) = -(inverse_mass_.asDiagonal() * DenseMatrix(system.K));
+  jacobian_.bottomRightCorner(n, n) = -(inverse_mass_.asDiagonal() * DenseMatrix(system.C));
+  y_.resize(2 * n);
+  y_.head(n) = initial.u;
+  y_.tail(n) = initial.v;
+  t_ = initial.t;
+  stats_ = {};
+  pending_ = nullptr;
+  system_gsl_ = {rhs, jacobian, static_cast<std::size_t>(2 * n), this};
+  if (driver_) gsl_odeiv2_driver_free(driver_);
+  driver_ = control_.adaptive
+                ? gsl_odeiv2_driver_alloc_y_new(&system_gsl_, stepper_, control_.dt, control_.atol, control_.rtol)
+                : gsl_odeiv2_driver_alloc_y_new(&system_gsl_, stepper_, control_.dt, 1e-8, 1e-8);
+  if (!driver_) throw SolverError(name_ + ": cannot allocate the GSL driver");
+  gsl_odeiv2_driver_set_nmax(driver_, 10000000);
+}
+
+void GslOdeiv2::advance_to(double t_out, model::State& state) {
+  if (!driver_) throw Error("internal: " + name_ + ": advance_to before reset");
+  int status = GSL_SUCCESS;
+  if (control_.adaptive) {
+    status = gsl_odeiv2_driver_apply(driver_, &t_, t_out, y_.data());
+  } else {
+    const double steps = (t_out - t_) / control_.dt;
+    const auto n = static_cast<unsigned long>(std::lround(steps));
+    if (std::abs(steps - static_cast<double>(n)) > 1e-9 * std::max(1.0, steps))
+      throw InputError(name_ + ": t_out = " + std::to_string(t_out) + " s is not on the grid of dt");
+    if (n > 0) status = gsl_odeiv2_driver_apply_fixed_step(driver_, &t_, control_.dt, n, y_.data());
+    stats_.steps += static_cast<long>(n);
+  }
+  if (pending_) std::rethrow_exception(std::exchange(pending_, nullptr));
+  if (status != GSL_SUCCESS)
+    throw SolverError(name_ + ": failed at t = " + std::to_string(t_) + " s: " + gsl_strerror(status));
+  if (!y_.allFinite())
+    throw SolverError(name_ + ": the solution diverged (non-finite values) by t = " + std::to_string(t_) +
+                      " s; the step is beyond the method's stability limit");
+  if (control_.adaptive) stats_.steps = static_cast<long>(driver_->n);
+  const Index n = system_->size();
+  state.t = t_;
+  state.u = y_.head(n);
+  state.v = y_.tail(n);
+}
+
+}  // namespace roifem::integrators
