@@ -19,20 +19,24 @@ std::pair<complex, complex> roots(double w, double alpha) {
   return {-a + s, -a - s};
 }
 
-/// Response from rest to the unit step (slope = false) or the unit slope t H(t) (slope = true).
-double forced(double w, double alpha, double t, bool slope) {
+/// Response from rest to the unit step (slope = false) or the unit slope t H(t) (slope = true),
+/// or its time derivative.
+double forced(double w, double alpha, double t, bool slope, bool derivative = false) {
   if (t <= 0) return 0.0;
   const auto [l1, l2] = roots(w, alpha);
   const double w2 = w * w;
   const complex A = l2 / (w2 * (l1 - l2)), B = -1.0 / w2 - A;
+  if (slope && derivative) return forced(w, alpha, t, false);  // R' = S
+  if (derivative) return (A * l1 * std::exp(l1 * t) + B * l2 * std::exp(l2 * t)).real();
   if (!slope) return (1.0 / w2 + A * std::exp(l1 * t) + B * std::exp(l2 * t)).real();
   return (t / w2 + A * (std::exp(l1 * t) - 1.0) / l1 + B * (std::exp(l2 * t) - 1.0) / l2).real();
 }
 
-/// Free response from q0, v0.
-double free_response(double w, double alpha, double q0, double v0, double t) {
+/// Free response from q0, v0, or its time derivative.
+double free_response(double w, double alpha, double q0, double v0, double t, bool derivative = false) {
   const auto [l1, l2] = roots(w, alpha);
   const complex C1 = (v0 - l2 * q0) / (l1 - l2), C2 = q0 - C1;
+  if (derivative) return (C1 * l1 * std::exp(l1 * t) + C2 * l2 * std::exp(l2 * t)).real();
   return (C1 * std::exp(l1 * t) + C2 * std::exp(l2 * t)).real();
 }
 
@@ -70,25 +74,24 @@ ModalReference::ModalReference(const SecondOrderSystem& system, const State& ini
   }
 }
 
-Vector ModalReference::displacement(double t) const {
+Vector ModalReference::modal(double t, bool d) const {
   const double tau = t - t0_;
   Vector q(omega_.size());
   for (Index i = 0; i < q.size(); ++i) {
     const double w = omega_[i];
-    double value = free_response(w, alpha_, q0_[i], v0_[i], tau);
+    double value = free_response(w, alpha_, q0_[i], v0_[i], tau, d);
     for (Index k = 0; k < load_.cols(); ++k) {
       const double T = ramp_duration_[static_cast<std::size_t>(k)];
-      double response;
-      if (T > 0) {
-        response = (forced(w, alpha_, t, true) - forced(w, alpha_, t - T, true)) / T;
-      } else {
-        response = forced(w, alpha_, t, false);
-      }
+      const double response = T > 0 ? (forced(w, alpha_, t, true, d) - forced(w, alpha_, t - T, true, d)) / T
+                                    : forced(w, alpha_, t, false, d);
       value += load_(i, k) * response;
     }
     q[i] = value;
   }
   return modes_ * q;
 }
+
+Vector ModalReference::displacement(double t) const { return modal(t, false); }
+Vector ModalReference::velocity(double t) const { return modal(t, true); }
 
 }  // namespace roifem::model

@@ -16,6 +16,7 @@ class ModalReference {
   /// Throws InputError unless M is diagonal and C = alpha M; ModelError above `max_dofs`.
   ModalReference(const SecondOrderSystem& system, const State& initial, Index max_dofs = 6000);
   Vector displacement(double t) const;
+  Vector velocity(double t) const;
   /// The angular eigenfrequencies w_i (rad/s), ascending.
   const Vector& frequencies() const { return omega_; }
   double alpha() const { return alpha_; }
@@ -27,6 +28,7 @@ class ModalReference {
   Vector q0_, v0_;                    ///< modal initial state
   DenseMatrix load_;                  ///< phi^T p_k, n x terms
   std::vector<double> ramp_duration_;
+  Vector modal(double t, bool derivative) const;
 };
 
 }  // namespace roifem::model

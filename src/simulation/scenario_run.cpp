@@ -10,11 +10,10 @@
 #include "io/csv.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/xdmf.hpp"
-#include "mesh/gmsh_reader.hpp"
-#include "mesh/mesh_checks.hpp"
 #include "model/energy.hpp"
 #include "model/fem_model.hpp"
 #include "simulation/run_loop.hpp"
+#include "simulation/scenario_model.hpp"
 
 namespace roifem::simulation {
 
@@ -47,19 +46,13 @@ ScenarioRunSummary run_scenario(const scenario::Scenario& sc, const std::filesys
   auto integrator = integrators::make_integrator(sc.integrator, sc.dt);  // an unknown name fails before any work
   ScenarioRunSummary summary;
   Stopwatch setup_clock;
-  const mesh::TetMesh mesh = mesh::read_mesh(sc.mesh);
-  mesh::check_mesh(mesh);
-  const model::FemModel full = model::build_fem_model(mesh, sc.material, sc.fixed_sets, sc.loads);
-  const fem::DofMap& dofs = *full.dofs;
-  std::unique_ptr<condensation::StaticCondensation> condensation;
-  std::vector<int> roi_nodes;
-  if (sc.roi) {
-    roi_nodes = roi::select_roi_nodes(mesh, dofs, *sc.roi);
-    condensation = std::make_unique<condensation::StaticCondensation>(
-        full.system, roi::partition_dofs(full.system.K, dofs, roi_nodes), dofs);
-  }
-  const model::SecondOrderSystem& system = condensation ? condensation->system() : full.system;
-  const FieldMapper mapper(dofs, condensation.get());
+  const auto built = build_scenario_model(sc);
+  const mesh::TetMesh& mesh = built->mesh;
+  const fem::DofMap& dofs = *built->full.dofs;
+  const auto* condensation = built->condensation.get();
+  const std::vector<int>& roi_nodes = built->roi_nodes;
+  const model::SecondOrderSystem& system = built->system();
+  const FieldMapper mapper(dofs, condensation);
   model::State state{0.0, Vector::Zero(system.size()), Vector::Zero(system.size())};
   integrator->reset(system, state);
   summary.setup_s = setup_clock.seconds();
@@ -72,16 +65,8 @@ ScenarioRunSummary run_scenario(const scenario::Scenario& sc, const std::filesys
 
   // Where each ROI node's components sit in the integrated vector (-1: constrained).
   std::vector<Index> roi_position;
-  if (condensation) {
-    std::vector<Index> in_d(static_cast<std::size_t>(dofs.num_free()), -1);
-    const auto& d = condensation->partition().d;
-    for (std::size_t k = 0; k < d.size(); ++k) in_d[static_cast<std::size_t>(d[k])] = static_cast<Index>(k);
-    for (int n : roi_nodes)
-      for (int c = 0; c < 3; ++c) {
-        const int i = dofs.free_dof(n, c);
-        roi_position.push_back(i < 0 ? -1 : in_d[static_cast<std::size_t>(i)]);
-      }
-  }
+  if (condensation)
+    for (const auto& p : built->node_positions()) roi_position.insert(roi_position.end(), p.begin(), p.end());
 
   AtomicFile file(out / "results.h5");
   io::Hdf5Writer h5(file.temporary_path());

@@ -65,3 +65,21 @@ TEST(ModalReference, RampResponseAgreesWithAFineTrapezoidalRun) {
 
 }  // namespace
 }  // namespace roifem::model
+
+namespace roifem::model {
+namespace {
+
+TEST(ModalReference, VelocityIsTheTimeDerivativeOfDisplacement) {
+  const mesh::TetMesh mesh = mesh::structured_box_mesh(3, 2, 2, 0.03, 0.02, 0.02);
+  const FemModel model = build_fem_model(mesh, fem::Material::from_young_poisson(3000, 0.45, 1000, 0.8), {"x0"},
+                                         {{"x1", Vec3(0, 1e-3, 1e-3), Ramp{0.2}}});
+  const ModalReference ref(model.system, State{0, Vector::Zero(model.system.size()), Vector::Zero(model.system.size())});
+  for (double t : {0.05, 0.3}) {  // central differences, inside and after the ramp
+    const double h = 1e-6;
+    const Vector numeric = (ref.displacement(t + h) - ref.displacement(t - h)) / (2 * h);
+    EXPECT_LT((ref.velocity(t) - numeric).norm(), 1e-6 * ref.velocity(t).norm()) << t;
+  }
+}
+
+}  // namespace
+}  // namespace roifem::model

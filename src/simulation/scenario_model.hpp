@@ -1,0 +1,29 @@
+#pragma once
+/// The model a scenario describes: the mesh, the full FEM model, and with an [roi] the static
+/// condensation onto it. system() is what integrators advance.
+#include <memory>
+#include <vector>
+
+#include "condensation/static_condensation.hpp"
+#include "model/fem_model.hpp"
+#include "scenario/scenario.hpp"
+
+namespace roifem::simulation {
+
+struct ScenarioModel {
+  mesh::TetMesh mesh;
+  model::FemModel full;
+  std::unique_ptr<condensation::StaticCondensation> condensation;
+  std::vector<int> roi_nodes;  ///< empty for the full model
+
+  const model::SecondOrderSystem& system() const { return condensation ? condensation->system() : full.system; }
+  /// Per node of the integrated system (ROI nodes, or all free nodes), its positions in the system
+  /// vector (-1 for a constrained component): errors are measured per node.
+  std::vector<std::array<Index, 3>> node_positions() const;
+};
+
+/// Reads and checks the mesh, builds the model and condenses it. Held by unique_ptr: the model
+/// refers to its own mesh.
+std::unique_ptr<ScenarioModel> build_scenario_model(const scenario::Scenario& scenario);
+
+}  // namespace roifem::simulation
