@@ -9,12 +9,15 @@
 /// mass matrix instead (J = [[0, I], [-K, -C]], a second KLU for [[I, 0], [0, M]]), for comparison.
 /// The trapezoidal rule is available as a user Butcher table: c = [0, 1], A = [[0, 0], [1/2, 1/2]],
 /// b = [1/2, 1/2] (an ESDIRK; equals the hand-written Newmark average-acceleration rule).
+/// With `schur`, the Newton systems are solved by sundials::SchurSolver (one SPD Cholesky solve of
+/// size n per stage) instead of KLU on the 2n system.
 #include <exception>
 #include <memory>
 #include <string>
 
 #include "integrators/integrator.hpp"
 #include "integrators/sundials/handles.hpp"
+#include "integrators/sundials/schur_solver.hpp"
 
 namespace roifem::integrators {
 
@@ -30,6 +33,7 @@ struct ArkodeMethod {
   int table = -1;          ///< ARKODE_ERKTableID or ARKODE_DIRKTableID; -1 with `trapezoid`
   bool trapezoid = false;  ///< the user table above
   bool mass_matrix = false;
+  bool schur = false;      ///< the Schur-complement Cholesky solver instead of KLU (see schur_solver.hpp)
   int order = 0;           ///< of the method (for the docs and tests)
 };
 
@@ -57,6 +61,7 @@ class Arkode final : public Integrator {
   sundials::Vector y_;
   sundials::Matrix J_, M_;
   sundials::LinearSolver solver_, mass_solver_;
+  std::unique_ptr<sundials::SchurSolver> schur_;
   void* memory_ = nullptr;
   const model::SecondOrderSystem* system_ = nullptr;
   Vector inverse_mass_, force_, work_;

@@ -18,8 +18,11 @@ const std::map<std::string, ArkodeMethod>& arkode_methods() {
   static const std::map<std::string, ArkodeMethod> methods = [] {
     std::map<std::string, ArkodeMethod> m;
     auto add = [&](const std::string& name, bool implicit, int table, int order, bool trapezoid = false) {
-      m[name] = {name, implicit, table, trapezoid, false, order};
-      if (implicit) m[name + "-mass"] = {name + "-mass", implicit, table, trapezoid, true, order};
+      m[name] = {name, implicit, table, trapezoid, false, false, order};
+      if (!implicit) return;
+      m[name + "-mass"] = {name + "-mass", implicit, table, trapezoid, true, false, order};
+      m[name + "-schur"] = {name + "-schur", implicit, table, trapezoid, false, true, order};
+      m[name + "-mass-schur"] = {name + "-mass-schur", implicit, table, trapezoid, true, true, order};
     };
     add("arkode-erk2", false, ARKODE_HEUN_EULER_2_1_2, 2);
     add("arkode-erk3", false, ARKODE_BOGACKI_SHAMPINE_4_2_3, 3);

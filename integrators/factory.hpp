@@ -6,6 +6,7 @@
 ///                             ESDIRK436L2SA (order 4), ESDIRK547L2SA (order 5); KLU, linear
 ///   arkode-trapezoid          ARKODE with the trapezoidal rule as a user Butcher table
 ///   <implicit>-mass           the same with M given to ARKODE as a mass matrix
+///   <implicit>[-mass]-schur   the same with the Schur-complement Cholesky solver instead of KLU
 ///   ida-bdf5, ida-bdf2        IDA, variable-order BDF up to 5 / capped at 2 (A-stable); always
 ///                             error-controlled (rtol, atol; a fixed-step request runs at 1e-8, 1e-12)
 ///   gsl-rk4, gsl-rk8pd, gsl-rk4imp, gsl-bsimp, gsl-msadams, gsl-msbdf   GSL odeiv2 (dense Jacobian,

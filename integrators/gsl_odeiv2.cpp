@@ -27,7 +27,8 @@ int GslOdeiv2::rhs(double t, const double y[], double dydt[], void* self) {
     const Index n = me->system_->size();
     const Eigen::Map<const Vector> u(y, n), v(y + n, n);
     me->system_->load.evaluate(t, me->force_);
-    me->work_.noalias() = me->force_ - me->system_->K * u;
+    me->system_->apply_stiffness(u, me->work_);
+    me->work_ = me->force_ - me->work_;
     me->work_.noalias() -= me->system_->C * v;
     Eigen::Map<Vector>(dydt, n) = v;
     Eigen::Map<Vector>(dydt + n, n) = me->inverse_mass_.cwiseProduct(me->work_);

@@ -50,7 +50,8 @@ int Ida::residual(double t, N_Vector y, N_Vector yp, N_Vector r, void* self) {
     auto R = sundials::view(r);
     me->system_->load.evaluate(t, me->force_);
     R.head(n) = YP.head(n) - Y.tail(n);
-    R.tail(n).noalias() = me->system_->M * YP.tail(n) + me->system_->C * Y.tail(n) + me->system_->K * Y.head(n) - me->force_;
+    me->system_->apply_stiffness(Y.head(n), R.tail(n));
+    R.tail(n).noalias() += me->system_->M * YP.tail(n) + me->system_->C * Y.tail(n) - me->force_;
     return 0;
   } catch (...) {
     me->pending_ = std::current_exception();

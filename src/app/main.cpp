@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   roifem::app::add_mesh_command(app, action);
   roifem::app::add_info_command(app, action);
   roifem::app::add_run_command(app, action);
+  roifem::app::add_compare_command(app, action);
   roifem::app::add_paper_command(app, action);
   try {
     app.parse(argc, argv);

@@ -43,7 +43,7 @@ StaticCondensation::StaticCondensation(const model::SecondOrderSystem& full, con
   clock.restart();
 
   // K~ = K_dd - S on the interface block (the block becomes dense; the rest stays sparse).
-  SparseMatrix K_dd = roi::submatrix(full.K, d, d);
+  const SparseMatrix K_dd = roi::submatrix(full.K, d, d);
   std::vector<Eigen::Triplet<double>> triplets;
   triplets.reserve(static_cast<std::size_t>(K_dd.nonZeros() + n_i * n_i));
   for (Index j = 0; j < K_dd.outerSize(); ++j)
@@ -54,6 +54,9 @@ StaticCondensation::StaticCondensation(const model::SecondOrderSystem& full, con
                             partition_.interface[static_cast<std::size_t>(b)], -schur_(a, b));
   reduced_.K.resize(K_dd.rows(), K_dd.cols());
   reduced_.K.setFromTriplets(triplets.begin(), triplets.end());
+  reduced_.K_split.sparse = K_dd;
+  reduced_.K_split.index = partition_.interface;
+  reduced_.K_split.block = -schur_;
   reduced_.M = roi::submatrix(full.M, d, d);
   reduced_.C = roi::submatrix(full.C, d, d);
 

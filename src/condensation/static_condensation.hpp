@@ -5,7 +5,8 @@
 /// K_ss is factored once; only the interface columns are solved for:
 ///   X = K_ss^-1 K_sI (dense, #s x #I), S = K_sI^T X (dense, #I x #I),
 /// so that K~ = K_dd - S on the interface block, f~ pattern = f_d - X^T f_s, u_s = z(t) - X u_I
-/// with z(t) = sum_k r_k(t) K_ss^-1 p_k,s precomputed per load pattern. M and C of the ROI are
+/// with z(t) = sum_k r_k(t) K_ss^-1 p_k,s precomputed per load pattern. The condensed system keeps
+/// K~ both assembled (for factorizations) and split as K_dd plus the dense block -S (for products). M and C of the ROI are
 /// kept as they are (the static part has no inertia in this reduction).
 #include "fem/dof_map.hpp"
 #include "model/second_order_system.hpp"

@@ -10,6 +10,20 @@ SparseMatrix diagonal_matrix(const Vector& d) {
   return D;
 }
 
+void SecondOrderSystem::apply_stiffness(const Eigen::Ref<const Vector>& x, Eigen::Ref<Vector> y) const {
+  if (K_split.empty()) {
+    y.noalias() = K * x;
+    return;
+  }
+  y.noalias() = K_split.sparse * x;
+  const Index m = static_cast<Index>(K_split.index.size());
+  thread_local Vector gathered, product;
+  gathered.resize(m);
+  for (Index a = 0; a < m; ++a) gathered[a] = x[K_split.index[static_cast<std::size_t>(a)]];
+  product.noalias() = K_split.block * gathered;
+  for (Index a = 0; a < m; ++a) y[K_split.index[static_cast<std::size_t>(a)]] += product[a];
+}
+
 double kinetic_energy(const SecondOrderSystem& sys, const State& s) { return 0.5 * s.v.dot(sys.M * s.v); }
 double strain_energy(const SecondOrderSystem& sys, const State& s) { return 0.5 * s.u.dot(sys.K * s.u); }
 

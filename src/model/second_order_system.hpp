@@ -8,10 +8,23 @@
 
 namespace roifem::model {
 
+/// K as a sparse part plus a dense block on a subset of dofs, K = K_sparse + P^T B P: how a
+/// condensed stiffness is kept (K_dd and the interface Schur block) so that products run the
+/// dense block through BLAS instead of as 76k scattered sparse entries.
+struct SplitStiffness {
+  SparseMatrix sparse;
+  std::vector<Index> index;  ///< the block's dofs (P)
+  DenseMatrix block;         ///< B
+  bool empty() const { return index.empty(); }
+};
+
 struct SecondOrderSystem {
-  SparseMatrix M, C, K;
+  SparseMatrix M, C, K;      ///< K in full, for factorizations
   LoadHistory load;
+  SplitStiffness K_split;    ///< optional: the same K, split, for products
   Index size() const { return K.rows(); }
+  /// y = K x, through K_split when there is one.
+  void apply_stiffness(const Eigen::Ref<const Vector>& x, Eigen::Ref<Vector> y) const;
 };
 
 /// Displacement and velocity at time t.

@@ -1,0 +1,235 @@
+#include "experiments/compare_experiment.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <ostream>
+
+#include "common/atomic_file.hpp"
+#include "common/errors.hpp"
+#include "common/timer.hpp"
+#include "integrators/factory.hpp"
+#include "integrators/stability.hpp"
+#include "io/csv.hpp"
+#include "io/plots.hpp"
+#include "model/modal_reference.hpp"
+#include "simulation/scenario_model.hpp"
+
+namespace roifem::experiments {
+
+namespace {
+
+using io::format;
+
+bool is_explicit(const std::string& name) {
+  return name.rfind("arkode-erk", 0) == 0 || name == "gsl-rk4" || name == "gsl-rk8pd" || name == "gsl-msadams";
+}
+bool has_fixed_mode(const std::string& name) {
+  return name == "trapezoid" || name.rfind("arkode-", 0) == 0 || name == "gsl-rk4" || name == "gsl-rk4imp";
+}
+bool has_adaptive_mode(const std::string& name) { return name != "trapezoid" && name != "arkode-trapezoid"; }
+
+/// The exact solution on the output grid, and what a run is measured against.
+struct Reference {
+  std::vector<Vector> u;  ///< at t_k = k * interval, k = 1..K
+  double final_energy = 0;
+  double interval = 0;
+  std::vector<std::array<Index, 3>> nodes;
+};
+
+struct RunError {
+  double max_mm = 0, rms_mm = 0, energy_drift = 0;
+};
+
+/// Runs one integrator over the output grid; throws SolverError on divergence.
+RunError measure(integrators::Integrator& integrator, const model::SecondOrderSystem& system, const Reference& ref) {
+  model::State state{0, Vector::Zero(system.size()), Vector::Zero(system.size())};
+  integrator.reset(system, state);
+  RunError e;
+  double sum2 = 0;
+  long count = 0;
+  for (std::size_t k = 0; k < ref.u.size(); ++k) {
+    integrator.advance_to(static_cast<double>(k + 1) * ref.interval, state);
+    for (const auto& node : ref.nodes) {
+      Vec3 d = Vec3::Zero();
+      for (int c = 0; c < 3; ++c)
+        if (node[static_cast<std::size_t>(c)] >= 0)
+          d[c] = state.u[node[static_cast<std::size_t>(c)]] - ref.u[k][node[static_cast<std::size_t>(c)]];
+      e.max_mm = std::max(e.max_mm, d.norm() / mm);
+      sum2 += d.squaredNorm();
+      count += 3;
+    }
+  }
+  e.rms_mm = std::sqrt(sum2 / static_cast<double>(std::max(count, 1L))) / mm;
+  const double energy = kinetic_energy(system, state) + strain_energy(system, state);
+  e.energy_drift = std::abs(energy - ref.final_energy) / ref.final_energy;
+  return e;
+}
+
+/// Largest dt on the output grid's divisors (interval / m) not above `target`.
+double grid_step(double interval, double target) { return interval / std::ceil(interval / target - 1e-9); }
+
+/// Stable in practice: finite and bounded (10x the exact peak) over the window.
+bool runs_stably(const std::string& name, double dt, const model::SecondOrderSystem& system, double t_end, double bound) {
+  try {
+    auto integrator = integrators::make_integrator(name, dt);
+    model::State state{0, Vector::Zero(system.size()), Vector::Zero(system.size())};
+    integrator->reset(system, state);
+    const long steps = std::min<long>(4000, std::lround(t_end / dt));
+    for (long k = 1; k <= steps; k += 50) {
+      integrator->advance_to(static_cast<double>(std::min(k + 49, steps)) * dt, state);
+      if (state.u.lpNorm<Eigen::Infinity>() > bound) return false;
+    }
+    return true;
+  } catch (const SolverError&) {
+    return false;
+  }
+}
+
+}  // namespace
+
+CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o, std::ostream& log) {
+  ensure_writable_directory(o.out);
+  const auto built = simulation::build_scenario_model(sc);
+  const model::SecondOrderSystem& system = built->system();
+  const double t_end = o.t_end > 0 ? std::min(o.t_end, sc.dt * static_cast<double>(sc.steps)) : sc.dt * static_cast<double>(sc.steps);
+  const long outputs = std::lround(t_end / sc.dt);
+  if (outputs < 1) throw InputError("compare: --t-end must cover at least one output step of " + std::to_string(sc.dt) + " s");
+  std::vector<std::string> names = o.integrators.empty() ? integrators::integrator_names() : o.integrators;
+  for (const auto& name : names) (void)integrators::integrator_order(name);  // unknown names fail before any work
+
+  // The exact reference.
+  Stopwatch clock;
+  const model::State rest{0, Vector::Zero(system.size()), Vector::Zero(system.size())};
+  const model::ModalReference modal(system, rest);
+  Reference ref;
+  ref.interval = sc.dt;
+  ref.nodes = built->node_positions();
+  double peak = 0;
+  for (long k = 1; k <= outputs; ++k) {
+    ref.u.push_back(modal.displacement(static_cast<double>(k) * sc.dt));
+    peak = std::max(peak, ref.u.back().lpNorm<Eigen::Infinity>());
+  }
+  {
+    const model::State exact_end{t_end, ref.u.back(), modal.velocity(t_end)};
+    ref.final_energy = kinetic_energy(system, exact_end) + strain_energy(system, exact_end);
+  }
+  CompareResults results;
+  results.omega_max = modal.frequencies().maxCoeff();
+  log << format("compare: %s, %lld dofs, t_end = %g s on an output grid of %g s; exact modal reference in %.1f s\n",
+                sc.file.c_str(), static_cast<long long>(system.size()), t_end, sc.dt, clock.seconds());
+  log << format("  lowest w = %.3f rad/s, highest w = %.1f rad/s, alpha = %g 1/s\n", modal.frequencies()[0],
+                results.omega_max, modal.alpha());
+
+  auto record = [&](const std::string& name, const std::string& mode, double dt_or_tol,
+                    std::unique_ptr<integrators::Integrator> integrator) {
+    CompareRow row{.integrator = name, .mode = mode, .dt_or_tol = dt_or_tol};
+    Stopwatch run_clock;
+    try {
+      const RunError e = measure(*integrator, system, ref);
+      row.err_max_mm = e.max_mm;
+      row.err_rms_mm = e.rms_mm;
+      row.energy_drift = e.energy_drift;
+      // Growing without bound but still finite at the end of the window: unstable all the same.
+      if (e.max_mm > 10 * peak / mm) row.stable = false;
+    } catch (const SolverError& err) {
+      row.stable = false;
+      log << "    " << err.what() << '\n';
+    }
+    row.wall_s = run_clock.seconds();
+    const auto st = integrator->stats();
+    row.steps = st.steps;
+    row.rhs_evals = st.rhs_evals;
+    row.jac_evals = st.jac_evals;
+    row.lin_setups = st.lin_setups;
+    row.lin_solves = st.lin_solves;
+    log << format("  %-20s %-8s %9.3g  %8ld steps  %9.3f s  max error %s mm\n", name.c_str(), mode.c_str(), dt_or_tol,
+                  row.steps, row.wall_s, row.stable ? format("%.3e", row.err_max_mm).c_str() : "(diverged)");
+    results.rows.push_back(row);
+  };
+
+  for (const auto& name : names) {
+    const double limit = is_explicit(name)
+                             ? integrators::predicted_stability_limit(name, modal.frequencies(), modal.alpha())
+                             : std::numeric_limits<double>::infinity();
+    if (has_fixed_mode(name)) {
+      std::vector<double> dts;
+      if (std::isfinite(limit)) {
+        for (double f : {1.05, 0.9, 0.45, 0.225}) dts.push_back(grid_step(sc.dt, f * limit));
+        if (dts[0] == dts[1]) dts.erase(dts.begin());
+      } else {
+        for (int j = 0; j < o.fixed_levels; ++j) dts.push_back(sc.dt / std::pow(2.0, j));
+      }
+      for (double dt : dts) {
+        if (t_end / dt > static_cast<double>(o.max_steps)) {
+          log << format("  %-20s fixed    %9.3g  skipped: %.0f steps > --max-steps\n", name.c_str(), dt, t_end / dt);
+          continue;
+        }
+        record(name, "fixed", dt, integrators::make_integrator(name, dt));
+      }
+    }
+    if (has_adaptive_mode(name))
+      for (double tol : o.tolerances) {
+        const integrators::StepControl control{.dt = std::min(sc.dt, std::isfinite(limit) ? 0.5 * limit : sc.dt),
+                                               .adaptive = true, .rtol = tol, .atol = tol * peak};
+        record(name, "adaptive", tol, integrators::make_integrator(name, control));
+      }
+    if (std::isfinite(limit)) {
+      double lo = 0.25 * limit, hi = 2.0 * limit;  // bisection between a stable and an unstable step
+      if (runs_stably(name, hi, system, t_end, 10 * peak)) lo = hi;
+      for (int k = 0; k < 10 && lo < hi; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        (runs_stably(name, mid, system, t_end, 10 * peak) ? lo : hi) = mid;
+      }
+      results.stability.push_back({name, limit, lo});
+      log << format("  %-20s stability limit: predicted %.4e s, largest stable found %.4e s (ratio %.3f)\n", name.c_str(),
+                    limit, lo, lo / limit);
+    }
+  }
+
+  {
+    io::CsvWriter csv(o.out / "compare.csv",
+                      "integrator,mode,dt_or_tol,steps,rhs_evals,jac_evals,lin_setups,lin_solves,wall_s,err_max_mm,"
+                      "err_rms_mm,stable,energy_drift");
+    for (const auto& r : results.rows)
+      csv.row(format("%s,%s,%.6g,%ld,%ld,%ld,%ld,%ld,%.6g,%s,%s,%d,%s", r.integrator.c_str(), r.mode.c_str(), r.dt_or_tol,
+                     r.steps, r.rhs_evals, r.jac_evals, r.lin_setups, r.lin_solves, r.wall_s,
+                     r.stable ? format("%.6e", r.err_max_mm).c_str() : "", r.stable ? format("%.6e", r.err_rms_mm).c_str() : "",
+                     r.stable ? 1 : 0, r.stable ? format("%.6e", r.energy_drift).c_str() : ""));
+    csv.close();
+  }
+  {
+    io::CsvWriter csv(o.out / "stability.csv", "integrator,omega_max_rad_s,predicted_dt_s,largest_stable_dt_s");
+    for (const auto& s : results.stability)
+      csv.row(format("%s,%.6g,%.6e,%.6e", s.integrator.c_str(), results.omega_max, s.predicted_dt, s.measured_dt));
+    csv.close();
+  }
+
+  // Summary: the cheapest run within 0.1 mm, and the cost per step relative to the trapezoidal rule.
+  const CompareRow* cheapest = nullptr;
+  for (const auto& r : results.rows)
+    if (r.stable && r.err_max_mm <= 0.1 && (!cheapest || r.wall_s < cheapest->wall_s)) cheapest = &r;
+  if (cheapest)
+    log << format("\ncheapest run within 0.1 mm max error: %s (%s %g): %.4f s, %ld steps, max error %.4f mm\n",
+                  cheapest->integrator.c_str(), cheapest->mode.c_str(), cheapest->dt_or_tol, cheapest->wall_s,
+                  cheapest->steps, cheapest->err_max_mm);
+  double trapezoid_step = 0;
+  for (const auto& r : results.rows)
+    if (r.integrator == "trapezoid" && r.mode == "fixed" && std::abs(r.dt_or_tol - sc.dt) < 1e-12 * sc.dt && r.steps > 0)
+      trapezoid_step = r.wall_s / static_cast<double>(r.steps);
+  if (trapezoid_step > 0) {
+    log << "cost per step relative to the trapezoidal rule at dt = " << sc.dt << " s (same run; includes setup):\n";
+    for (const auto& r : results.rows)
+      if (r.stable && r.steps > 0 && ((r.mode == "fixed" && std::abs(r.dt_or_tol - sc.dt) < 1e-12 * sc.dt) ||
+                                      (r.mode == "adaptive" && r.dt_or_tol == 1e-6)))
+        log << format("  %-20s %-8s %8.2fx\n", r.integrator.c_str(), r.mode.c_str(),
+                      r.wall_s / static_cast<double>(r.steps) / trapezoid_step);
+  }
+  if (o.plots && io::run_plot_script("plot_compare.py", o.out, log))
+    log << "plots: " << (o.out / "work_precision.png").string() << ", " << (o.out / "error_vs_dt.png").string() << '\n';
+  log << "results: " << (o.out / "compare.csv").string() << ", " << (o.out / "stability.csv").string() << '\n';
+  return results;
+}
+
+}  // namespace roifem::experiments
