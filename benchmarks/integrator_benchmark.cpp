@@ -44,8 +44,9 @@ int main(int argc, char** argv) {
   for (const char* model : {"full", "setup1", "setup2"})
     for (const char* method : {"trapezoid", "arkode-trapezoid", "arkode-trapezoid-schur", "arkode-sdirk2",
                                "arkode-sdirk2-schur", "arkode-sdirk2-mass", "arkode-sdirk2-mass-schur", "arkode-ark3-schur",
-                               "arkode-esdirk4-schur", "gsl-rk4imp"}) {
-      if (std::string(method) == "gsl-rk4imp" && std::string(model) == "full") continue;  // dense: slow, and <= 2000 dofs only
+                               "arkode-esdirk4-schur"}) {
+      // GSL's implicit rk4imp does not converge its stage iteration at dt = 0.05 s on these models
+      // (w_max dt ~ 100); GSL is compared adaptively in `roifem compare` instead.
       benchmark::RegisterBenchmark((std::string("step/") + model + "/" + method).c_str(), step, model, method)
           ->Unit(benchmark::kMicrosecond)
           ->MinTime(0.2);
