@@ -77,7 +77,7 @@ std::unique_ptr<Integrator> make_integrator(const std::string& name, const StepC
     return std::make_unique<GslOdeiv2>(name, it->second.type, control);
   if (auto it = arkode_methods().find(name); it != arkode_methods().end()) {
     if (control.adaptive && it->second.trapezoid)
-      throw InputError("integrator 'arkode-trapezoid' has no embedded error estimate: fixed step only");
+      throw InputError("integrator '" + name + "' has no embedded error estimate: fixed step only");
     return std::make_unique<Arkode>(it->second, control);
   }
   std::string valid;
