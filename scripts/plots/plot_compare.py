@@ -12,17 +12,7 @@ import os
 import sys
 from collections import defaultdict
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-
-
-def save(fig, path):
-    tmp = os.path.join(os.path.dirname(path), "." + os.path.basename(path) + ".partial.png")
-    fig.savefig(tmp, dpi=120, bbox_inches="tight")
-    plt.close(fig)
-    os.replace(tmp, path)
+from plotting import plt, save
 
 
 def main(directory):

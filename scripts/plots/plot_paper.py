@@ -10,19 +10,9 @@ import os
 import sys
 from collections import defaultdict
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+from plotting import plt, save
 
 PAPER_STEP_S = {"full": 0.440, "setup1": 0.071, "setup2": 0.037}
-
-
-def save(fig, path):
-    tmp = os.path.join(os.path.dirname(path), "." + os.path.basename(path) + ".partial.png")
-    fig.savefig(tmp, dpi=120, bbox_inches="tight")
-    plt.close(fig)
-    os.replace(tmp, path)
 
 
 def main(directory):

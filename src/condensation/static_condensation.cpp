@@ -33,8 +33,9 @@ StaticCondensation::StaticCondensation(const model::SecondOrderSystem& full, con
     }
     timings_.factorization_s = clock.seconds();
     clock.restart();
-    X_ = K_ss_factor.solve_matrix(DenseMatrix(roi::submatrix(full.K, s, interface_dofs)));
-    schur_ = DenseMatrix(roi::submatrix(full.K, s, interface_dofs)).transpose() * X_;
+    const DenseMatrix K_sI(roi::submatrix(full.K, s, interface_dofs));
+    X_ = K_ss_factor.solve_matrix(K_sI);
+    schur_ = K_sI.transpose() * X_;
     timings_.interface_solve_s = clock.seconds();
   } else {
     X_.resize(0, n_i);

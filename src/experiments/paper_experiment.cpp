@@ -271,11 +271,7 @@ PaperResults run_paper_experiment(const PaperOptions& o, std::ostream& log) {
     {
       io::Hdf5Writer h5(file.temporary_path());
       const auto n = static_cast<hsize_t>(mesh.num_nodes());
-      const Eigen::Matrix3Xd nodes_mm = mesh.nodes / mm;
-      h5.write("mesh/nodes_mm", std::vector<double>(nodes_mm.data(), nodes_mm.data() + nodes_mm.size()), {n, 3});
-      std::vector<int> tets;
-      for (const auto& t : mesh.tets) tets.insert(tets.end(), t.begin(), t.end());
-      h5.write("mesh/tets", tets, {static_cast<hsize_t>(mesh.num_tets()), 4});
+      io::write_mesh(h5, mesh);
       for (std::size_t k = 0; k < setups.size(); ++k) {
         const auto& roi_nodes = setups[k].condensation->partition().roi_nodes;
         h5.write(setups[k].name + "/roi_nodes", roi_nodes, {roi_nodes.size()});

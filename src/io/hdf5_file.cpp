@@ -90,4 +90,14 @@ void Hdf5Writer::close() {
   if (H5Fclose(file_.release()) < 0) throw InputError(path_ + ": cannot close HDF5 file (disk full?)");
 }
 
+void write_mesh(Hdf5Writer& h5, const mesh::TetMesh& mesh) {
+  const Eigen::Matrix3Xd nodes_mm = mesh.nodes / mm;
+  h5.write("mesh/nodes_mm", std::vector<double>(nodes_mm.data(), nodes_mm.data() + nodes_mm.size()),
+           {static_cast<hsize_t>(mesh.num_nodes()), 3});
+  std::vector<int> tets;
+  tets.reserve(mesh.tets.size() * 4);
+  for (const auto& t : mesh.tets) tets.insert(tets.end(), t.begin(), t.end());
+  h5.write("mesh/tets", tets, {static_cast<hsize_t>(mesh.num_tets()), 4});
+}
+
 }  // namespace roifem::io

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "mesh/tet_mesh.hpp"
+
 namespace roifem::io {
 
 /// An owned HDF5 identifier, closed with the matching H5?close.
@@ -81,5 +83,8 @@ class Hdf5Writer {
   std::string path_;
   Handle file_;
 };
+
+/// Writes /mesh/nodes_mm (N x 3) and /mesh/tets (E x 4, 0-based): what XDMF files point at.
+void write_mesh(Hdf5Writer& h5, const mesh::TetMesh& mesh);
 
 }  // namespace roifem::io

@@ -71,14 +71,8 @@ ScenarioRunSummary run_scenario(const scenario::Scenario& sc, const std::filesys
   AtomicFile file(out / "results.h5");
   io::Hdf5Writer h5(file.temporary_path());
   const auto n_nodes = static_cast<hsize_t>(mesh.num_nodes());
-  {
-    const Eigen::Matrix3Xd nodes_mm = mesh.nodes / mm;
-    h5.write("mesh/nodes_mm", std::vector<double>(nodes_mm.data(), nodes_mm.data() + nodes_mm.size()), {n_nodes, 3});
-    std::vector<int> tets;
-    for (const auto& t : mesh.tets) tets.insert(tets.end(), t.begin(), t.end());
-    h5.write("mesh/tets", tets, {static_cast<hsize_t>(mesh.num_tets()), 4});
-    if (!roi_nodes.empty()) h5.write("roi/nodes", roi_nodes, {roi_nodes.size()});
-  }
+  io::write_mesh(h5, mesh);
+  if (!roi_nodes.empty()) h5.write("roi/nodes", roi_nodes, {roi_nodes.size()});
   h5.attribute("scenario", sc.resolved_toml());
   h5.attribute("integrator", sc.integrator);
   auto time_s = h5.appendable("time_s", {});
