@@ -145,7 +145,8 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
     row.lin_setups = st.lin_setups;
     row.lin_solves = st.lin_solves;
     log << format("  %-20s %-8s %9.3g  %8ld steps  %9.3f s  max error %s mm\n", name.c_str(), mode.c_str(), dt_or_tol,
-                  row.steps, row.wall_s, row.stable ? format("%.3e", row.err_max_mm).c_str() : "(diverged)");
+                  row.steps, row.wall_s, row.stable ? format("%.3e", row.err_max_mm).c_str() : "(diverged)")
+        << std::flush;  // a sweep runs for minutes: show each run as it ends
     results.rows.push_back(row);
   };
 
