@@ -300,7 +300,7 @@ PaperResults run_paper_experiment(const PaperOptions& o, std::ostream& log) {
     file.commit();
   }
   io::write_xdmf(o.out / "results.xdmf", full_series);
-  roi_series.fields.empty() ? void() : io::write_xdmf(o.out / "results_setup1.xdmf", roi_series);
+  if (!roi_series.fields.empty()) io::write_xdmf(o.out / "results_setup1.xdmf", roi_series);
 
   print_findings(o, results, log);
   print_table2(results, log);
