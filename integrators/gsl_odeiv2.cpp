@@ -73,9 +73,11 @@ void GslOdeiv2::reset(const model::SecondOrderSystem& system, const model::State
   pending_ = nullptr;
   system_gsl_ = {rhs, jacobian, static_cast<std::size_t>(2 * n), this};
   if (driver_) gsl_odeiv2_driver_free(driver_);
+  // At a fixed step GSL still consults its error control and returns GSL_FAILURE when the estimate
+  // would shrink the step: give the control tolerances it can never exceed.
   driver_ = control_.adaptive
                 ? gsl_odeiv2_driver_alloc_y_new(&system_gsl_, stepper_, control_.dt, control_.atol, control_.rtol)
-                : gsl_odeiv2_driver_alloc_y_new(&system_gsl_, stepper_, control_.dt, 1e-8, 1e-8);
+                : gsl_odeiv2_driver_alloc_y_new(&system_gsl_, stepper_, control_.dt, 1e300, 1e300);
   if (!driver_) throw SolverError(name_ + ": cannot allocate the GSL driver");
   gsl_odeiv2_driver_set_nmax(driver_, 10000000);
 }
@@ -91,7 +93,6 @@ void GslOdeiv2::advance_to(double t_out, model::State& state) {
     if (std::abs(steps - static_cast<double>(n)) > 1e-9 * std::max(1.0, steps))
       throw InputError(name_ + ": t_out = " + std::to_string(t_out) + " s is not on the grid of dt");
     if (n > 0) status = gsl_odeiv2_driver_apply_fixed_step(driver_, &t_, control_.dt, n, y_.data());
-    stats_.steps += static_cast<long>(n);
   }
   if (pending_) std::rethrow_exception(std::exchange(pending_, nullptr));
   if (status != GSL_SUCCESS)
@@ -99,7 +100,8 @@ void GslOdeiv2::advance_to(double t_out, model::State& state) {
   if (!y_.allFinite())
     throw SolverError(name_ + ": the solution diverged (non-finite values) by t = " + std::to_string(t_) +
                       " s; the step is beyond the method's stability limit");
-  if (control_.adaptive) stats_.steps = static_cast<long>(driver_->n);
+  stats_.steps = static_cast<long>(driver_->e->count);  // cumulative; the driver's n is per call
+  stats_.failed_steps = static_cast<long>(driver_->e->failed_steps);
   const Index n = system_->size();
   state.t = t_;
   state.u = y_.head(n);
