@@ -27,6 +27,7 @@ def main(directory):
             series[(row["integrator"], row["mode"])].append((float(row["dt_or_tol"]), float(row["wall_s"]), err))
 
     fig, ax = plt.subplots(figsize=(8, 6))
+    ax.set_prop_cycle(color=plt.cm.tab20.colors)  # one colour per series (up to 20)
     for (name, mode), points in sorted(series.items()):
         points.sort(key=lambda p: p[1])
         ax.plot([p[1] for p in points], [p[2] for p in points], "o-" if mode == "fixed" else "s--", ms=3,
@@ -42,6 +43,7 @@ def main(directory):
     save(fig, os.path.join(directory, "work_precision.png"))
 
     fig, ax = plt.subplots(figsize=(8, 6))
+    ax.set_prop_cycle(color=plt.cm.tab20.colors)
     for (name, mode), points in sorted(series.items()):
         if mode != "fixed" or len(points) < 2:
             continue
