@@ -6,10 +6,13 @@
 #include <cmath>
 
 #include "common/errors.hpp"
+#include "condensation/static_condensation.hpp"
 #include "integrators/factory.hpp"
 #include "integrators/gsl_odeiv2.hpp"
+#include "integrators/ida_roi_dae.hpp"
 #include "integrators/trapezoid.hpp"
 #include "mesh/box_mesh.hpp"
+#include "mesh/gmsh_reader.hpp"
 #include "model/fem_model.hpp"
 #include "model/modal_reference.hpp"
 
@@ -207,6 +210,46 @@ TEST(GslOdeiv2, RefusesSystemsTooLargeForDenseJacobians) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("dense Jacobian is limited to 2000 dofs"), std::string::npos) << e.what();
   }
+}
+
+}  // namespace
+}  // namespace roifem::integrators
+
+namespace roifem::integrators {
+namespace {
+
+TEST(IdaRoiDae, TrajectoryEqualsTheCondensedModelToTheTolerance) {
+  // The paper's brain, setup 2's ROI: the DAE keeps u_s as algebraic unknowns, the condensed
+  // model eliminates it; both must give the same ROI motion (exact: the modal solution of the
+  // condensed model) and the same static part.
+  const mesh::TetMesh mesh = mesh::read_mesh(std::string(ROIFEM_MESH_DIR) + "/brain-800.msh");
+  const auto model = model::build_fem_model(
+      mesh, fem::material_preset("paper"), {"base"},
+      {{"opening_left", Vec3(-0.016, 0, 0), model::Ramp{0.5}}, {"opening_right", Vec3(0.016, 0, 0), model::Ramp{0.5}}});
+  const roi::RoiSpec spec{.kind = roi::RoiSpec::Kind::nearest, .center = Vec3(0, 0, 0.040), .radius = 0, .count = 228,
+                          .set = {}};
+  const auto partition =
+      roi::partition_dofs(model.system.K, *model.dofs, roi::select_roi_nodes(mesh, *model.dofs, spec));
+  const condensation::StaticCondensation condensed(model.system, partition, *model.dofs);
+  const model::ModalReference exact(
+      condensed.system(), {0, Vector::Zero(condensed.system().size()), Vector::Zero(condensed.system().size())});
+
+  IdaRoiDae dae(model.system, partition, StepControl{.dt = 1e-4, .adaptive = true, .rtol = 1e-8, .atol = 1e-12});
+  dae.reset(0.0);
+  Vector u_d, u_s;
+  double worst_d = 0, worst_s = 0;
+  for (double t : {0.25, 0.5, 1.0}) {
+    dae.advance_to(t, u_d, u_s);
+    const Vector e = exact.displacement(t);
+    worst_d = std::max(worst_d, (u_d - e).norm() / e.norm());
+    const Vector s = condensed.recover_static(e, t);
+    worst_s = std::max(worst_s, (u_s - s).norm() / s.norm());
+  }
+  const auto st = dae.stats();
+  std::printf("IDA DAE vs exact condensed: ROI %.2e, static part %.2e (relative), %ld steps\n", worst_d, worst_s,
+              st.steps);
+  EXPECT_LT(worst_d, 1e-5);
+  EXPECT_LT(worst_s, 1e-5);
 }
 
 }  // namespace

@@ -1,0 +1,164 @@
+#include "integrators/ida_roi_dae.hpp"
+
+#include <ida/ida.h>
+#include <sunlinsol/sunlinsol_klu.h>
+
+#include <utility>
+
+#include "common/errors.hpp"
+
+namespace roifem::integrators {
+
+namespace {
+
+/// A 3 x 3 block matrix from (row block, column block, matrix) entries, plus explicit zeros at
+/// every entry of `pattern_of` so that two such matrices share one pattern.
+SparseMatrix block3(const std::array<Index, 3>& sizes,
+                    const std::vector<std::tuple<int, int, const SparseMatrix*>>& blocks,
+                    const SparseMatrix* pattern_of = nullptr) {
+  const std::array<Index, 3> start{0, sizes[0], sizes[0] + sizes[1]};
+  const Index n = sizes[0] + sizes[1] + sizes[2];
+  std::vector<Eigen::Triplet<double>> t;
+  for (const auto& [r, c, X] : blocks)
+    for (Index j = 0; j < X->outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(*X, j); it; ++it)
+        t.emplace_back(start[static_cast<std::size_t>(r)] + it.row(), start[static_cast<std::size_t>(c)] + it.col(), it.value());
+  if (pattern_of)
+    for (Index j = 0; j < pattern_of->outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(*pattern_of, j); it; ++it) t.emplace_back(it.row(), it.col(), 0.0);
+  SparseMatrix out(n, n);
+  out.setFromTriplets(t.begin(), t.end());
+  out.makeCompressed();
+  return out;
+}
+
+}  // namespace
+
+IdaRoiDae::IdaRoiDae(const model::SecondOrderSystem& full, const roi::Partition& partition, StepControl control,
+                     int max_order)
+    : full_(full), partition_(partition), control_(control), max_order_(max_order), context_(sundials::make_context()) {
+  const auto& d = partition_.d;
+  const auto& s = partition_.s;
+  if (d.empty()) throw ModelError("IDA ROI DAE: the ROI has no free dof");
+  M_dd_ = roi::submatrix(full.M, d, d);
+  C_dd_ = roi::submatrix(full.C, d, d);
+  K_dd_ = roi::submatrix(full.K, d, d);
+  K_ds_ = roi::submatrix(full.K, d, s);
+  K_sd_ = roi::submatrix(full.K, s, d);
+  K_ss_ = roi::submatrix(full.K, s, s);
+  load_d_ = full.load.mapped(static_cast<Index>(d.size()), [&](const Vector& p) { return roi::gather(p, d); });
+  load_s_ = full.load.mapped(static_cast<Index>(s.size()), [&](const Vector& p) { return roi::gather(p, s); });
+  const Index nd = static_cast<Index>(d.size()), ns = static_cast<Index>(s.size());
+  const std::array<Index, 3> sizes{nd, nd, ns};
+  const SparseMatrix I = model::diagonal_matrix(Vector::Ones(nd)), minus_I = -I;
+  // y' enters only the first two row blocks: [I, 0, 0; 0, M_dd, 0; 0, 0, 0].
+  const SparseMatrix dyp = block3(sizes, {{0, 0, &I}, {1, 1, &M_dd_}});
+  dF_dy_ = block3(sizes, {{0, 1, &minus_I}, {1, 0, &K_dd_}, {1, 1, &C_dd_}, {1, 2, &K_ds_}, {2, 0, &K_sd_}, {2, 2, &K_ss_}},
+                  &dyp);
+  dF_dyp_ = block3(sizes, {{0, 0, &I}, {1, 1, &M_dd_}}, &dF_dy_);
+  if (dF_dy_.nonZeros() != dF_dyp_.nonZeros()) throw Error("internal: IDA DAE Jacobian patterns differ");
+  f_d_.resize(nd);
+  f_s_.resize(ns);
+}
+
+IdaRoiDae::~IdaRoiDae() {
+  if (memory_) IDAFree(&memory_);
+}
+
+int IdaRoiDae::residual(double t, N_Vector y, N_Vector yp, N_Vector r, void* self) {
+  auto* me = static_cast<IdaRoiDae*>(self);
+  try {
+    const Index nd = me->K_dd_.rows(), ns = me->K_ss_.rows();
+    const auto Y = sundials::view(y), YP = sundials::view(yp);
+    auto R = sundials::view(r);
+    me->load_d_.evaluate(t, me->f_d_);
+    me->load_s_.evaluate(t, me->f_s_);
+    const auto u_d = Y.head(nd), v_d = Y.segment(nd, nd), u_s = Y.tail(ns);
+    R.head(nd) = YP.head(nd) - v_d;
+    R.segment(nd, nd).noalias() = me->M_dd_ * YP.segment(nd, nd) + me->C_dd_ * v_d + me->K_dd_ * u_d + me->K_ds_ * u_s;
+    R.segment(nd, nd) -= me->f_d_;
+    R.tail(ns).noalias() = me->K_sd_ * u_d + me->K_ss_ * u_s;
+    R.tail(ns) -= me->f_s_;
+    return 0;
+  } catch (...) {
+    me->pending_ = std::current_exception();
+    return -1;
+  }
+}
+
+int IdaRoiDae::jacobian(double, double c_j, N_Vector, N_Vector, N_Vector, SUNMatrix J, void* self, N_Vector, N_Vector,
+                        N_Vector) {
+  auto* me = static_cast<IdaRoiDae*>(self);
+  try {
+    SparseMatrix newton = me->dF_dy_;
+    newton.coeffs() += c_j * me->dF_dyp_.coeffs();
+    sundials::copy_into(newton, J);
+    return 0;
+  } catch (...) {
+    me->pending_ = std::current_exception();
+    return -1;
+  }
+}
+
+void IdaRoiDae::reset(double t0) {
+  const Index nd = K_dd_.rows(), ns = K_ss_.rows(), n = 2 * nd + ns;
+  if (memory_) IDAFree(&memory_);
+  solver_.reset();
+  J_.reset();
+  pending_ = nullptr;
+  t_ = t0;
+  y_ = sundials::make_vector(n, context_.get());
+  yp_ = sundials::make_vector(n, context_.get());
+  id_ = sundials::make_vector(n, context_.get());
+  sundials::view(y_.get()).setZero();
+  sundials::view(yp_.get()).setZero();
+  auto id = sundials::view(id_.get());
+  id.head(2 * nd).setOnes();  // differential: u_d, v_d
+  id.tail(ns).setZero();      // algebraic: u_s
+  auto check = [&](int flag, const char* call) {
+    if (flag < 0) throw SolverError(std::string("IDA ROI DAE: ") + call + " failed: " + IDAGetReturnFlagName(flag));
+  };
+  memory_ = IDACreate(context_.get());
+  if (!memory_) throw SolverError("IDA ROI DAE: IDACreate failed");
+  check(IDAInit(memory_, residual, t0, y_.get(), yp_.get()), "IDAInit");
+  check(IDASetUserData(memory_, this), "IDASetUserData");
+  check(IDASStolerances(memory_, control_.rtol, control_.atol), "IDASStolerances");
+  check(IDASetMaxOrd(memory_, max_order_), "IDASetMaxOrd");
+  check(IDASetMaxNumSteps(memory_, 1000000), "IDASetMaxNumSteps");
+  check(IDASetId(memory_, id_.get()), "IDASetId");
+  J_ = sundials::make_sparse(dF_dy_, context_.get());
+  solver_.reset(SUNLinSol_KLU(y_.get(), J_.get(), context_.get()));
+  if (!solver_) throw SolverError("IDA ROI DAE: cannot create the KLU solver");
+  SUNLinSol_KLUSetOrdering(solver_.get(), 0);
+  check(IDASetLinearSolver(memory_, solver_.get(), J_.get()), "IDASetLinearSolver");
+  check(IDASetJacFn(memory_, jacobian), "IDASetJacFn");
+  check(IDACalcIC(memory_, IDA_YA_YDP_INIT, t0 + control_.dt), "IDACalcIC");
+  if (pending_) std::rethrow_exception(std::exchange(pending_, nullptr));
+}
+
+void IdaRoiDae::advance_to(double t_out, Vector& u_d, Vector& u_s) {
+  if (!memory_) throw Error("internal: IDA ROI DAE: advance_to before reset");
+  IDASetStopTime(memory_, t_out);
+  const int flag = IDASolve(memory_, t_out, &t_, y_.get(), yp_.get(), IDA_NORMAL);
+  if (pending_) std::rethrow_exception(std::exchange(pending_, nullptr));
+  if (flag < 0)
+    throw SolverError("IDA ROI DAE: failed at t = " + std::to_string(t_) + " s: " + IDAGetReturnFlagName(flag));
+  const Index nd = K_dd_.rows(), ns = K_ss_.rows();
+  const auto y = sundials::view(y_.get());
+  u_d = y.head(nd);
+  u_s = y.tail(ns);
+}
+
+Stats IdaRoiDae::stats() const {
+  Stats s;
+  if (!memory_) return s;
+  IDAGetNumSteps(memory_, &s.steps);
+  IDAGetNumResEvals(memory_, &s.rhs_evals);
+  IDAGetNumJacEvals(memory_, &s.jac_evals);
+  IDAGetNumLinSolvSetups(memory_, &s.lin_setups);
+  IDAGetNumNonlinSolvIters(memory_, &s.lin_solves);
+  IDAGetNumErrTestFails(memory_, &s.failed_steps);
+  return s;
+}
+
+}  // namespace roifem::integrators
