@@ -8,28 +8,11 @@
 #include <utility>
 
 #include "common/errors.hpp"
+#include "integrators/block_matrix.hpp"
 
 namespace roifem::integrators {
 
 namespace {
-
-/// [[A, B], [C, D]] from four n x n blocks (any may be empty: pass a 0 x 0 matrix).
-SparseMatrix block_matrix(Index n, const SparseMatrix& A, const SparseMatrix& B, const SparseMatrix& C,
-                          const SparseMatrix& D) {
-  std::vector<Eigen::Triplet<double>> t;
-  auto add = [&](const SparseMatrix& X, Index r0, Index c0) {
-    for (Index j = 0; j < X.outerSize(); ++j)
-      for (SparseMatrix::InnerIterator it(X, j); it; ++it) t.emplace_back(r0 + it.row(), c0 + it.col(), it.value());
-  };
-  add(A, 0, 0);
-  add(B, 0, n);
-  add(C, n, 0);
-  add(D, n, n);
-  SparseMatrix out(2 * n, 2 * n);
-  out.setFromTriplets(t.begin(), t.end());
-  out.makeCompressed();
-  return out;
-}
 
 bool is_diagonal(const SparseMatrix& M) {
   for (Index j = 0; j < M.outerSize(); ++j)
@@ -145,8 +128,8 @@ void Arkode::reset(const model::SecondOrderSystem& system, const model::State& i
   if (method_.implicit) {
     const SparseMatrix I = model::diagonal_matrix(Vector::Ones(n));
     if (method_.mass_matrix) {
-      jacobian_ = block_matrix(n, SparseMatrix(n, n), I, -system.K, -system.C);
-      mass_matrix_ = block_matrix(n, I, SparseMatrix(n, n), SparseMatrix(n, n), system.M);
+      jacobian_ = assemble_blocks({n, n}, {{0, 1, &I}, {1, 0, &system.K, -1.0}, {1, 1, &system.C, -1.0}});
+      mass_matrix_ = assemble_blocks({n, n}, {{0, 0, &I}, {1, 1, &system.M}});
       M_ = sundials::make_sparse(mass_matrix_, context_.get());
       mass_solver_.reset(SUNLinSol_KLU(y_.get(), M_.get(), context_.get()));
       if (!mass_solver_) throw SolverError(method_.name + ": cannot create the KLU mass solver");
@@ -156,7 +139,8 @@ void Arkode::reset(const model::SecondOrderSystem& system, const model::State& i
       check(ARKStepSetMassFn(memory_, mass), "ARKStepSetMassFn", initial.t);
     } else {
       const SparseMatrix Minv = model::diagonal_matrix(inverse_mass_);
-      jacobian_ = block_matrix(n, SparseMatrix(n, n), I, -(Minv * system.K), -(Minv * system.C));
+      const SparseMatrix MinvK = Minv * system.K, MinvC = Minv * system.C;
+      jacobian_ = assemble_blocks({n, n}, {{0, 1, &I}, {1, 0, &MinvK, -1.0}, {1, 1, &MinvC, -1.0}});
     }
     J_ = sundials::make_sparse(jacobian_, context_.get());
     SUNLinearSolver linear_solver = nullptr;

@@ -7,31 +7,12 @@
 #include <utility>
 
 #include "common/errors.hpp"
+#include "integrators/block_matrix.hpp"
+#include "integrators/sundials/ida_support.hpp"
 #include "solvers/cholesky.hpp"
 
 namespace roifem::integrators {
 
-namespace {
-/// [[A, B], [C, D]] for n x n blocks, with every entry of `pattern_of` present (explicit zeros),
-/// so that two such matrices share one pattern.
-SparseMatrix blocks(Index n, const SparseMatrix& A, const SparseMatrix& B, const SparseMatrix& C, const SparseMatrix& D,
-                    const SparseMatrix* pattern_of = nullptr) {
-  std::vector<Eigen::Triplet<double>> t;
-  auto add = [&](const SparseMatrix& X, Index r0, Index c0, double scale) {
-    for (Index j = 0; j < X.outerSize(); ++j)
-      for (SparseMatrix::InnerIterator it(X, j); it; ++it) t.emplace_back(r0 + it.row(), c0 + it.col(), scale * it.value());
-  };
-  add(A, 0, 0, 1);
-  add(B, 0, n, 1);
-  add(C, n, 0, 1);
-  add(D, n, n, 1);
-  if (pattern_of) add(*pattern_of, 0, 0, 0.0);
-  SparseMatrix out(2 * n, 2 * n);
-  out.setFromTriplets(t.begin(), t.end());
-  out.makeCompressed();
-  return out;
-}
-}  // namespace
 
 Ida::Ida(std::string name, int max_order, StepControl control)
     : name_(std::move(name)), max_order_(max_order), control_(control), context_(sundials::make_context()) {
@@ -62,9 +43,7 @@ int Ida::residual(double t, N_Vector y, N_Vector yp, N_Vector r, void* self) {
 int Ida::jacobian(double, double c_j, N_Vector, N_Vector, N_Vector, SUNMatrix J, void* self, N_Vector, N_Vector, N_Vector) {
   auto* me = static_cast<Ida*>(self);
   try {
-    SparseMatrix newton = me->dF_dy_;
-    newton.coeffs() += c_j * me->dF_dyp_.coeffs();  // same pattern by construction
-    sundials::copy_into(newton, J);
+    sundials::write_newton_matrix(me->dF_dy_, me->dF_dyp_, c_j, J);
     return 0;
   } catch (...) {
     me->pending_ = std::current_exception();
@@ -80,10 +59,11 @@ void Ida::reset(const model::SecondOrderSystem& system, const model::State& init
   solver_.reset();
   J_.reset();
   pending_ = nullptr;
-  const SparseMatrix I = model::diagonal_matrix(Vector::Ones(n)), Z(n, n);
-  const SparseMatrix dyp = blocks(n, I, Z, Z, system.M);
-  dF_dy_ = blocks(n, Z, -I, system.K, system.C, &dyp);
-  dF_dyp_ = blocks(n, I, Z, Z, system.M, &dF_dy_);
+  const SparseMatrix I = model::diagonal_matrix(Vector::Ones(n));
+  const std::vector<Index> sizes{n, n};
+  const SparseMatrix dyp = assemble_blocks(sizes, {{0, 0, &I}, {1, 1, &system.M}});
+  dF_dy_ = assemble_blocks(sizes, {{0, 1, &I, -1.0}, {1, 0, &system.K}, {1, 1, &system.C}}, &dyp);
+  dF_dyp_ = assemble_blocks(sizes, {{0, 0, &I}, {1, 1, &system.M}}, &dF_dy_);
   if (dF_dy_.nonZeros() != dF_dyp_.nonZeros()) throw Error("internal: IDA Jacobian patterns differ");
 
   // Consistent initial values: y' = [v; M^-1 (f - C v - K u)].
@@ -134,16 +114,6 @@ void Ida::advance_to(double t_out, model::State& state) {
   state.v = y.tail(n);
 }
 
-Stats Ida::stats() const {
-  Stats s;
-  if (!memory_) return s;
-  IDAGetNumSteps(memory_, &s.steps);
-  IDAGetNumResEvals(memory_, &s.rhs_evals);
-  IDAGetNumJacEvals(memory_, &s.jac_evals);
-  IDAGetNumLinSolvSetups(memory_, &s.lin_setups);
-  IDAGetNumNonlinSolvIters(memory_, &s.lin_solves);
-  IDAGetNumErrTestFails(memory_, &s.failed_steps);
-  return s;
-}
+Stats Ida::stats() const { return sundials::ida_stats(memory_); }
 
 }  // namespace roifem::integrators

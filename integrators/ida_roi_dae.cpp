@@ -6,33 +6,10 @@
 #include <utility>
 
 #include "common/errors.hpp"
+#include "integrators/block_matrix.hpp"
+#include "integrators/sundials/ida_support.hpp"
 
 namespace roifem::integrators {
-
-namespace {
-
-/// A 3 x 3 block matrix from (row block, column block, matrix) entries, plus explicit zeros at
-/// every entry of `pattern_of` so that two such matrices share one pattern.
-SparseMatrix block3(const std::array<Index, 3>& sizes,
-                    const std::vector<std::tuple<int, int, const SparseMatrix*>>& blocks,
-                    const SparseMatrix* pattern_of = nullptr) {
-  const std::array<Index, 3> start{0, sizes[0], sizes[0] + sizes[1]};
-  const Index n = sizes[0] + sizes[1] + sizes[2];
-  std::vector<Eigen::Triplet<double>> t;
-  for (const auto& [r, c, X] : blocks)
-    for (Index j = 0; j < X->outerSize(); ++j)
-      for (SparseMatrix::InnerIterator it(*X, j); it; ++it)
-        t.emplace_back(start[static_cast<std::size_t>(r)] + it.row(), start[static_cast<std::size_t>(c)] + it.col(), it.value());
-  if (pattern_of)
-    for (Index j = 0; j < pattern_of->outerSize(); ++j)
-      for (SparseMatrix::InnerIterator it(*pattern_of, j); it; ++it) t.emplace_back(it.row(), it.col(), 0.0);
-  SparseMatrix out(n, n);
-  out.setFromTriplets(t.begin(), t.end());
-  out.makeCompressed();
-  return out;
-}
-
-}  // namespace
 
 IdaRoiDae::IdaRoiDae(const model::SecondOrderSystem& full, const roi::Partition& partition, StepControl control,
                      int max_order)
@@ -49,13 +26,13 @@ IdaRoiDae::IdaRoiDae(const model::SecondOrderSystem& full, const roi::Partition&
   load_d_ = full.load.mapped(static_cast<Index>(d.size()), [&](const Vector& p) { return roi::gather(p, d); });
   load_s_ = full.load.mapped(static_cast<Index>(s.size()), [&](const Vector& p) { return roi::gather(p, s); });
   const Index nd = static_cast<Index>(d.size()), ns = static_cast<Index>(s.size());
-  const std::array<Index, 3> sizes{nd, nd, ns};
-  const SparseMatrix I = model::diagonal_matrix(Vector::Ones(nd)), minus_I = -I;
+  const std::vector<Index> sizes{nd, nd, ns};
+  const SparseMatrix I = model::diagonal_matrix(Vector::Ones(nd));
   // y' enters only the first two row blocks: [I, 0, 0; 0, M_dd, 0; 0, 0, 0].
-  const SparseMatrix dyp = block3(sizes, {{0, 0, &I}, {1, 1, &M_dd_}});
-  dF_dy_ = block3(sizes, {{0, 1, &minus_I}, {1, 0, &K_dd_}, {1, 1, &C_dd_}, {1, 2, &K_ds_}, {2, 0, &K_sd_}, {2, 2, &K_ss_}},
-                  &dyp);
-  dF_dyp_ = block3(sizes, {{0, 0, &I}, {1, 1, &M_dd_}}, &dF_dy_);
+  const SparseMatrix dyp = assemble_blocks(sizes, {{0, 0, &I}, {1, 1, &M_dd_}});
+  dF_dy_ = assemble_blocks(
+      sizes, {{0, 1, &I, -1.0}, {1, 0, &K_dd_}, {1, 1, &C_dd_}, {1, 2, &K_ds_}, {2, 0, &K_sd_}, {2, 2, &K_ss_}}, &dyp);
+  dF_dyp_ = assemble_blocks(sizes, {{0, 0, &I}, {1, 1, &M_dd_}}, &dF_dy_);
   if (dF_dy_.nonZeros() != dF_dyp_.nonZeros()) throw Error("internal: IDA DAE Jacobian patterns differ");
   f_d_.resize(nd);
   f_s_.resize(ns);
@@ -90,9 +67,7 @@ int IdaRoiDae::jacobian(double, double c_j, N_Vector, N_Vector, N_Vector, SUNMat
                         N_Vector) {
   auto* me = static_cast<IdaRoiDae*>(self);
   try {
-    SparseMatrix newton = me->dF_dy_;
-    newton.coeffs() += c_j * me->dF_dyp_.coeffs();
-    sundials::copy_into(newton, J);
+    sundials::write_newton_matrix(me->dF_dy_, me->dF_dyp_, c_j, J);
     return 0;
   } catch (...) {
     me->pending_ = std::current_exception();
@@ -149,16 +124,6 @@ void IdaRoiDae::advance_to(double t_out, Vector& u_d, Vector& u_s) {
   u_s = y.tail(ns);
 }
 
-Stats IdaRoiDae::stats() const {
-  Stats s;
-  if (!memory_) return s;
-  IDAGetNumSteps(memory_, &s.steps);
-  IDAGetNumResEvals(memory_, &s.rhs_evals);
-  IDAGetNumJacEvals(memory_, &s.jac_evals);
-  IDAGetNumLinSolvSetups(memory_, &s.lin_setups);
-  IDAGetNumNonlinSolvIters(memory_, &s.lin_solves);
-  IDAGetNumErrTestFails(memory_, &s.failed_steps);
-  return s;
-}
+Stats IdaRoiDae::stats() const { return sundials::ida_stats(memory_); }
 
 }  // namespace roifem::integrators
