@@ -12,6 +12,7 @@
 
 #include "common/errors.hpp"
 #include "common/types.hpp"
+#include "integrators/sundials/vector_ops.hpp"
 
 namespace roifem::integrators::sundials {
 
@@ -42,6 +43,7 @@ inline Context make_context() {
 inline Vector make_vector(Index n, SUNContext ctx) {
   N_Vector v = N_VNew_Serial(static_cast<sunindextype>(n), ctx);
   if (!v) throw SolverError("SUNDIALS: cannot allocate a vector of " + std::to_string(n));
+  use_vectorized_ops(v);
   return Vector(v);
 }
 
