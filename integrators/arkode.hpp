@@ -17,6 +17,7 @@
 
 #include "integrators/integrator.hpp"
 #include "integrators/sundials/handles.hpp"
+#include "integrators/sundials/klu_solver.hpp"
 #include "integrators/sundials/schur_solver.hpp"
 
 namespace roifem::integrators {
@@ -35,6 +36,7 @@ struct ArkodeMethod {
   bool mass_matrix = false;
   bool schur = false;      ///< the Schur-complement Cholesky solver instead of KLU (see schur_solver.hpp)
   int order = 0;           ///< of the method (for the docs and tests)
+  sundials::KluOrdering klu_ordering = sundials::KluOrdering::amd;
 };
 
 class Arkode final : public Integrator {
@@ -45,12 +47,11 @@ class Arkode final : public Integrator {
   void reset(const model::SecondOrderSystem& system, const model::State& initial) override;
   void advance_to(double t_out, model::State& state) override;
   Stats stats() const override;
-  /// Seconds spent in the first numeric factorization (KLU), for the reports.
-  double factorization_seconds() const { return factorization_s_; }
 
  private:
   static int rhs(double t, N_Vector y, N_Vector ydot, void* self);
   static int jacobian(double t, N_Vector y, N_Vector fy, SUNMatrix J, void* self, N_Vector, N_Vector, N_Vector);
+  static int unit_weights(N_Vector y, N_Vector ewt, void* self);
   static int mass(double t, SUNMatrix M, void* self, N_Vector, N_Vector, N_Vector);
   void evaluate_rhs(double t, const double* y, double* ydot);
   void check(int flag, const char* call, double t) const;
@@ -60,15 +61,14 @@ class Arkode final : public Integrator {
   sundials::Context context_;  // first member: destroyed last
   sundials::Vector y_;
   sundials::Matrix J_, M_;
-  sundials::LinearSolver solver_, mass_solver_;
+  std::unique_ptr<sundials::KluSolver> solver_, mass_solver_;
   std::unique_ptr<sundials::SchurSolver> schur_;
   void* memory_ = nullptr;
   const model::SecondOrderSystem* system_ = nullptr;
   Vector inverse_mass_, force_, work_;
+  Vector cached_u_, cached_Ku_;  // the last K u product and its u
   SparseMatrix jacobian_, mass_matrix_;
   std::exception_ptr pending_;  // an exception from a callback, rethrown after the C call
-  double factorization_s_ = 0;
-  long steps_at_reset_ = 0;
 };
 
 }  // namespace roifem::integrators

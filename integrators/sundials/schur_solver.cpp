@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "common/timer.hpp"
+
 namespace roifem::integrators::sundials {
 
 namespace {
@@ -19,7 +21,7 @@ SchurSolver::SchurSolver(SUNContext context, const model::SecondOrderSystem& sys
   solver_->ops->solve = solve;
   solver_->ops->free = free_shell;
   rhs_.resize(system.size());
-  x_v_.resize(system.size());
+  work_.resize(system.size());
 }
 
 SchurSolver::~SchurSolver() { SUNLinSolFreeEmpty(solver_); }
@@ -37,11 +39,13 @@ int SchurSolver::setup(SUNLinearSolver S, SUNMatrix A) {
       if (row[k] == 0) gamma = -value[k];
     if (!(gamma > 0)) return -1;  // unrecoverable: not the matrix this solver was built for
     if (gamma != me->gamma_) {
+      const Stopwatch clock;
       const SparseMatrix Smat = me->system_.M + gamma * me->system_.C + (gamma * gamma) * me->system_.K;
       if (me->factorizations_ == 0) me->schur_.analyze(Smat);
       me->schur_.factorize(Smat);
       me->gamma_ = gamma;
       ++me->factorizations_;
+      me->factorization_s_ += clock.seconds();
     }
     return 0;
   } catch (...) {
@@ -55,16 +59,16 @@ int SchurSolver::solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, dou
   const auto B = view(b);
   auto X = view(x);
   const double gamma = me->gamma_;
-  // rhs = (M b_v or b_v) - gamma K b_u
+  // rhs = gamma (M b_v or b_v) + (M + gamma C) b_u
   if (me->mass_form_)
-    me->rhs_ = B.tail(n);
+    me->rhs_ = gamma * B.tail(n);
   else
-    me->rhs_.noalias() = me->system_.M * B.tail(n);
-  me->system_.apply_stiffness(B.head(n), me->x_v_);  // x_v_ as scratch for K b_u
-  me->rhs_ -= gamma * me->x_v_;
-  me->schur_.solve(me->rhs_, me->x_v_);
-  X.head(n) = B.head(n) + gamma * me->x_v_;
-  X.tail(n) = me->x_v_;
+    me->rhs_.noalias() = gamma * (me->system_.M * B.tail(n));
+  me->rhs_.noalias() += me->system_.M * B.head(n);
+  me->rhs_.noalias() += gamma * (me->system_.C * B.head(n));
+  me->schur_.solve(me->rhs_, me->work_);
+  X.tail(n) = (me->work_ - B.head(n)) / gamma;
+  X.head(n) = me->work_;
   return 0;
 }
 

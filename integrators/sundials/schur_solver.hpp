@@ -3,10 +3,13 @@
 /// M u'' + C u' + K u = f. ARKODE asks to solve A x = b with
 ///   A = I - gamma J = [[I, -gamma I], [gamma M^-1 K, I + gamma M^-1 C]]       (lumped M), or
 ///   A = M_ - gamma J = [[I, -gamma I], [gamma K, M + gamma C]]               (M as mass matrix).
-/// Eliminating x_u = b_u + gamma x_v leaves one symmetric positive definite system of size n,
-///   S x_v = (M b_v or b_v) - gamma K b_u,   S = M + gamma C + gamma^2 K,
+/// Eliminating x_v = (x_u - b_u) / gamma leaves one symmetric positive definite system of size n,
+///   S x_u = gamma (M b_v or b_v) + (M + gamma C) b_u,   S = M + gamma C + gamma^2 K,
 /// factored by CHOLMOD and refactored only when gamma changes: the same work per stage as the
-/// trapezoidal rule's one solve, instead of a KLU solve of the unsymmetric 2n system.
+/// trapezoidal rule's one solve (no product with K: M and C are cheap), instead of a KLU solve of
+/// the unsymmetric 2n system. The division by gamma costs no accuracy where it matters: x_u - b_u
+/// carries a rounding error of about eps |x_u| ~ eps h |v|, so x_v (the change of v over the stage)
+/// is off by about eps |v| / a_ii, a rounding error of v itself.
 /// gamma is read from A itself (its top-right block is -gamma I): ARKODE forms A before setup.
 #include "integrators/sundials/handles.hpp"
 #include "model/second_order_system.hpp"
@@ -22,6 +25,8 @@ class SchurSolver {
   ~SchurSolver();
   SUNLinearSolver get() const { return solver_; }
   long factorizations() const { return factorizations_; }
+  /// Seconds spent in CHOLMOD's analysis and factorizations.
+  double factorization_seconds() const { return factorization_s_; }
 
  private:
   static int setup(SUNLinearSolver S, SUNMatrix A);
@@ -32,7 +37,8 @@ class SchurSolver {
   bool mass_form_;
   double gamma_ = -1;
   solvers::Cholesky schur_;
-  roifem::Vector rhs_, x_v_;
+  roifem::Vector rhs_, work_;
+  double factorization_s_ = 0;
   long factorizations_ = 0;
 };
 

@@ -36,6 +36,9 @@ StaticCondensation::StaticCondensation(const model::SecondOrderSystem& full, con
     const DenseMatrix K_sI(roi::submatrix(full.K, s, interface_dofs));
     X_ = K_ss_factor.solve_matrix(K_sI);
     schur_ = K_sI.transpose() * X_;
+    // S is symmetric in exact arithmetic; make it so in floating point, so that products (which
+    // read one triangle) and factorizations (which read the other) see the same matrix.
+    schur_ = (0.5 * (schur_ + schur_.transpose())).eval();
     timings_.interface_solve_s = clock.seconds();
   } else {
     X_.resize(0, n_i);

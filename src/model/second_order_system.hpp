@@ -14,7 +14,7 @@ namespace roifem::model {
 struct SplitStiffness {
   SparseMatrix sparse;
   std::vector<Index> index;  ///< the block's dofs (P)
-  DenseMatrix block;         ///< B
+  DenseMatrix block;         ///< B, symmetric (products read its lower triangle)
   bool empty() const { return index.empty(); }
 };
 
