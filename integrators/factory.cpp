@@ -53,6 +53,12 @@ const std::map<std::string, GslMethod>& gsl_methods() {
 
 }  // namespace
 
+ArkodeMethod arkode_method(const std::string& name) {
+  const auto it = arkode_methods().find(name);
+  if (it == arkode_methods().end()) throw InputError("unknown ARKODE method '" + name + "'");
+  return it->second;
+}
+
 std::vector<std::string> integrator_names() {
   std::vector<std::string> names{"trapezoid", "ida-bdf5", "ida-bdf2"};
   for (const auto& [name, method] : arkode_methods()) names.push_back(name);

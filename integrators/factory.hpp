@@ -26,6 +26,8 @@ std::unique_ptr<Integrator> make_integrator(const std::string& name, const StepC
 inline std::unique_ptr<Integrator> make_integrator(const std::string& name, double dt) {
   return make_integrator(name, StepControl{.dt = dt});
 }
+/// The description of a named ARKODE method (to vary one setting, e.g. the KLU ordering).
+ArkodeMethod arkode_method(const std::string& name);
 /// The theoretical order of a named method (for convergence tests and plots).
 int integrator_order(const std::string& name);
 

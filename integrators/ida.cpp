@@ -1,7 +1,6 @@
 #include "integrators/ida.hpp"
 
 #include <ida/ida.h>
-#include <sunlinsol/sunlinsol_klu.h>
 
 #include <cmath>
 #include <utility>
@@ -88,10 +87,8 @@ void Ida::reset(const model::SecondOrderSystem& system, const model::State& init
   check(IDASetMaxOrd(memory_, max_order_), "IDASetMaxOrd");
   check(IDASetMaxNumSteps(memory_, 1000000), "IDASetMaxNumSteps");
   J_ = sundials::make_sparse(dF_dy_, context_.get());
-  solver_.reset(SUNLinSol_KLU(y_.get(), J_.get(), context_.get()));
-  if (!solver_) throw SolverError(name_ + ": cannot create the KLU solver");
-  SUNLinSol_KLUSetOrdering(solver_.get(), 0);  // AMD
-  check(IDASetLinearSolver(memory_, solver_.get(), J_.get()), "IDASetLinearSolver");
+  solver_ = std::make_unique<sundials::KluSolver>(y_.get(), J_.get(), context_.get());
+  check(IDASetLinearSolver(memory_, solver_->get(), J_.get()), "IDASetLinearSolver");
   check(IDASetJacFn(memory_, jacobian), "IDASetJacFn");
 }
 
@@ -114,6 +111,10 @@ void Ida::advance_to(double t_out, model::State& state) {
   state.v = y.tail(n);
 }
 
-Stats Ida::stats() const { return sundials::ida_stats(memory_); }
+Stats Ida::stats() const {
+  Stats s = sundials::ida_stats(memory_);
+  if (solver_) s.factorization_s = solver_->setup_seconds();
+  return s;
+}
 
 }  // namespace roifem::integrators

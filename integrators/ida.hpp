@@ -5,10 +5,12 @@
 /// matrix and factored by KLU (AMD ordering). BDF orders 1-5 (`max_order` 5), or capped at 2,
 /// the highest A-stable BDF. IDA has no fixed-step mode: it is always error-controlled.
 #include <exception>
+#include <memory>
 
 #include "integrators/arkode.hpp"  // StepControl
 #include "integrators/integrator.hpp"
 #include "integrators/sundials/handles.hpp"
+#include "integrators/sundials/klu_solver.hpp"
 
 namespace roifem::integrators {
 
@@ -32,7 +34,7 @@ class Ida final : public Integrator {
   sundials::Context context_;  // first: destroyed last
   sundials::Vector y_, yp_;
   sundials::Matrix J_;
-  sundials::LinearSolver solver_;
+  std::unique_ptr<sundials::KluSolver> solver_;
   void* memory_ = nullptr;
   const model::SecondOrderSystem* system_ = nullptr;
   SparseMatrix dF_dy_, dF_dyp_;  ///< same pattern (union), so J = dF_dy + c_j dF_dyp keeps it

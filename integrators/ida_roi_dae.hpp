@@ -8,10 +8,12 @@
 /// condensed model's, to the integrator's tolerance: the condensation eliminates exactly u_s.
 /// Newton matrix dF/dy + c_j dF/dy' assembled sparse, factored by KLU (AMD ordering).
 #include <exception>
+#include <memory>
 
 #include "integrators/arkode.hpp"  // StepControl
 #include "integrators/integrator.hpp"
 #include "integrators/sundials/handles.hpp"
+#include "integrators/sundials/klu_solver.hpp"
 #include "roi/roi.hpp"
 
 namespace roifem::integrators {
@@ -47,7 +49,7 @@ class IdaRoiDae {
   sundials::Context context_;
   sundials::Vector y_, yp_, id_;
   sundials::Matrix J_;
-  sundials::LinearSolver solver_;
+  std::unique_ptr<sundials::KluSolver> solver_;
   void* memory_ = nullptr;
   double t_ = 0;
   std::exception_ptr pending_;

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "common/errors.hpp"
+#include "common/timer.hpp"
 
 namespace roifem::integrators {
 
@@ -15,6 +16,7 @@ void Trapezoid::reset(const model::SecondOrderSystem& system, const model::State
   const Index n = system.size();
   if (initial.u.size() != n || initial.v.size() != n) throw Error("internal: trapezoid: state size mismatch");
   const SparseMatrix K_eff = system.K + (2.0 / dt_) * system.C + (4.0 / (dt_ * dt_)) * system.M;
+  const Stopwatch clock;
   try {
     K_eff_.compute(K_eff);
   } catch (const solvers::NotPositiveDefinite& e) {
@@ -35,6 +37,7 @@ void Trapezoid::reset(const model::SecondOrderSystem& system, const model::State
   work_.resize(n);
   stats_ = {};
   stats_.lin_setups = 1;
+  stats_.factorization_s = clock.seconds();
 }
 
 void Trapezoid::step(model::State& s) {

@@ -7,6 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libsundials-dev          # ARKODE, IDA, SUNLinSol_KLU (6.4)
   libeigen3-dev            # sparse matrices, CHOLMOD/KLU wrappers
+  libspectra-dev           # Lanczos eigenvalues (highest frequency, stability limits)
   libsuitesparse-dev       # CHOLMOD, KLU
   libopenblas-dev          # fast BLAS for CHOLMOD's supernodal factorization
   libgsl-dev               # odeiv2
