@@ -9,17 +9,11 @@
 
 #include "common/errors.hpp"
 #include "integrators/block_matrix.hpp"
+#include "model/mass_inverse.hpp"
 
 namespace roifem::integrators {
 
 namespace {
-
-bool is_diagonal(const SparseMatrix& M) {
-  for (Index j = 0; j < M.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(M, j); it; ++it)
-      if (it.row() != it.col() && it.value() != 0) return false;
-  return true;
-}
 
 }  // namespace
 
@@ -58,7 +52,7 @@ void Arkode::evaluate_rhs(double t, const double* y, double* ydot) {
   if (method_.mass_matrix)
     dv = work_;
   else
-    dv = inverse_mass_.cwiseProduct(work_);
+    mass_inverse_->apply(work_, dv);
 }
 
 int Arkode::rhs(double t, N_Vector y, N_Vector ydot, void* self) {
@@ -92,9 +86,11 @@ int Arkode::mass(double, SUNMatrix M, void* self, N_Vector, N_Vector, N_Vector) 
 void Arkode::reset(const model::SecondOrderSystem& system, const model::State& initial) {
   system_ = &system;
   const Index n = system.size();
-  if (!method_.mass_matrix && !is_diagonal(system.M))
-    throw InputError(method_.name + ": needs a diagonal (lumped) mass matrix; use the -mass variant for a full M");
-  inverse_mass_ = SparseMatrix(system.M).diagonal().cwiseInverse();
+  mass_inverse_.reset();
+  if (!method_.mass_matrix) mass_inverse_ = std::make_unique<model::MassInverse>(system.M);
+  if (method_.implicit && !method_.mass_matrix && !method_.schur && !mass_inverse_->is_diagonal())
+    throw InputError(method_.name + ": KLU on I - gamma J needs a lumped M (J holds M^-1 K, dense for a full M); "
+                     "use the -schur or -mass variant");
   force_.resize(n);
   work_.resize(n);
   cached_u_.resize(0);
@@ -115,6 +111,7 @@ void Arkode::reset(const model::SecondOrderSystem& system, const model::State& i
                              : ARKStepCreate(rhs, nullptr, initial.t, y_.get(), context_.get());
   if (!memory_) throw SolverError(method_.name + ": ARKStepCreate failed");
   check(ARKStepSetUserData(memory_, this), "ARKStepSetUserData", initial.t);
+  check(ARKStepSetErrHandlerFn(memory_, sundials::LastError::handler, &last_error_), "ARKStepSetErrHandlerFn", initial.t);
   check(ARKStepSetMaxNumSteps(memory_, 1000000), "ARKStepSetMaxNumSteps", initial.t);
   if (control_.adaptive) {
     check(ARKStepSStolerances(memory_, control_.rtol, control_.atol), "ARKStepSStolerances", initial.t);
@@ -153,8 +150,11 @@ void Arkode::reset(const model::SecondOrderSystem& system, const model::State& i
       check(ARKStepSetMassLinearSolver(memory_, mass_solver_->get(), M_.get(), SUNFALSE), "ARKStepSetMassLinearSolver",
             initial.t);
       check(ARKStepSetMassFn(memory_, mass), "ARKStepSetMassFn", initial.t);
+    } else if (method_.schur) {
+      // The Schur solver reads only gamma from the Newton matrix (its top-right block, -gamma I).
+      jacobian_ = assemble_blocks({n, n}, {{0, 1, &I}});
     } else {
-      const SparseMatrix Minv = model::diagonal_matrix(inverse_mass_);
+      const SparseMatrix Minv = model::diagonal_matrix(mass_inverse_->apply(DenseMatrix(Vector::Ones(n))).col(0));
       const SparseMatrix MinvK = Minv * system.K, MinvC = Minv * system.C;
       jacobian_ = assemble_blocks({n, n}, {{0, 1, &I}, {1, 0, &MinvK, -1.0}, {1, 1, &MinvC, -1.0}});
     }
@@ -191,9 +191,14 @@ void Arkode::advance_to(double t_out, model::State& state) {
   if (pending_) std::rethrow_exception(std::exchange(pending_, nullptr));
   long steps = 0;
   ARKStepGetNumSteps(memory_, &steps);
+  // At a fixed step the error weights are 1 (see reset), so ARKODE's "too much accuracy" test
+  // (eps ||y|| > 1) is what a diverging solution trips first: report it as the divergence it is.
+  if (flag == ARK_TOO_MUCH_ACC && !control_.adaptive)
+    throw SolverError(method_.name + ": the solution diverged (|y| > 1/eps) by t = " + std::to_string(t_reached) + " s, step " +
+                      std::to_string(steps) + "; the step is beyond the method's stability limit");
   if (flag < 0)
     throw SolverError(method_.name + ": failed at t = " + std::to_string(t_reached) + " s (step " + std::to_string(steps) +
-                      "): " + ARKStepGetReturnFlagName(flag));
+                      "): " + ARKStepGetReturnFlagName(flag) + last_error_.detail());
   const Index n = system_->size();
   const auto y = sundials::view(y_.get());
   if (!y.allFinite())

@@ -19,6 +19,7 @@
 #include "integrators/sundials/handles.hpp"
 #include "integrators/sundials/klu_solver.hpp"
 #include "integrators/sundials/schur_solver.hpp"
+#include "model/mass_inverse.hpp"
 
 namespace roifem::integrators {
 
@@ -65,10 +66,12 @@ class Arkode final : public Integrator {
   std::unique_ptr<sundials::SchurSolver> schur_;
   void* memory_ = nullptr;
   const model::SecondOrderSystem* system_ = nullptr;
-  Vector inverse_mass_, force_, work_;
+  std::unique_ptr<model::MassInverse> mass_inverse_;  // lumped, or full (Guyan, Craig-Bampton)
+  Vector force_, work_;
   Vector cached_u_, cached_Ku_;  // the last K u product and its u
   SparseMatrix jacobian_, mass_matrix_;
   std::exception_ptr pending_;  // an exception from a callback, rethrown after the C call
+  sundials::LastError last_error_;
 };
 
 }  // namespace roifem::integrators

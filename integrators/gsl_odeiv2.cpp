@@ -31,7 +31,7 @@ int GslOdeiv2::rhs(double t, const double y[], double dydt[], void* self) {
     me->work_ = me->force_ - me->work_;
     me->work_.noalias() -= me->system_->C * v;
     Eigen::Map<Vector>(dydt, n) = v;
-    Eigen::Map<Vector>(dydt + n, n) = me->inverse_mass_.cwiseProduct(me->work_);
+    me->mass_inverse_->apply(me->work_, Eigen::Map<Vector>(dydt + n, n));
     ++me->stats_.rhs_evals;
     return GSL_SUCCESS;
   } catch (...) {
@@ -55,16 +55,13 @@ void GslOdeiv2::reset(const model::SecondOrderSystem& system, const model::State
     throw InputError(name_ + ": GSL's dense Jacobian is limited to " + std::to_string(max_gsl_dofs) +
                      " dofs; this system has " + std::to_string(n) + " (use an ARKODE or IDA method)");
   system_ = &system;
-  const DenseMatrix M(system.M);
-  if ((M - DenseMatrix(M.diagonal().asDiagonal())).norm() > 0)
-    throw InputError(name_ + ": needs a diagonal (lumped) mass matrix");
-  inverse_mass_ = M.diagonal().cwiseInverse();
+  mass_inverse_ = std::make_unique<model::MassInverse>(system.M);
   force_.resize(n);
   work_.resize(n);
   jacobian_.setZero(2 * n, 2 * n);
   jacobian_.topRightCorner(n, n).setIdentity();
-  jacobian_.bottomLeftCorner(n, n) = -(inverse_mass_.asDiagonal() * DenseMatrix(system.K));
-  jacobian_.bottomRightCorner(n, n) = -(inverse_mass_.asDiagonal() * DenseMatrix(system.C));
+  jacobian_.bottomLeftCorner(n, n) = -mass_inverse_->apply(DenseMatrix(system.K));
+  jacobian_.bottomRightCorner(n, n) = -mass_inverse_->apply(DenseMatrix(system.C));
   y_.resize(2 * n);
   y_.head(n) = initial.u;
   y_.tail(n) = initial.v;

@@ -10,6 +10,7 @@
 
 #include "integrators/arkode.hpp"  // StepControl
 #include "integrators/integrator.hpp"
+#include "model/mass_inverse.hpp"
 
 namespace roifem::integrators {
 
@@ -34,7 +35,8 @@ class GslOdeiv2 final : public Integrator {
   gsl_odeiv2_system system_gsl_{};
   gsl_odeiv2_driver* driver_ = nullptr;
   const model::SecondOrderSystem* system_ = nullptr;
-  Vector inverse_mass_, force_, work_, y_;
+  std::unique_ptr<model::MassInverse> mass_inverse_;  // lumped, or full (Guyan, Craig-Bampton)
+  Vector force_, work_, y_;
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> jacobian_;
   double t_ = 0;
   Stats stats_;

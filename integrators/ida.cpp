@@ -83,6 +83,7 @@ void Ida::reset(const model::SecondOrderSystem& system, const model::State& init
   };
   check(IDAInit(memory_, residual, initial.t, y_.get(), yp_.get()), "IDAInit");
   check(IDASetUserData(memory_, this), "IDASetUserData");
+  check(IDASetErrHandlerFn(memory_, sundials::LastError::handler, &last_error_), "IDASetErrHandlerFn");
   check(IDASStolerances(memory_, control_.rtol, control_.atol), "IDASStolerances");
   check(IDASetMaxOrd(memory_, max_order_), "IDASetMaxOrd");
   check(IDASetMaxNumSteps(memory_, 1000000), "IDASetMaxNumSteps");
@@ -102,7 +103,7 @@ void Ida::advance_to(double t_out, model::State& state) {
   IDAGetNumSteps(memory_, &steps);
   if (flag < 0)
     throw SolverError(name_ + ": failed at t = " + std::to_string(t_reached) + " s (step " + std::to_string(steps) +
-                      "): " + IDAGetReturnFlagName(flag));
+                      "): " + IDAGetReturnFlagName(flag) + last_error_.detail());
   const Index n = system_->size();
   const auto y = sundials::view(y_.get());
   if (!y.allFinite()) throw SolverError(name_ + ": non-finite solution at t = " + std::to_string(t_reached) + " s");

@@ -40,6 +40,7 @@ class Ida final : public Integrator {
   SparseMatrix dF_dy_, dF_dyp_;  ///< same pattern (union), so J = dF_dy + c_j dF_dyp keeps it
   Vector force_;
   std::exception_ptr pending_;
+  sundials::LastError last_error_;
 };
 
 }  // namespace roifem::integrators

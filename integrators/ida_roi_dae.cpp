@@ -96,6 +96,7 @@ void IdaRoiDae::reset(double t0) {
   if (!memory_) throw SolverError("IDA ROI DAE: IDACreate failed");
   check(IDAInit(memory_, residual, t0, y_.get(), yp_.get()), "IDAInit");
   check(IDASetUserData(memory_, this), "IDASetUserData");
+  check(IDASetErrHandlerFn(memory_, sundials::LastError::handler, &last_error_), "IDASetErrHandlerFn");
   check(IDASStolerances(memory_, control_.rtol, control_.atol), "IDASStolerances");
   check(IDASetMaxOrd(memory_, max_order_), "IDASetMaxOrd");
   check(IDASetMaxNumSteps(memory_, 1000000), "IDASetMaxNumSteps");
@@ -114,7 +115,7 @@ void IdaRoiDae::advance_to(double t_out, Vector& u_d, Vector& u_s) {
   const int flag = IDASolve(memory_, t_out, &t_, y_.get(), yp_.get(), IDA_NORMAL);
   if (pending_) std::rethrow_exception(std::exchange(pending_, nullptr));
   if (flag < 0)
-    throw SolverError("IDA ROI DAE: failed at t = " + std::to_string(t_) + " s: " + IDAGetReturnFlagName(flag));
+    throw SolverError("IDA ROI DAE: failed at t = " + std::to_string(t_) + " s: " + IDAGetReturnFlagName(flag) + last_error_.detail());
   const Index nd = K_dd_.rows(), ns = K_ss_.rows();
   const auto y = sundials::view(y_.get());
   u_d = y.head(nd);

@@ -53,6 +53,7 @@ class IdaRoiDae {
   void* memory_ = nullptr;
   double t_ = 0;
   std::exception_ptr pending_;
+  sundials::LastError last_error_;
 };
 
 }  // namespace roifem::integrators

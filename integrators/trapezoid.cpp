@@ -22,8 +22,10 @@ void Trapezoid::reset(const model::SecondOrderSystem& system, const model::State
   } catch (const solvers::NotPositiveDefinite& e) {
     throw SolverError(std::string("trapezoid: K + 2/dt C + 4/dt^2 M is not positive definite: ") + e.what());
   }
-  M_ = system.M;
-  C_ = system.C;
+  // With mass-proportional damping C = alpha M (every model here) the right-hand side needs one
+  // product with M instead of one with M and one with C: it matters when M has dense blocks.
+  alpha_ = system.M.squaredNorm() > 0 ? system.C.cwiseProduct(system.M).sum() / system.M.squaredNorm() : 0.0;
+  if (!((system.C - alpha_ * system.M).norm() <= 1e-14 * system.C.norm())) alpha_ = NAN;
   t0_ = initial.t;
   k_ = 0;
   // Consistent initial acceleration: M a_0 = f(t_0) - C v_0 - K u_0.
@@ -45,10 +47,18 @@ void Trapezoid::step(model::State& s) {
   ++k_;
   s.t = t0_ + static_cast<double>(k_) * dt_;
   system_->load.evaluate(s.t, f_);
-  work_ = c_u * s.u + c_v * s.v + a_;
-  rhs_.noalias() = f_ + M_ * work_;
-  work_ = (2.0 / dt_) * s.u + s.v;
-  rhs_.noalias() += C_ * work_;
+  // rhs = f + M (c_u u + c_v v + a) + C (2/dt u + v)
+  if (std::isfinite(alpha_)) {
+    work_ = (c_u + alpha_ * 2.0 / dt_) * s.u + (c_v + alpha_) * s.v + a_;
+    system_->apply_mass(work_, rhs_);
+    rhs_ += f_;
+  } else {
+    work_ = c_u * s.u + c_v * s.v + a_;
+    system_->apply_mass(work_, rhs_);
+    rhs_ += f_;
+    work_ = (2.0 / dt_) * s.u + s.v;
+    rhs_.noalias() += system_->C * work_;
+  }
   K_eff_.solve(rhs_, u_next_);
   // a_{n+1} = c_u (u_{n+1} - u_n) - c_v v_n - a_n, then v and u.
   work_ = c_u * (u_next_ - s.u) - c_v * s.v - a_;

@@ -27,7 +27,7 @@ class Trapezoid final : public Integrator {
   double dt_;
   const model::SecondOrderSystem* system_ = nullptr;
   solvers::Cholesky K_eff_;
-  SparseMatrix M_, C_;
+  double alpha_ = 0;  // C = alpha M, or NaN when C is not mass-proportional
   double t0_ = 0;
   long k_ = 0;
   Vector a_, rhs_, f_, u_next_, work_;

@@ -34,6 +34,17 @@ using Vector = std::unique_ptr<std::remove_pointer_t<N_Vector>, VectorDeleter>;
 using Matrix = std::unique_ptr<std::remove_pointer_t<SUNMatrix>, MatrixDeleter>;
 using LinearSolver = std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, LinearSolverDeleter>;
 
+/// SUNDIALS prints its error messages to stderr; the integrators keep the last one instead
+/// (ARKStepSetErrHandlerFn / IDASetErrHandlerFn) and put it into the exception they throw.
+struct LastError {
+  std::string message;
+  static void handler(int, const char*, const char* function, char* msg, void* self) {
+    static_cast<LastError*>(self)->message = std::string(function) + ": " + msg;
+  }
+  /// " (ARKODE: ...)" or "" when SUNDIALS said nothing.
+  std::string detail() const { return message.empty() ? "" : " (" + message + ")"; }
+};
+
 inline Context make_context() {
   SUNContext c = nullptr;
   if (SUNContext_Create(nullptr, &c) != 0) throw SolverError("SUNDIALS: cannot create a context");

@@ -2,17 +2,57 @@
 
 #include "common/errors.hpp"
 #include "common/timer.hpp"
+#include "model/mass_inverse.hpp"
+#include "model/spectrum.hpp"
 #include "solvers/cholesky.hpp"
 
 namespace roifem::condensation {
 
+namespace {
+
+using Triplets = std::vector<Eigen::Triplet<double>>;
+
+SparseMatrix from_triplets(Index n, const Triplets& t) {
+  SparseMatrix A(n, n);
+  A.setFromTriplets(t.begin(), t.end());
+  return A;
+}
+
+/// The split matrix assembled: sparse part plus P^T B P.
+SparseMatrix assembled(const model::SplitMatrix& A) {
+  Triplets t;
+  t.reserve(static_cast<std::size_t>(A.sparse.nonZeros() + A.block.size()));
+  for (Index j = 0; j < A.sparse.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(A.sparse, j); it; ++it) t.emplace_back(it.row(), it.col(), it.value());
+  for (Index b = 0; b < A.block.cols(); ++b)
+    for (Index a = 0; a < A.block.rows(); ++a)
+      t.emplace_back(A.index[static_cast<std::size_t>(a)], A.index[static_cast<std::size_t>(b)], A.block(a, b));
+  return from_triplets(A.sparse.rows(), t);
+}
+
+/// A with its rows and columns extended by zeros to n.
+SparseMatrix padded(const SparseMatrix& A, Index n) {
+  SparseMatrix B = A;
+  B.conservativeResize(n, n);
+  return B;
+}
+
+}  // namespace
+
 StaticCondensation::StaticCondensation(const model::SecondOrderSystem& full, const roi::Partition& partition,
-                                       const fem::DofMap& dofs)
-    : partition_(partition) {
+                                       const fem::DofMap& dofs, const Reduction& reduction)
+    : partition_(partition), reduction_(reduction) {
   const auto& d = partition_.d;
   const auto& s = partition_.s;
   if (d.empty()) throw ModelError("static condensation: the ROI has no free dof");
+  const bool with_mass = reduction.kind != ReductionKind::static_condensation;
+  const bool with_modes = reduction.kind == ReductionKind::craig_bampton;
+  if (with_modes && reduction.modes <= 0 && !(reduction.cutoff_rad_s > 0))
+    throw InputError("Craig-Bampton: give a positive number of modes or a positive cut-off frequency");
+  if (with_mass && !(model::is_diagonal(full.M) && model::is_diagonal(full.C)))
+    throw InputError(reduction.label() + " reduction: needs the lumped (diagonal) M and C of the full model");
   const Index n_i = static_cast<Index>(partition_.interface.size());
+  const Index n_d = static_cast<Index>(d.size());
   std::vector<Index> interface_dofs;  // the interface as free dof indices
   for (Index k : partition_.interface) interface_dofs.push_back(d[static_cast<std::size_t>(k)]);
 
@@ -44,55 +84,101 @@ StaticCondensation::StaticCondensation(const model::SecondOrderSystem& full, con
     X_.resize(0, n_i);
     schur_ = DenseMatrix::Zero(n_i, n_i);
   }
+
+  const Vector M_s = roi::gather(full.M.diagonal(), s), C_s = roi::gather(full.C.diagonal(), s);
+  if (with_modes && !s.empty()) {
+    clock.restart();
+    const model::Modes modes = reduction.modes > 0
+                                   ? model::lowest_modes(M_s, K_ss_factor, std::min<Index>(reduction.modes, static_cast<Index>(s.size())))
+                                   : model::modes_below(M_s, K_ss_factor, reduction.cutoff_rad_s);
+    omega_ = modes.omega;
+    Phi_ = modes.shapes;
+    timings_.modes_s = clock.seconds();
+  }
+  const Index k = num_modes();
+  Phi_.resize(static_cast<Index>(s.size()), k);
   clock.restart();
 
-  // K~ = K_dd - S on the interface block (the block becomes dense; the rest stays sparse).
-  const SparseMatrix K_dd = roi::submatrix(full.K, d, d);
-  std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(static_cast<std::size_t>(K_dd.nonZeros() + n_i * n_i));
-  for (Index j = 0; j < K_dd.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(K_dd, j); it; ++it) triplets.emplace_back(it.row(), it.col(), it.value());
-  for (Index b = 0; b < n_i; ++b)
-    for (Index a = 0; a < n_i; ++a)
-      triplets.emplace_back(partition_.interface[static_cast<std::size_t>(a)],
-                            partition_.interface[static_cast<std::size_t>(b)], -schur_(a, b));
-  reduced_.K.resize(K_dd.rows(), K_dd.cols());
-  reduced_.K.setFromTriplets(triplets.begin(), triplets.end());
-  reduced_.K_split.sparse = K_dd;
-  reduced_.K_split.index = partition_.interface;
-  reduced_.K_split.block = -schur_;
-  reduced_.M = roi::submatrix(full.M, d, d);
-  reduced_.C = roi::submatrix(full.C, d, d);
+  // Index lists of the reduced system: the interface rows, and the modal coordinates after d.
+  std::vector<Index> modal(static_cast<std::size_t>(k));
+  for (Index j = 0; j < k; ++j) modal[static_cast<std::size_t>(j)] = n_d + j;
+  const Index n_r = n_d + k;
 
-  // f~ = f_d - X^T f_s per load pattern; K_ss^-1 f_s kept for recovering u_s.
-  reduced_.load = full.load.mapped(static_cast<Index>(d.size()), [&](const Vector& p) {
-    Vector f = roi::gather(p, d);
+  // K_r = diag(K_dd - S on the interface block, W^2); kept split (products) and assembled (factorizations).
+  {
+    Triplets t;
+    const SparseMatrix K_dd = roi::submatrix(full.K, d, d);
+    for (Index j = 0; j < K_dd.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(K_dd, j); it; ++it) t.emplace_back(it.row(), it.col(), it.value());
+    for (Index j = 0; j < k; ++j) t.emplace_back(n_d + j, n_d + j, omega_[j] * omega_[j]);
+    reduced_.K_split.sparse = from_triplets(n_r, t);
+    reduced_.K_split.index = partition_.interface;
+    reduced_.K_split.block = -schur_;
+    reduced_.K = assembled(reduced_.K_split);
+  }
+
+  // M_r and C_r: T^T D T for the diagonal D = M, C of the full model, a dense block on the interface
+  // and the modal coordinates, [[X^T D_s X, -X^T D_s Phi], [sym, Phi^T D_s Phi]] (or D_dd alone).
+  auto reduce_diagonal = [&](const SparseMatrix& D_full, const Vector& D_s) {
+    model::SplitMatrix D;
+    D.sparse = padded(roi::submatrix(D_full, d, d), n_r);
+    if (!with_mass) return D;
+    D.index = partition_.interface;
+    D.index.insert(D.index.end(), modal.begin(), modal.end());
+    const DenseMatrix DX = D_s.asDiagonal() * X_;
+    D.block.resize(n_i + k, n_i + k);
+    const DenseMatrix XtDX = X_.transpose() * DX;
+    D.block.topLeftCorner(n_i, n_i) = 0.5 * (XtDX + XtDX.transpose());
+    if (k > 0) {
+      D.block.topRightCorner(n_i, k) = -DX.transpose() * Phi_;  // -P^T X^T D_s Phi
+      D.block.bottomLeftCorner(k, n_i) = D.block.topRightCorner(n_i, k).transpose();
+      const DenseMatrix PtDP = Phi_.transpose() * D_s.asDiagonal() * Phi_;
+      D.block.bottomRightCorner(k, k) = 0.5 * (PtDP + PtDP.transpose());
+    }
+    return D;
+  };
+  reduced_.M_split = reduce_diagonal(full.M, M_s);
+  reduced_.M = assembled(reduced_.M_split);
+  reduced_.C = assembled(reduce_diagonal(full.C, C_s));
+  if (!with_mass) reduced_.M_split = {};  // diagonal: the plain product is the fast one
+
+  // f_r = [f_d - X^T f_s on the interface; Phi^T f_s] per load pattern; K_ss^-1 f_s kept for
+  // recovering u_s (less its modal part, which eta carries).
+  reduced_.load = full.load.mapped(n_r, [&](const Vector& p) {
+    Vector f = Vector::Zero(n_r);
+    f.head(n_d) = roi::gather(p, d);
     if (!s.empty()) {
-      const Vector correction = X_.transpose() * roi::gather(p, s);
+      const Vector p_s = roi::gather(p, s);
+      const Vector correction = X_.transpose() * p_s;
       for (Index a = 0; a < n_i; ++a) f[partition_.interface[static_cast<std::size_t>(a)]] -= correction[a];
+      if (k > 0) f.tail(k) = Phi_.transpose() * p_s;
     }
     return f;
   });
   static_response_ = full.load.mapped(static_cast<Index>(s.size()), [&](const Vector& p) {
-    return s.empty() ? Vector() : K_ss_factor.solve(roi::gather(p, s));
+    if (s.empty()) return Vector();
+    const Vector p_s = roi::gather(p, s);
+    Vector z = K_ss_factor.solve(p_s);
+    if (k > 0) z.noalias() -= Phi_ * (Phi_.transpose() * p_s).cwiseQuotient(omega_.cwiseAbs2());
+    return z;
   });
   timings_.assembly_s = clock.seconds();
 }
 
-Vector StaticCondensation::recover_static(const Vector& u_d, double t) const {
+Vector StaticCondensation::recover_static(const Vector& y, double t) const {
   Vector u_s = static_response_.at(t);
   if (u_s.size() == 0) return u_s;
   Vector u_i(static_cast<Index>(partition_.interface.size()));
-  for (std::size_t a = 0; a < partition_.interface.size(); ++a)
-    u_i[static_cast<Index>(a)] = u_d[partition_.interface[a]];
+  for (std::size_t a = 0; a < partition_.interface.size(); ++a) u_i[static_cast<Index>(a)] = y[partition_.interface[a]];
   u_s.noalias() -= X_ * u_i;
+  if (num_modes() > 0) u_s.noalias() += Phi_ * y.tail(num_modes());
   return u_s;
 }
 
-Vector StaticCondensation::expand(const Vector& u_d, double t) const {
-  const Vector u_s = recover_static(u_d, t);
+Vector StaticCondensation::expand(const Vector& y, double t) const {
+  const Vector u_s = recover_static(y, t);
   Vector u(static_cast<Index>(partition_.d.size() + partition_.s.size()));
-  for (std::size_t k = 0; k < partition_.d.size(); ++k) u[partition_.d[k]] = u_d[static_cast<Index>(k)];
+  for (std::size_t k = 0; k < partition_.d.size(); ++k) u[partition_.d[k]] = y[static_cast<Index>(k)];
   for (std::size_t k = 0; k < partition_.s.size(); ++k) u[partition_.s[k]] = u_s[static_cast<Index>(k)];
   return u;
 }

@@ -6,8 +6,21 @@
 ///   X = K_ss^-1 K_sI (dense, #s x #I), S = K_sI^T X (dense, #I x #I),
 /// so that K~ = K_dd - S on the interface block, f~ pattern = f_d - X^T f_s, u_s = z(t) - X u_I
 /// with z(t) = sum_k r_k(t) K_ss^-1 p_k,s precomputed per load pattern. The condensed system keeps
-/// K~ both assembled (for factorizations) and split as K_dd plus the dense block -S (for products). M and C of the ROI are
-/// kept as they are (the static part has no inertia in this reduction).
+/// K~ both assembled (for factorizations) and split as K_dd plus the dense block -S (for products).
+///
+/// Three reductions share that machinery (T maps the reduced coordinates to all free dofs):
+///  - static condensation (the paper's): M and C of the ROI kept as they are; the static part
+///    answers without inertia.
+///  - Guyan: T = [I; -X P] (P picks the interface), M~ = T^T M T = M_dd + P^T X^T M_ss X P, and
+///    C~ likewise: the static part's mass moves with the ROI through its static modes.
+///  - Craig-Bampton: k fixed-interface modes Phi of (K_ss, M_ss) (M_ss-orthonormal, K_ss Phi =
+///    M_ss Phi W^2) added as generalized coordinates eta: T = [[I, 0], [-X P, Phi]], so
+///    K_r = diag(K~, W^2), M_r = [[M~, -P^T X^T M_ss Phi], [sym, I]], f_r = [f~; Phi^T f_s],
+///    u_s = z(t) - Phi W^-2 Phi^T f_s(t) - X u_I + Phi eta. With every mode it is exact.
+/// M and C of the full model must be diagonal (lumped) for Guyan and Craig-Bampton.
+#include <string>
+
+#include "condensation/reduction.hpp"
 #include "fem/dof_map.hpp"
 #include "model/second_order_system.hpp"
 #include "roi/roi.hpp"
@@ -15,21 +28,29 @@
 namespace roifem::condensation {
 
 struct CondensationTimings {
-  double factorization_s = 0, interface_solve_s = 0, assembly_s = 0;
+  double factorization_s = 0, interface_solve_s = 0, modes_s = 0, assembly_s = 0;
 };
+
+
 
 class StaticCondensation {
  public:
   /// Throws ModelError when K_ss is singular (a static piece held by no fixed node), naming the node.
-  StaticCondensation(const model::SecondOrderSystem& full, const roi::Partition& partition, const fem::DofMap& dofs);
+  /// InputError for a Craig-Bampton request without modes or a cut-off, or a non-diagonal M or C.
+  StaticCondensation(const model::SecondOrderSystem& full, const roi::Partition& partition, const fem::DofMap& dofs,
+                     const Reduction& reduction = {});
 
-  /// The condensed system on the ROI dofs d.
+  /// The reduced system: the ROI dofs d first, then the modal coordinates (Craig-Bampton).
   const model::SecondOrderSystem& system() const { return reduced_; }
   const roi::Partition& partition() const { return partition_; }
-  /// u over all free dofs from the ROI's u_d at time t (u_s recovered).
-  Vector expand(const Vector& u_d, double t) const;
+  const Reduction& reduction() const { return reduction_; }
+  /// Fixed-interface modes kept (0 unless Craig-Bampton) and their frequencies (rad/s).
+  Index num_modes() const { return static_cast<Index>(omega_.size()); }
+  const Vector& mode_frequencies() const { return omega_; }
+  /// u over all free dofs from the reduced coordinates y = [u_d; eta] at time t (u_s recovered).
+  Vector expand(const Vector& y, double t) const;
   /// u_s alone.
-  Vector recover_static(const Vector& u_d, double t) const;
+  Vector recover_static(const Vector& y, double t) const;
   /// K_ds K_ss^-1 K_sd: the interface block subtracted from K_dd.
   const DenseMatrix& interface_schur() const { return schur_; }
   const CondensationTimings& timings() const { return timings_; }
@@ -39,7 +60,10 @@ class StaticCondensation {
   model::SecondOrderSystem reduced_;
   DenseMatrix X_;       ///< K_ss^-1 K_sI
   DenseMatrix schur_;   ///< K_sI^T X
-  model::LoadHistory static_response_;  ///< K_ss^-1 p_k,s per load term
+  Reduction reduction_;
+  Vector omega_;        ///< Craig-Bampton mode frequencies
+  DenseMatrix Phi_;     ///< Craig-Bampton mode shapes (#s x k, M_ss-orthonormal)
+  model::LoadHistory static_response_;  ///< per load term: K_ss^-1 p_k,s, less its modal part (Craig-Bampton)
   CondensationTimings timings_;
 };
 

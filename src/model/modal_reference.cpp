@@ -48,19 +48,16 @@ ModalReference::ModalReference(const SecondOrderSystem& system, const State& ini
     throw ModelError("modal reference: " + std::to_string(n) + " dofs is more than the dense eigensolver's limit of " +
                      std::to_string(max_dofs));
   const DenseMatrix M(system.M), C(system.C);
-  const Vector m = M.diagonal();
-  if ((M - DenseMatrix(m.asDiagonal())).norm() > 1e-14 * m.norm())
-    throw InputError("modal reference: needs a diagonal (lumped) mass matrix");
-  alpha_ = C.diagonal().dot(m) / m.squaredNorm();
+  alpha_ = C.cwiseProduct(M).sum() / M.squaredNorm();
   if ((C - alpha_ * M).norm() > 1e-12 * (C.norm() + 1e-300))
     throw InputError("modal reference: needs mass-proportional damping C = alpha M");
-  const Vector s = m.cwiseSqrt(), si = s.cwiseInverse();
-  const Eigen::SelfAdjointEigenSolver<DenseMatrix> eig(si.asDiagonal() * DenseMatrix(system.K) * si.asDiagonal());
-  if (eig.info() != Eigen::Success) throw SolverError("modal reference: the eigensolver failed");
+  // K phi = w^2 M phi; Eigen normalizes phi^T M phi = I. Lumped or full (Guyan, Craig-Bampton) M.
+  const Eigen::GeneralizedSelfAdjointEigenSolver<DenseMatrix> eig(DenseMatrix(system.K), M);
+  if (eig.info() != Eigen::Success) throw ModelError("modal reference: the eigensolver failed (is M positive definite?)");
   if (eig.eigenvalues()[0] <= 0) throw ModelError("modal reference: K is not positive definite (a rigid-body mode)");
   omega_ = eig.eigenvalues().cwiseSqrt();
-  modes_ = si.asDiagonal() * eig.eigenvectors();  // phi^T M phi = I
-  const DenseMatrix phiT_M = eig.eigenvectors().transpose() * s.asDiagonal();  // phi^T M
+  modes_ = eig.eigenvectors();
+  const DenseMatrix phiT_M = modes_.transpose() * M;
   t0_ = initial.t;
   if (t0_ != 0 && !system.load.terms().empty())
     throw InputError("modal reference: a loaded system must start at t = 0 (the ramps' origin)");

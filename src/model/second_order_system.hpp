@@ -3,28 +3,36 @@
 ///   M u'' + C u' + K u = f(t)
 /// M symmetric positive definite (lumped: diagonal), C = alpha M, K symmetric positive definite.
 /// The full model and a condensed ROI model are both of this form.
+#include <vector>
+
 #include "common/types.hpp"
 #include "model/load_history.hpp"
 
 namespace roifem::model {
 
-/// K as a sparse part plus a dense block on a subset of dofs, K = K_sparse + P^T B P: how a
-/// condensed stiffness is kept (K_dd and the interface Schur block) so that products run the
-/// dense block through BLAS instead of as 76k scattered sparse entries.
-struct SplitStiffness {
+/// A symmetric matrix as a sparse part plus a dense block on a subset of dofs, A = A_sparse + P^T B P:
+/// how a condensed stiffness (K_dd and the interface Schur block) and a Guyan or Craig-Bampton mass
+/// are kept, so that products run the dense block as a symmetric BLAS-style product (reading half
+/// of it) instead of as tens of thousands of scattered sparse entries.
+struct SplitMatrix {
   SparseMatrix sparse;
   std::vector<Index> index;  ///< the block's dofs (P)
   DenseMatrix block;         ///< B, symmetric (products read its lower triangle)
   bool empty() const { return index.empty(); }
+  /// y = A x.
+  void apply(const Eigen::Ref<const Vector>& x, Eigen::Ref<Vector> y) const;
 };
 
 struct SecondOrderSystem {
-  SparseMatrix M, C, K;      ///< K in full, for factorizations
+  SparseMatrix M, C, K;      ///< in full, for factorizations
   LoadHistory load;
-  SplitStiffness K_split;    ///< optional: the same K, split, for products
+  SplitMatrix K_split;       ///< optional: the same K, split, for products
+  SplitMatrix M_split;       ///< optional: the same M, split (Guyan, Craig-Bampton)
   Index size() const { return K.rows(); }
   /// y = K x, through K_split when there is one.
   void apply_stiffness(const Eigen::Ref<const Vector>& x, Eigen::Ref<Vector> y) const;
+  /// y = M x, through M_split when there is one.
+  void apply_mass(const Eigen::Ref<const Vector>& x, Eigen::Ref<Vector> y) const;
 };
 
 /// Displacement and velocity at time t.

@@ -1,12 +1,14 @@
 #include "model/spectrum.hpp"
 
 #include <Spectra/SymEigsSolver.h>
+#include <Spectra/SymGEigsSolver.h>
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
 #include "common/errors.hpp"
+#include "model/mass_inverse.hpp"
 
 namespace roifem::model {
 
@@ -32,14 +34,119 @@ class ScaledStiffness {
   mutable Vector x_, y_;
 };
 
+/// y = K x, and the mass operator of Spectra's regular-inverse mode (y = M x, y = M^-1 x): the
+/// generalized problem for a full M (Guyan, Craig-Bampton).
+class Stiffness {
+ public:
+  using Scalar = double;
+  explicit Stiffness(const SecondOrderSystem& system) : system_(system) {}
+  Index rows() const { return system_.size(); }
+  Index cols() const { return system_.size(); }
+  void perform_op(const double* in, double* out) const {
+    system_.apply_stiffness(Eigen::Map<const Vector>(in, rows()), Eigen::Map<Vector>(out, rows()));
+  }
+
+ private:
+  const SecondOrderSystem& system_;
+};
+
+class Mass {
+ public:
+  using Scalar = double;
+  explicit Mass(const SparseMatrix& M) : M_(M), inverse_(M) {}
+  Index rows() const { return M_.rows(); }
+  Index cols() const { return M_.cols(); }
+  void perform_op(const double* in, double* out) const {
+    Eigen::Map<Vector>(out, rows()).noalias() = M_ * Eigen::Map<const Vector>(in, rows());
+  }
+  void solve(const double* in, double* out) const {
+    inverse_.apply(Eigen::Map<const Vector>(in, rows()), Eigen::Map<Vector>(out, rows()));
+  }
+
+ private:
+  const SparseMatrix& M_;
+  MassInverse inverse_;
+};
+
+/// y = D K^-1 D x with D = M^1/2: the shift-invert operator (eigenvalues 1 / w^2).
+class ScaledInverseStiffness {
+ public:
+  using Scalar = double;
+  ScaledInverseStiffness(const solvers::Cholesky& factor, Vector scale)
+      : factor_(factor), scale_(std::move(scale)), x_(scale_.size()), y_(scale_.size()) {}
+  Index rows() const { return scale_.size(); }
+  Index cols() const { return scale_.size(); }
+  void perform_op(const double* in, double* out) const {
+    x_ = scale_.cwiseProduct(Eigen::Map<const Vector>(in, rows()));
+    factor_.solve(x_, y_);
+    Eigen::Map<Vector>(out, rows()) = scale_.cwiseProduct(y_);
+  }
+
+ private:
+  const solvers::Cholesky& factor_;
+  Vector scale_;
+  mutable Vector x_, y_;
+};
+
 }  // namespace
+
+Modes lowest_modes(const Vector& mass_diagonal, const solvers::Cholesky& K_factor, Index count, double tolerance) {
+  const Index n = mass_diagonal.size();
+  if (n != K_factor.size()) throw Error("internal: lowest_modes: M and K differ in size");
+  if (count < 1 || count > n)
+    throw InputError("lowest modes: asked for " + std::to_string(count) + " modes of a system with " + std::to_string(n) +
+                     " dofs (1 to " + std::to_string(n) + ")");
+  if (mass_diagonal.minCoeff() <= 0) throw InputError("lowest modes: the mass matrix must be positive");
+  const Vector scale = mass_diagonal.cwiseSqrt();
+  Modes modes;
+  if (2 * count >= n) {  // half the spectrum or more: dense
+    const DenseMatrix A = scale.asDiagonal() * K_factor.solve_matrix(DenseMatrix::Identity(n, n)) * scale.asDiagonal();
+    const Eigen::SelfAdjointEigenSolver<DenseMatrix> dense(0.5 * (A + A.transpose()));
+    // Ascending 1/w^2: the lowest w are the last columns.
+    modes.omega = dense.eigenvalues().reverse().head(count).cwiseInverse().cwiseSqrt();
+    modes.shapes = scale.cwiseInverse().asDiagonal() * dense.eigenvectors().rowwise().reverse().leftCols(count);
+    return modes;
+  }
+  ScaledInverseStiffness op(K_factor, scale);
+  Spectra::SymEigsSolver<ScaledInverseStiffness> lanczos(op, count, std::min<Index>(n, std::max<Index>(2 * count + 1, 20)));
+  lanczos.init();
+  lanczos.compute(Spectra::SortRule::LargestAlge, 1000, tolerance);
+  if (lanczos.info() != Spectra::CompInfo::Successful)
+    throw SolverError("lowest modes: Lanczos did not converge for " + std::to_string(count) + " modes");
+  // Spectra returns the largest 1/w^2 first: the lowest w first.
+  modes.omega = lanczos.eigenvalues().cwiseInverse().cwiseSqrt();
+  modes.shapes = scale.cwiseInverse().asDiagonal() * lanczos.eigenvectors();  // phi = M^-1/2 psi
+  return modes;
+}
+
+Modes modes_below(const Vector& mass_diagonal, const solvers::Cholesky& K_factor, double cutoff, double tolerance) {
+  const Index n = mass_diagonal.size();
+  for (Index count = std::min<Index>(10, n);; count = std::min<Index>(2 * count, n)) {
+    Modes modes = lowest_modes(mass_diagonal, K_factor, count, tolerance);
+    const Index below = static_cast<Index>((modes.omega.array() < cutoff).count());
+    if (below < count || count == n) {
+      modes.omega.conservativeResize(below);
+      modes.shapes.conservativeResize(Eigen::NoChange, below);
+      return modes;
+    }
+  }
+}
 
 double highest_frequency(const SecondOrderSystem& system, double tolerance) {
   const Index n = system.size();
   const SparseMatrix& M = system.M;
   if (n == 0) throw InputError("highest frequency: the system has no dofs");
-  if (M.nonZeros() != n || Vector(M.diagonal()).minCoeff() <= 0)
-    throw InputError("highest frequency: needs a diagonal (lumped), positive mass matrix");
+  if (!is_diagonal(M)) {  // full M: K phi = lambda M phi in Spectra's regular-inverse mode
+    Stiffness op(system);
+    Mass mass(M);
+    Spectra::SymGEigsSolver<Stiffness, Mass, Spectra::GEigsMode::RegularInverse> lanczos(op, mass, 1, std::min<Index>(n, 20));
+    lanczos.init();
+    lanczos.compute(Spectra::SortRule::LargestAlge, 1000, tolerance);
+    if (lanczos.info() != Spectra::CompInfo::Successful)
+      throw SolverError("highest frequency: Lanczos (generalized) did not converge in 1000 restarts");
+    return std::sqrt(std::max(0.0, lanczos.eigenvalues()[0]));
+  }
+  if (Vector(M.diagonal()).minCoeff() <= 0) throw InputError("highest frequency: the mass matrix must be positive");
   const Vector scale = Vector(M.diagonal()).cwiseSqrt().cwiseInverse();
   if (n <= 20) {  // too small for a Krylov space: dense
     const DenseMatrix A = scale.asDiagonal() * DenseMatrix(system.K) * scale.asDiagonal();

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "condensation/reduction.hpp"
 #include "fem/material.hpp"
 #include "model/fem_model.hpp"
 #include "roi/roi.hpp"
@@ -20,6 +21,7 @@ struct Scenario {
   std::vector<std::string> fixed_sets{"base"};
   std::vector<model::SetLoad> loads;
   std::optional<roi::RoiSpec> roi;            ///< none: the full dynamic model
+  condensation::Reduction reduction;          ///< of the static part, with an ROI
   std::string integrator = "trapezoid";
   double dt = 0.05;                           ///< s
   long steps = 200;

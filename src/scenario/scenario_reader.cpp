@@ -167,6 +167,34 @@ fem::Material read_material(StrictTable& t, std::string& name) {
   }
 }
 
+condensation::Reduction read_reduction(StrictTable& t) {
+  using condensation::ReductionKind;
+  condensation::Reduction r;
+  const std::string kind = t.string("reduction").value_or("static");
+  if (kind == "static") {
+    r.kind = ReductionKind::static_condensation;
+  } else if (kind == "guyan") {
+    r.kind = ReductionKind::guyan;
+  } else if (kind == "craig-bampton") {
+    r.kind = ReductionKind::craig_bampton;
+  } else {
+    throw InputError(t.source() + ": key 'roi.reduction' must be one of static, guyan, craig-bampton (got '" + kind + "')");
+  }
+  const auto modes = t.integer("modes");
+  const double cutoff = t.number("cutoff_rad_s", 0.0);
+  if (r.kind != ReductionKind::craig_bampton && (modes || cutoff != 0))
+    throw InputError(t.source() + ": keys 'roi.modes' and 'roi.cutoff_rad_s' belong to reduction = \"craig-bampton\"");
+  if (r.kind == ReductionKind::craig_bampton) {
+    if (modes && *modes <= 0) throw InputError(t.source() + ": key 'roi.modes' must be positive (got " + std::to_string(*modes) + ")");
+    if (cutoff < 0) throw InputError(t.source() + ": key 'roi.cutoff_rad_s' must be positive");
+    if (!modes && !(cutoff > 0))
+      throw InputError(t.source() + ": reduction = \"craig-bampton\" needs key 'roi.modes' or 'roi.cutoff_rad_s'");
+    r.modes = modes.value_or(0);
+    r.cutoff_rad_s = modes ? 0.0 : cutoff;
+  }
+  return r;
+}
+
 roi::RoiSpec read_roi(StrictTable& t) {
   roi::RoiSpec spec;
   const std::string kind = t.string("kind").value_or("");
@@ -259,6 +287,7 @@ Scenario parse_scenario(std::string_view text, const std::string& source, const 
   }
   if (const toml::table* t = top.subtable("roi")) {
     StrictTable roi_table(*t, source, "roi");
+    s.reduction = read_reduction(roi_table);
     s.roi = read_roi(roi_table);
   }
   if (const toml::table* t = top.subtable("time")) {
@@ -317,6 +346,17 @@ std::string Scenario::resolved_toml() const {
           << toml_number(roi->center.y() / mm) << ", " << toml_number(roi->center.z() / mm) << "]\nnodes = " << roi->count << "\n";
         break;
       case roi::RoiSpec::Kind::set: o << "kind = \"set\"\nset = \"" << roi->set << "\"\n"; break;
+    }
+    switch (reduction.kind) {
+      case condensation::ReductionKind::static_condensation: o << "reduction = \"static\"\n"; break;
+      case condensation::ReductionKind::guyan: o << "reduction = \"guyan\"\n"; break;
+      case condensation::ReductionKind::craig_bampton:
+        o << "reduction = \"craig-bampton\"\n";
+        if (reduction.modes > 0)
+          o << "modes = " << reduction.modes << "\n";
+        else
+          o << "cutoff_rad_s = " << toml_number(reduction.cutoff_rad_s) << "\n";
+        break;
     }
   }
   o << "\n[time]\nintegrator = \"" << integrator << "\"\ndt_s = " << toml_number(dt) << "\nsteps = " << steps

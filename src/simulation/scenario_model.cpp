@@ -14,7 +14,7 @@ std::unique_ptr<ScenarioModel> build_scenario_model(const scenario::Scenario& sc
   if (sc.roi) {
     m->roi_nodes = roi::select_roi_nodes(m->mesh, dofs, *sc.roi);
     m->condensation = std::make_unique<condensation::StaticCondensation>(
-        m->full.system, roi::partition_dofs(m->full.system.K, dofs, m->roi_nodes), dofs);
+        m->full.system, roi::partition_dofs(m->full.system.K, dofs, m->roi_nodes), dofs, sc.reduction);
   }
   return m;
 }

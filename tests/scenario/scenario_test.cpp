@@ -76,6 +76,33 @@ TEST(ScenarioReader, ResolvedTomlReadsBackToTheSameScenario) {
   EXPECT_EQ(again.steps, s.steps);
 }
 
+TEST(ScenarioReader, ReadsTheReductionOfTheStaticPart) {
+  EXPECT_EQ(parse_scenario(valid, "s.toml", "/data").reduction.kind, condensation::ReductionKind::static_condensation);
+  const Scenario cb = parse_scenario(replaced(valid, "radius_mm = 25", "radius_mm = 25\nreduction = \"craig-bampton\"\nmodes = 10"),
+                                     "s.toml", "/data");
+  EXPECT_EQ(cb.reduction.kind, condensation::ReductionKind::craig_bampton);
+  EXPECT_EQ(cb.reduction.modes, 10);
+  const Scenario again = parse_scenario(cb.resolved_toml(), "resolved.toml", "/data");
+  EXPECT_EQ(again.reduction.label(), "craig-bampton-10");
+  const Scenario cut = parse_scenario(
+      replaced(valid, "radius_mm = 25", "radius_mm = 25\nreduction = \"craig-bampton\"\ncutoff_rad_s = 40.0"), "s.toml", "/data");
+  EXPECT_EQ(cut.reduction.cutoff_rad_s, 40.0);
+  EXPECT_EQ(parse_scenario(cut.resolved_toml(), "r.toml", "/data").reduction.cutoff_rad_s, 40.0);
+  EXPECT_EQ(parse_scenario(replaced(valid, "radius_mm = 25", "radius_mm = 25\nreduction = \"guyan\""), "s.toml", "/data").reduction.kind,
+            condensation::ReductionKind::guyan);
+}
+
+TEST(ScenarioReader, BadReductionsAreNamed) {
+  EXPECT_NE(error_of(replaced(valid, "radius_mm = 25", "radius_mm = 25\nreduction = \"modal\"")).find("'roi.reduction' must be one of"),
+            std::string::npos);
+  EXPECT_NE(error_of(replaced(valid, "radius_mm = 25", "radius_mm = 25\nreduction = \"craig-bampton\"")).find("needs key 'roi.modes'"),
+            std::string::npos);
+  EXPECT_NE(error_of(replaced(valid, "radius_mm = 25", "radius_mm = 25\nreduction = \"craig-bampton\"\nmodes = 0"))
+                .find("'roi.modes' must be positive"),
+            std::string::npos);
+  EXPECT_NE(error_of(replaced(valid, "radius_mm = 25", "radius_mm = 25\nmodes = 5")).find("belong to reduction"), std::string::npos);
+}
+
 TEST(ScenarioReader, SyntaxErrorNamesFileAndLine) {
   const std::string msg = error_of("mesh = \"a.msh\"\n[time\ndt_s = 1\n");
   EXPECT_NE(msg.find("s.toml:2:"), std::string::npos) << msg;

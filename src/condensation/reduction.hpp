@@ -1,0 +1,31 @@
+#pragma once
+/// How the static part of an ROI model is reduced (see static_condensation.hpp for the maths).
+#include <cstdio>
+#include <string>
+
+#include "common/types.hpp"
+
+namespace roifem::condensation {
+
+enum class ReductionKind { static_condensation, guyan, craig_bampton };
+
+struct Reduction {
+  ReductionKind kind = ReductionKind::static_condensation;
+  Index modes = 0;          ///< Craig-Bampton: fixed-interface modes kept, or 0 to use the cut-off
+  double cutoff_rad_s = 0;  ///< Craig-Bampton with modes == 0: every mode below this frequency
+
+  /// "static", "guyan", "craig-bampton-10" or "craig-bampton-below-50rad/s".
+  std::string label() const {
+    switch (kind) {
+      case ReductionKind::static_condensation: return "static";
+      case ReductionKind::guyan: return "guyan";
+      case ReductionKind::craig_bampton: break;
+    }
+    if (modes > 0) return "craig-bampton-" + std::to_string(modes);
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "craig-bampton-below-%grad/s", cutoff_rad_s);
+    return buffer;
+  }
+};
+
+}  // namespace roifem::condensation

@@ -1,0 +1,28 @@
+#pragma once
+/// x = M^-1 b: by a product for the lumped (diagonal) mass of a full or statically condensed model,
+/// by a Cholesky solve for the full mass blocks of a Guyan or Craig-Bampton reduction.
+#include <memory>
+
+#include "common/types.hpp"
+#include "solvers/cholesky.hpp"
+
+namespace roifem::model {
+
+class MassInverse {
+ public:
+  /// Throws ModelError when M is not positive definite.
+  explicit MassInverse(const SparseMatrix& M);
+  bool is_diagonal() const { return !factor_; }
+  void apply(const Eigen::Ref<const Vector>& b, Eigen::Ref<Vector> x) const;
+  /// M^-1 B for a dense block of right-hand sides.
+  DenseMatrix apply(const DenseMatrix& B) const;
+
+ private:
+  Vector inverse_diagonal_;
+  std::unique_ptr<solvers::Cholesky> factor_;
+};
+
+/// True when A has no non-zero off-diagonal entry.
+bool is_diagonal(const SparseMatrix& A);
+
+}  // namespace roifem::model
