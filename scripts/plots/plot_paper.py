@@ -2,8 +2,9 @@
 """Plots of `roifem paper` in the manner of Hansen & Larsen (1998), Figs. 5 and 6.
 
 usage: /usr/bin/python3 plot_paper.py DIR
-reads DIR/errors.csv and DIR/timing.csv; writes DIR/mean_error.png, DIR/max_error.png and
-DIR/step_time.png (each written to a temporary name, then renamed).
+reads DIR/errors.csv and DIR/timing.csv; writes DIR/mean_error.png, DIR/max_error.png (the
+paper's static condensation), DIR/step_time.png and DIR/reductions.png (static condensation, Guyan
+and Craig-Bampton at the fastest ramp), each written to a temporary name, then renamed.
 """
 import csv
 import os
@@ -16,13 +17,17 @@ PAPER_STEP_S = {"full": 0.440, "setup1": 0.071, "setup2": 0.037}
 
 
 def main(directory):
-    curves = defaultdict(lambda: ([], [], []))  # (setup, ramp) -> steps, mean, max
+    every = defaultdict(lambda: ([], [], []))  # (setup, reduction, ramp) -> steps, mean, max
+    reductions = []
     with open(os.path.join(directory, "errors.csv")) as f:
         for row in csv.DictReader(f):
-            steps, mean, worst = curves[(row["setup"], float(row["ramp_s"]))]
+            steps, mean, worst = every[(row["setup"], row["reduction"], float(row["ramp_s"]))]
             steps.append(int(row["step"]))
             mean.append(float(row["mean_mm"]))
             worst.append(float(row["max_mm"]))
+            if row["reduction"] not in reductions:
+                reductions.append(row["reduction"])
+    curves = {(s, r): data for (s, red, r), data in every.items() if red == "static"}
     setups = sorted({s for s, _ in curves})
     ramps = sorted({r for _, r in curves})
     titles = {"setup1": "setup 1 (306-node ROI)", "setup2": "setup 2 (228-node ROI)"}
@@ -40,6 +45,19 @@ def main(directory):
         axes[0][0].set_ylabel(label)
         fig.suptitle(f"Condensed ROI model vs full dynamic model: {label.split(' (')[0]} over the ROI nodes")
         save(fig, os.path.join(directory, name))
+
+    fig, axes = plt.subplots(1, len(setups), figsize=(5.5 * len(setups), 4), sharey=True, squeeze=False)
+    for ax, setup in zip(axes[0], setups):
+        for reduction in reductions:
+            data = every[(setup, reduction, ramps[0])]
+            ax.semilogy(data[0], data[2], label=reduction)
+        ax.set_title(f"{titles.get(setup, setup)}, ramp {ramps[0]:g} s")
+        ax.set_xlabel("iteration (dt = 0.05 s)")
+        ax.grid(alpha=0.3, which="both")
+        ax.legend(fontsize=8)
+    axes[0][0].set_ylabel("max error over the ROI nodes (mm)")
+    fig.suptitle("Static part reduced with inertia: Guyan and Craig-Bampton vs static condensation")
+    save(fig, os.path.join(directory, "reductions.png"))
 
     models, ours = [], []
     with open(os.path.join(directory, "timing.csv")) as f:

@@ -66,6 +66,7 @@ RoiNodeDofs roi_node_dofs(const roi::Partition& p, const fem::DofMap& dofs) {
 
 struct Setup {
   std::string name;
+  std::string reduction;
   std::unique_ptr<condensation::StaticCondensation> condensation;
   RoiNodeDofs node_dofs;
   double setup_s = 0;
@@ -87,15 +88,35 @@ std::vector<double> time_steps(const model::SecondOrderSystem& system, double dt
   return seconds;
 }
 
+double steady_mean(const PaperCurve& c) {
+  double sum = 0;
+  long count = 0;
+  for (std::size_t k = 100; k < c.mean_mm.size(); ++k, ++count) sum += c.mean_mm[k];
+  return count ? sum / static_cast<double>(count) : 0.0;
+}
+
+void print_reductions(const PaperResults& r, std::ostream& log) {
+  if (r.reductions.empty()) return;
+  log << format("\nBeyond the paper: the static part's inertia (ramp %.1f s; step cost of the trapezoidal rule, median)\n",
+                r.reductions.front().ramp_s);
+  log << format("  %-7s %-18s %5s %6s %15s %17s %11s %9s %9s\n", "setup", "reduction", "dofs", "extra", "peak max (mm)",
+                "steady mean (mm)", "step (ms)", "vs static", "peak /");
+  for (const auto& row : r.reductions) {
+    const auto& plain = *std::find_if(r.reductions.begin(), r.reductions.end(),
+                                      [&](const ReductionRow& x) { return x.setup == row.setup && x.reduction == "static"; });
+    log << format("  %-7s %-18s %5lld %6lld %15.4f %17.5f %11.4f %8.2fx %8.1fx\n", row.setup.c_str(), row.reduction.c_str(),
+                  static_cast<long long>(row.dofs), static_cast<long long>(row.extra_dofs), row.peak_max_mm, row.steady_mean_mm,
+                  row.step_s_median * 1e3, row.step_s_median / plain.step_s_median, plain.peak_max_mm / row.peak_max_mm);
+  }
+  log << "  (vs static: step cost relative to plain condensation; peak /: how many times lower the peak is)\n";
+}
+
 void print_findings(const PaperOptions& o, const PaperResults& r, std::ostream& log) {
   log << "\nFindings (Hansen & Larsen 1998, Section 5), checked on this run:\n";
   auto peak = [](const PaperCurve& c) { return *std::max_element(c.max_mm.begin(), c.max_mm.end()); };
   bool steady_ok = true;
   for (const auto& c : r.curves) {
-    double sum = 0;
-    long count = 0;
-    for (std::size_t k = 100; k < c.mean_mm.size(); ++k, ++count) sum += c.mean_mm[k];
-    const double steady = count ? sum / static_cast<double>(count) : 0.0;
+    const double steady = steady_mean(c);
     steady_ok = steady_ok && steady < 0.2;
     log << format("  %-8s ramp %.1f s: peak max error %6.3f mm, peak mean error %6.3f mm, steady mean error (steps > 100) %.4f mm\n",
                   c.setup.c_str(), c.ramp_s, peak(c), *std::max_element(c.mean_mm.begin(), c.mean_mm.end()), steady);
@@ -138,6 +159,8 @@ PaperResults run_paper_experiment(const PaperOptions& o, std::ostream& log) {
   if (o.steps <= 0) throw InputError("paper: steps must be positive");
   if (o.timing_steps < 1) throw InputError("paper: timing steps must be positive");
   if (!(o.opening_mm > 0)) throw InputError("paper: --opening-mm must be positive");
+  if (o.reductions.empty() || o.reductions.front().kind != condensation::ReductionKind::static_condensation)
+    throw InputError("paper: the first reduction must be static condensation (the paper's)");
   ensure_writable_directory(o.out);
   PaperResults results;
 
@@ -162,23 +185,32 @@ PaperResults run_paper_experiment(const PaperOptions& o, std::ostream& log) {
   log << format("  force %.4g mN on each wall of the opening (x: -left, +right) widens it statically by %.1f mm\n",
                 results.force_N * 1e3, o.opening_mm);
 
-  std::vector<Setup> setups;
+  std::vector<Setup> setups;  // setup-major: setup1 with each reduction, then setup2 ...
   for (std::size_t k = 0; k < o.setup_nodes.size(); ++k) {
-    Setup s;
-    s.name = "setup" + std::to_string(k + 1);
     const roi::RoiSpec spec{.kind = roi::RoiSpec::Kind::nearest, .center = o.roi_target_mm * mm, .radius = 0,
                             .count = o.setup_nodes[k], .set = {}};
-    Stopwatch clock;
     const auto partition = roi::partition_dofs(full.system.K, dofs, roi::select_roi_nodes(mesh, dofs, spec));
-    s.condensation = std::make_unique<condensation::StaticCondensation>(full.system, partition, dofs);
-    s.setup_s = clock.seconds();
-    s.node_dofs = roi_node_dofs(partition, dofs);
     std::set<int> interface_nodes;
     for (Index i : partition.interface) interface_nodes.insert(static_cast<int>(dofs.full_dof(partition.d[static_cast<std::size_t>(i)]) / 3));
     results.interface_nodes.push_back(static_cast<Index>(interface_nodes.size()));
-    log << format("  %s: ROI = %s: %zu dofs, %zu interface nodes, %zu static dofs; condensed in %.3f s\n", s.name.c_str(),
-                  spec.describe().c_str(), partition.d.size(), interface_nodes.size(), partition.s.size(), s.setup_s);
-    setups.push_back(std::move(s));
+    log << format("  setup%zu: ROI = %s: %zu dofs, %zu interface nodes, %zu static dofs\n", k + 1, spec.describe().c_str(),
+                  partition.d.size(), interface_nodes.size(), partition.s.size());
+    for (const auto& reduction : o.reductions) {
+      Setup s;
+      s.name = "setup" + std::to_string(k + 1);
+      s.reduction = reduction.label();
+      Stopwatch clock;
+      s.condensation = std::make_unique<condensation::StaticCondensation>(full.system, partition, dofs, reduction);
+      s.setup_s = clock.seconds();
+      s.node_dofs = roi_node_dofs(partition, dofs);
+      log << format("    %-18s %4lld dofs, reduced in %.3f s", s.reduction.c_str(), static_cast<long long>(s.condensation->system().size()),
+                    s.setup_s);
+      if (s.condensation->num_modes() > 0)
+        log << format(" (fixed-interface modes %.2f to %.2f rad/s)", s.condensation->mode_frequencies()[0],
+                      s.condensation->mode_frequencies()[s.condensation->num_modes() - 1]);
+      log << "\n";
+      setups.push_back(std::move(s));
+    }
   }
 
   // Accuracy: each ramp, full model vs each setup, 200 steps.
@@ -206,7 +238,7 @@ PaperResults run_paper_experiment(const PaperOptions& o, std::ostream& log) {
       const Setup& setup = setups[si];
       model::SecondOrderSystem reduced = setup.condensation->system();
       reduced.load = reduced.load.with_ramp(model::Ramp{ramp});
-      PaperCurve curve{.setup = setup.name, .ramp_s = ramp, .mean_mm = {}, .max_mm = {}};
+      PaperCurve curve{.setup = setup.name, .reduction = setup.reduction, .ramp_s = ramp, .mean_mm = {}, .max_mm = {}};
       integrators::Trapezoid trapezoid(o.dt);
       model::State state{0, Vector::Zero(reduced.size()), Vector::Zero(reduced.size())};
       trapezoid.reset(reduced, state);
@@ -223,19 +255,21 @@ PaperResults run_paper_experiment(const PaperOptions& o, std::ostream& log) {
                         }
                         curve.mean_mm.push_back(sum / static_cast<double>(setup.node_dofs.in_d.size()) / mm);
                         curve.max_mm.push_back(worst / mm);
-                        if (si == 0 && ramp == o.ramps_s.front() && k % o.field_every == 0) {
+                        if (si == 0 && ramp == o.ramps_s.front() && k % o.field_every == 0) {  // setup1, static
                           fields.emplace_back(format("fields/setup1/displacement_mm_%04ld", k),
                                               field_mm(dofs, setup.condensation->expand(s.u, s.t)));
                           roi_series.times.push_back(s.t);
                           roi_series.fields.push_back("/" + fields.back().first);
                         }
-                      }}, format("%s, ramp %.1f s", setup.name.c_str(), ramp));
-      results.curves.push_back(std::move(curve));
+                      }}, format("%s %s, ramp %.1f s", setup.name.c_str(), setup.reduction.c_str(), ramp));
+      if (setup.reduction == "static") results.curves.push_back(curve);
+      results.reduction_curves.push_back(std::move(curve));
     }
   }
   // Reorder curves setup-major (setup1: ramps..., setup2: ramps...).
-  std::stable_sort(results.curves.begin(), results.curves.end(),
-                   [](const PaperCurve& a, const PaperCurve& b) { return a.setup < b.setup; });
+  auto by_setup = [](const PaperCurve& a, const PaperCurve& b) { return a.setup < b.setup; };
+  std::stable_sort(results.curves.begin(), results.curves.end(), by_setup);
+  std::stable_sort(results.reduction_curves.begin(), results.reduction_curves.end(), by_setup);
 
   // Speed: per-step medians over timing_steps steps of each model.
   {
@@ -245,18 +279,35 @@ PaperResults run_paper_experiment(const PaperOptions& o, std::ostream& log) {
   }
   for (const auto& setup : setups) {
     const auto seconds = time_steps(setup.condensation->system(), o.dt, o.timing_steps);
-    results.timing.push_back({setup.name, static_cast<Index>(setup.condensation->partition().roi_nodes.size()),
-                              setup.condensation->system().size(), simulation::median(seconds),
-                              simulation::percentile(seconds, 0.99), setup.setup_s});
+    if (setup.reduction == "static")
+      results.timing.push_back({setup.name, static_cast<Index>(setup.condensation->partition().roi_nodes.size()),
+                                setup.condensation->system().size(), simulation::median(seconds),
+                                simulation::percentile(seconds, 0.99), setup.setup_s});
+    const auto& curve = *std::find_if(results.reduction_curves.begin(), results.reduction_curves.end(), [&](const PaperCurve& c) {
+      return c.setup == setup.name && c.reduction == setup.reduction && c.ramp_s == o.ramps_s.front();
+    });
+    results.reductions.push_back({.setup = setup.name, .reduction = setup.reduction, .dofs = setup.condensation->system().size(),
+                                  .extra_dofs = setup.condensation->num_modes(), .ramp_s = curve.ramp_s,
+                                  .peak_max_mm = *std::max_element(curve.max_mm.begin(), curve.max_mm.end()),
+                                  .steady_mean_mm = steady_mean(curve), .step_s_median = simulation::median(seconds),
+                                  .setup_s = setup.setup_s});
   }
 
   // Files: every one written under a temporary name and moved into place when complete.
   {
-    io::CsvWriter csv(o.out / "errors.csv", "setup,ramp_s,step,time_s,mean_mm,max_mm");
-    for (const auto& c : results.curves)
+    io::CsvWriter csv(o.out / "errors.csv", "setup,reduction,ramp_s,step,time_s,mean_mm,max_mm");
+    for (const auto& c : results.reduction_curves)
       for (std::size_t k = 0; k < c.mean_mm.size(); ++k)
-        csv.row(format("%s,%g,%zu,%.4f,%.9g,%.9g", c.setup.c_str(), c.ramp_s, k + 1, static_cast<double>(k + 1) * o.dt,
-                       c.mean_mm[k], c.max_mm[k]));
+        csv.row(format("%s,%s,%g,%zu,%.4f,%.9g,%.9g", c.setup.c_str(), c.reduction.c_str(), c.ramp_s, k + 1,
+                       static_cast<double>(k + 1) * o.dt, c.mean_mm[k], c.max_mm[k]));
+    csv.close();
+  }
+  {
+    io::CsvWriter csv(o.out / "reductions.csv",
+                      "setup,reduction,dofs,extra_dofs,ramp_s,peak_max_mm,steady_mean_mm,step_s_median,setup_s");
+    for (const auto& r : results.reductions)
+      csv.row(format("%s,%s,%lld,%lld,%g,%.9g,%.9g,%.6e,%.6e", r.setup.c_str(), r.reduction.c_str(), static_cast<long long>(r.dofs),
+                     static_cast<long long>(r.extra_dofs), r.ramp_s, r.peak_max_mm, r.steady_mean_mm, r.step_s_median, r.setup_s));
     csv.close();
   }
   {
@@ -273,11 +324,12 @@ PaperResults run_paper_experiment(const PaperOptions& o, std::ostream& log) {
       const auto n = static_cast<hsize_t>(mesh.num_nodes());
       io::write_mesh(h5, mesh);
       for (std::size_t k = 0; k < setups.size(); ++k) {
+        if (setups[k].reduction != "static") continue;
         const auto& roi_nodes = setups[k].condensation->partition().roi_nodes;
         h5.write(setups[k].name + "/roi_nodes", roi_nodes, {roi_nodes.size()});
       }
-      for (const auto& c : results.curves) {
-        const std::string group = format("errors/%s/ramp_%gs/", c.setup.c_str(), c.ramp_s);
+      for (const auto& c : results.reduction_curves) {
+        const std::string group = format("errors/%s/%s/ramp_%gs/", c.setup.c_str(), c.reduction.c_str(), c.ramp_s);
         h5.write(group + "mean_mm", c.mean_mm, {c.mean_mm.size()});
         h5.write(group + "max_mm", c.max_mm, {c.max_mm.size()});
       }
@@ -304,10 +356,12 @@ PaperResults run_paper_experiment(const PaperOptions& o, std::ostream& log) {
 
   print_findings(o, results, log);
   print_table2(results, log);
+  print_reductions(results, log);
   if (o.plots && io::run_plot_script("plot_paper.py", o.out, log))
     log << "\nplots: " << (o.out / "mean_error.png").string() << ", " << (o.out / "max_error.png").string() << ", "
-        << (o.out / "step_time.png").string() << '\n';
+        << (o.out / "step_time.png").string() << ", " << (o.out / "reductions.png").string() << '\n';
   log << "results: " << (o.out / "errors.csv").string() << ", " << (o.out / "timing.csv").string() << ", "
+      << (o.out / "reductions.csv").string() << ", "
       << (o.out / "results.h5").string() << " (ParaView: results.xdmf, results_setup1.xdmf)\n";
   return results;
 }
