@@ -13,5 +13,6 @@ void add_info_command(CLI::App& app, Action& action);
 void add_paper_command(CLI::App& app, Action& action);
 void add_run_command(CLI::App& app, Action& action);
 void add_compare_command(CLI::App& app, Action& action);
+void add_roi_size_command(CLI::App& app, Action& action);
 
 }  // namespace roifem::app

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   roifem::app::add_run_command(app, action);
   roifem::app::add_compare_command(app, action);
   roifem::app::add_paper_command(app, action);
+  roifem::app::add_roi_size_command(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <string>
 
+#include "common/errors.hpp"
 #include "common/types.hpp"
 
 namespace roifem::condensation {
@@ -27,5 +28,18 @@ struct Reduction {
     return buffer;
   }
 };
+
+/// The inverse of label() for "static", "guyan" and "craig-bampton-K"; InputError otherwise.
+inline Reduction parse_reduction(const std::string& label) {
+  if (label == "static") return {};
+  if (label == "guyan") return {.kind = ReductionKind::guyan};
+  const std::string prefix = "craig-bampton-";
+  if (label.rfind(prefix, 0) == 0 && label.size() > prefix.size() &&
+      label.find_first_not_of("0123456789", prefix.size()) == std::string::npos) {
+    const Index modes = std::stol(label.substr(prefix.size()));
+    if (modes > 0) return {.kind = ReductionKind::craig_bampton, .modes = modes};
+  }
+  throw InputError("unknown reduction '" + label + "': use static, guyan or craig-bampton-K (K modes, K >= 1)");
+}
 
 }  // namespace roifem::condensation

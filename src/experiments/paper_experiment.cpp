@@ -11,6 +11,7 @@
 #include "common/timer.hpp"
 #include "fem/static_solve.hpp"
 #include "condensation/static_condensation.hpp"
+#include "experiments/roi_error.hpp"
 #include "integrators/trapezoid.hpp"
 #include "io/csv.hpp"
 #include "io/hdf5_file.hpp"
@@ -39,29 +40,6 @@ double mean_x(const mesh::TetMesh& mesh, const Vector& u_full, const std::string
 std::vector<double> field_mm(const fem::DofMap& dofs, const Vector& u_free) {
   const Vector full = dofs.expand(u_free) / mm;
   return std::vector<double>(full.data(), full.data() + full.size());
-}
-
-/// Per ROI node, its three dof positions in d (the ROI numbering) and in the full free numbering.
-struct RoiNodeDofs {
-  std::vector<std::array<Index, 3>> in_d, in_full;
-};
-
-RoiNodeDofs roi_node_dofs(const roi::Partition& p, const fem::DofMap& dofs) {
-  std::vector<Index> position(static_cast<std::size_t>(dofs.num_free()), -1);
-  for (std::size_t k = 0; k < p.d.size(); ++k) position[static_cast<std::size_t>(p.d[k])] = static_cast<Index>(k);
-  RoiNodeDofs out;
-  for (int n : p.roi_nodes) {
-    std::array<Index, 3> d{}, f{};
-    for (int c = 0; c < 3; ++c) {
-      const int i = dofs.free_dof(n, c);
-      if (i < 0) throw ModelError("paper experiment: ROI node " + std::to_string(n) + " is partly fixed");
-      f[static_cast<std::size_t>(c)] = i;
-      d[static_cast<std::size_t>(c)] = position[static_cast<std::size_t>(i)];
-    }
-    out.in_d.push_back(d);
-    out.in_full.push_back(f);
-  }
-  return out;
 }
 
 struct Setup {
@@ -243,18 +221,9 @@ PaperResults run_paper_experiment(const PaperOptions& o, std::ostream& log) {
       model::State state{0, Vector::Zero(reduced.size()), Vector::Zero(reduced.size())};
       trapezoid.reset(reduced, state);
       simulation::run(trapezoid, state, o.dt, o.steps, {[&](long k, const model::State& s, double) {
-                        const Vector& u_ref = reference[static_cast<std::size_t>(k - 1)];
-                        double sum = 0, worst = 0;
-                        for (std::size_t n = 0; n < setup.node_dofs.in_d.size(); ++n) {
-                          Vec3 diff;
-                          for (int c = 0; c < 3; ++c)
-                            diff[c] = s.u[setup.node_dofs.in_d[n][static_cast<std::size_t>(c)]] -
-                                      u_ref[setup.node_dofs.in_full[n][static_cast<std::size_t>(c)]];
-                          sum += diff.norm();
-                          worst = std::max(worst, diff.norm());
-                        }
-                        curve.mean_mm.push_back(sum / static_cast<double>(setup.node_dofs.in_d.size()) / mm);
-                        curve.max_mm.push_back(worst / mm);
+                        const RoiError e = roi_error(setup.node_dofs, s.u, reference[static_cast<std::size_t>(k - 1)]);
+                        curve.mean_mm.push_back(e.mean / mm);
+                        curve.max_mm.push_back(e.max / mm);
                         if (si == 0 && ramp == o.ramps_s.front() && k % o.field_every == 0) {  // setup1, static
                           fields.emplace_back(format("fields/setup1/displacement_mm_%04ld", k),
                                               field_mm(dofs, setup.condensation->expand(s.u, s.t)));

@@ -1,0 +1,57 @@
+// roi-size against answers known without it: a budget the purely static answer (a 1-node ROI)
+// already meets gives 1 node; a budget only the exact model meets gives every free node (an ROI of
+// all nodes is the full model, error 0).
+#include "experiments/roi_size.hpp"
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "common/errors.hpp"
+#include "test_support.hpp"
+
+namespace roifem::experiments {
+namespace {
+
+std::filesystem::path short_paper_scenario(const test::TempDir& dir) {
+  std::ifstream in(std::string(ROIFEM_SCENARIO_DIR) + "/paper-setup1.toml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string s = text.str();
+  s.replace(s.find("\"../meshes/brain-800.msh\""), 25, "\"" + std::string(ROIFEM_MESH_DIR) + "/brain-800.msh\"");
+  s.replace(s.find("steps = 200"), 11, "steps = 20");
+  return test::write_file(dir / "short.toml", s);
+}
+
+TEST(RoiSize, ALooseBudgetNeedsOneNodeAndAnExactOneEveryNode) {
+  const test::TempDir dir;
+  RoiSizeOptions o;
+  o.scenario = short_paper_scenario(dir);
+  o.timing_steps = 5;
+  o.reductions = {{}};
+  std::ostringstream log;
+  o.max_error_mm = 100;  // far above any dynamic deviation
+  const auto loose = run_roi_size(o, log);
+  ASSERT_EQ(loose.rows.size(), 1u);
+  EXPECT_TRUE(loose.rows[0].found);
+  EXPECT_EQ(loose.rows[0].nodes, 1);
+  o.max_error_mm = 1e-9;  // only the full model itself
+  o.start_nodes = loose.free_nodes - 3;
+  const auto exact = run_roi_size(o, log);
+  EXPECT_EQ(exact.rows[0].nodes, exact.free_nodes);
+  EXPECT_LT(exact.rows[0].peak_max_mm, 1e-9);
+}
+
+TEST(RoiSize, ScenarioWithoutATargetOrABadBudgetIsAnInputError) {
+  const test::TempDir dir;
+  RoiSizeOptions o;
+  o.scenario = short_paper_scenario(dir);
+  o.max_error_mm = -1;
+  std::ostringstream log;
+  EXPECT_THROW(run_roi_size(o, log), InputError);
+  EXPECT_THROW(condensation::parse_reduction("craig-bampton-x"), InputError);
+  EXPECT_EQ(condensation::parse_reduction("craig-bampton-12").modes, 12);
+}
+
+}  // namespace
+}  // namespace roifem::experiments
