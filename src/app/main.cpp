@@ -26,6 +26,9 @@ int main(int argc, char** argv) {
   }
   try {
     action();
+  } catch (const roifem::Interrupted& e) {
+    std::cerr << "roifem: " << e.what() << '\n';
+    return 128 + e.signal;
   } catch (const std::exception& e) {
     std::cerr << "roifem: error: " << e.what() << '\n';
     return 1;

@@ -26,10 +26,12 @@ AtomicFile::~AtomicFile() {
   }
 }
 
-void AtomicFile::commit() {
+void AtomicFile::commit() { commit_as(final_); }
+
+void AtomicFile::commit_as(const fs::path& path) {
   std::error_code ec;
-  fs::rename(temporary_, final_, ec);
-  if (ec) throw InputError(final_.string() + ": cannot move the finished file into place: " + ec.message());
+  fs::rename(temporary_, path, ec);
+  if (ec) throw InputError(path.string() + ": cannot move the finished file into place: " + ec.message());
   committed_ = true;
 }
 

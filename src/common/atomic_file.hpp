@@ -18,6 +18,8 @@ class AtomicFile {
   const std::filesystem::path& final_path() const { return final_; }
   /// Renames the temporary file to the final path (throws InputError on failure).
   void commit();
+  /// Renames it to another path instead (an incomplete result, kept beside a good one).
+  void commit_as(const std::filesystem::path& path);
 
  private:
   std::filesystem::path final_;

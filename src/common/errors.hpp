@@ -25,5 +25,11 @@ class SolverError : public Error {
  public:
   using Error::Error;
 };
+/// A run stopped on SIGINT or SIGTERM between two steps (see simulation/interrupt.hpp).
+class Interrupted : public Error {
+ public:
+  Interrupted(int signal_number, const std::string& what) : Error(what), signal(signal_number) {}
+  int signal;
+};
 
 }  // namespace roifem

@@ -6,6 +6,7 @@
 
 #include "common/errors.hpp"
 #include "common/timer.hpp"
+#include "simulation/interrupt.hpp"
 #include "simulation/progress.hpp"
 
 namespace roifem::simulation {
@@ -27,6 +28,9 @@ RunSummary run(integrators::Integrator& integrator, model::State& state, double 
     summary.steps = k;
     for (const auto& observe : observers) observe(k, state, seconds);
     if (progress) progress->update(k);
+    if (const int signal_number = InterruptGuard::signal_received())
+      throw Interrupted(signal_number, "interrupted by signal " + std::to_string(signal_number) + " after step " + std::to_string(k) +
+                                           " of " + std::to_string(steps) + " (t = " + std::to_string(state.t) + " s)");
   }
   summary.stats = integrator.stats();
   return summary;

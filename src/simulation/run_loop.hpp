@@ -2,6 +2,7 @@
 /// The time loop: advances an integrator over the grid t_k = t_0 + k dt, k = 1..steps, timing each
 /// step, and hands every state to the observers (output, energy, error live there, never in an
 /// integrator). Throws SolverError from the integrator unchanged; observers keep what they saw.
+/// Under an InterruptGuard, a SIGINT / SIGTERM stops it after the step in progress (Interrupted).
 #include <functional>
 #include <vector>
 

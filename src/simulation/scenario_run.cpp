@@ -12,6 +12,7 @@
 #include "io/xdmf.hpp"
 #include "model/energy.hpp"
 #include "model/fem_model.hpp"
+#include "simulation/interrupt.hpp"
 #include "simulation/run_loop.hpp"
 #include "simulation/scenario_model.hpp"
 
@@ -84,6 +85,7 @@ ScenarioRunSummary run_scenario(const scenario::Scenario& sc, const std::filesys
   io::XdmfSeries xdmf{.h5_name = "results.h5", .nodes = mesh.num_nodes(), .tets = mesh.num_tets()};
 
   model::EnergyLedger ledger(system, state);
+  const long flush_every = 50;
   std::vector<double> roi_record(roi_position.size());
   auto record = [&](long k, const model::State& s, double seconds) {
     if (!s.u.allFinite())
@@ -107,9 +109,30 @@ ScenarioRunSummary run_scenario(const scenario::Scenario& sc, const std::filesys
       xdmf.times.push_back(s.t);
       xdmf.fields.push_back("/" + name);
     }
+    if (k % flush_every == 0) h5.flush();  // what a kill -9 cannot take away
   };
   record(0, state, 0.0);
-  const RunSummary run_summary = run(*integrator, state, sc.dt, sc.steps, {record}, "run " + sc.file.filename().string());
+  RunSummary run_summary;
+  {
+    const InterruptGuard interrupts;
+    try {
+      run_summary = run(*integrator, state, sc.dt, sc.steps, {record}, "run " + sc.file.filename().string());
+    } catch (const Error& e) {
+      // A divergence, a solver failure or a signal: keep every completed step, marked incomplete,
+      // beside (never in place of) a good results.h5.
+      if (!dynamic_cast<const SolverError*>(&e) && !dynamic_cast<const Interrupted*>(&e)) throw;
+      h5.attribute("status", std::string("incomplete: ") + e.what());
+      h5.close();
+      file.commit_as(out / "results.incomplete.h5");
+      if (!xdmf.times.empty()) {
+        xdmf.h5_name = "results.incomplete.h5";
+        io::write_xdmf(out / "results.incomplete.xdmf", xdmf);
+      }
+      log << "\nstopped: " << e.what() << "\nkept every completed step in " << (out / "results.incomplete.h5").string()
+          << " (status: incomplete)\n";
+      throw;
+    }
+  }
 
   const auto& st = run_summary.stats;
   h5.attribute("counters", format("steps=%ld rhs_evals=%ld jac_evals=%ld lin_setups=%ld lin_solves=%ld failed_steps=%ld",

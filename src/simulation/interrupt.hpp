@@ -1,0 +1,25 @@
+#pragma once
+/// SIGINT and SIGTERM as a request the time loop honours between two steps, so that a run stops
+/// with its results file closed, valid and marked incomplete instead of dying mid-write.
+/// Signals belong to the process: the flag the handler sets (a std::sig_atomic_t) is the one piece
+/// of process-wide state in roifem, written only by the handler and read only through this class.
+#include <csignal>
+
+namespace roifem::simulation {
+
+class InterruptGuard {
+ public:
+  /// Installs the handlers and clears any earlier request.
+  InterruptGuard();
+  /// Restores the handlers that were there before.
+  ~InterruptGuard();
+  InterruptGuard(const InterruptGuard&) = delete;
+  InterruptGuard& operator=(const InterruptGuard&) = delete;
+  /// The signal received since the guard was installed (0: none).
+  static int signal_received();
+
+ private:
+  struct sigaction previous_int_ {}, previous_term_ {};
+};
+
+}  // namespace roifem::simulation
