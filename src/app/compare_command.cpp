@@ -26,6 +26,9 @@ void add_compare_command(CLI::App& app, Action& action) {
       ->capture_default_str();
   cmd->add_option("--tolerances", o->compare.tolerances, "Relative tolerances for the adaptive runs");
   cmd->add_option("--max-steps", o->compare.max_steps, "Skip fixed-step runs needing more steps")->capture_default_str();
+  cmd->add_option("--max-run-seconds", o->compare.max_run_s,
+                  "Stop a run taking longer (and skip its tighter tolerances / smaller steps)")
+      ->capture_default_str();
   cmd->add_flag("!--no-plots", o->compare.plots, "Skip the PNG plots");
   cmd->callback([&action, o] {
     action = [o] { experiments::run_compare(scenario::read_scenario(o->scenario), o->compare, std::cout); };

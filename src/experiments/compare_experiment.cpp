@@ -43,8 +43,17 @@ struct RunError {
   double max_mm = 0, rms_mm = 0, energy_drift = 0;
 };
 
-/// Runs one integrator over the output grid; throws SolverError on divergence.
-RunError measure(integrators::Integrator& integrator, const model::SecondOrderSystem& system, const Reference& ref) {
+/// A run stopped for taking longer than --max-run-seconds (GSL's dense implicit steppers at tight
+/// tolerances take hours on a few thousand dofs).
+struct OverBudget {
+  double t = 0;
+};
+
+/// Runs one integrator over the output grid; throws SolverError on divergence, OverBudget past
+/// `budget_s` of wall time (checked at each output).
+RunError measure(integrators::Integrator& integrator, const model::SecondOrderSystem& system, const Reference& ref,
+                 double budget_s) {
+  const Stopwatch clock;
   model::State state{0, Vector::Zero(system.size()), Vector::Zero(system.size())};
   integrator.reset(system, state);
   RunError e;
@@ -52,6 +61,7 @@ RunError measure(integrators::Integrator& integrator, const model::SecondOrderSy
   long count = 0;
   for (std::size_t k = 0; k < ref.u.size(); ++k) {
     integrator.advance_to(static_cast<double>(k + 1) * ref.interval, state);
+    if (clock.seconds() > budget_s) throw OverBudget{state.t};
     for (const auto& node : ref.nodes) {
       Vec3 d = Vec3::Zero();
       for (int c = 0; c < 3; ++c)
@@ -123,12 +133,13 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
   log << format("  lowest w = %.3f rad/s, highest w = %.1f rad/s, alpha = %g 1/s\n", modal.frequencies()[0],
                 results.omega_max, modal.alpha());
 
+  // Returns false when the run went over the time budget (and is left out of the table).
   auto record = [&](const std::string& name, const std::string& mode, double dt_or_tol,
                     std::unique_ptr<integrators::Integrator> integrator) {
     CompareRow row{.integrator = name, .mode = mode, .dt_or_tol = dt_or_tol};
     Stopwatch run_clock;
     try {
-      const RunError e = measure(*integrator, system, ref);
+      const RunError e = measure(*integrator, system, ref, o.max_run_s);
       row.err_max_mm = e.max_mm;
       row.err_rms_mm = e.rms_mm;
       row.energy_drift = e.energy_drift;
@@ -137,6 +148,10 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
     } catch (const SolverError& err) {
       row.stable = false;
       log << "    " << err.what() << '\n';
+    } catch (const OverBudget& stop) {
+      log << format("  %-20s %-8s %9.3g  stopped at t = %.3g s after %.0f s (--max-run-seconds); left out\n", name.c_str(),
+                    mode.c_str(), dt_or_tol, stop.t, run_clock.seconds());
+      return false;
     }
     row.wall_s = run_clock.seconds();
     const auto st = integrator->stats();
@@ -149,6 +164,7 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
                   row.steps, row.wall_s, row.stable ? format("%.3e", row.err_max_mm).c_str() : "(diverged)")
         << std::flush;  // a sweep runs for minutes: show each run as it ends
     results.rows.push_back(row);
+    return true;
   };
 
   for (const auto& name : names) {
@@ -168,14 +184,14 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
           log << format("  %-20s fixed    %9.3g  skipped: %.0f steps > --max-steps\n", name.c_str(), dt, t_end / dt);
           continue;
         }
-        record(name, "fixed", dt, integrators::make_integrator(name, dt));
+        if (!record(name, "fixed", dt, integrators::make_integrator(name, dt))) break;  // smaller dt: longer still
       }
     }
     if (has_adaptive_mode(name))
       for (double tol : o.tolerances) {
         const integrators::StepControl control{.dt = std::min(sc.dt, std::isfinite(limit) ? 0.5 * limit : sc.dt),
                                                .adaptive = true, .rtol = tol, .atol = tol * peak};
-        record(name, "adaptive", tol, integrators::make_integrator(name, control));
+        if (!record(name, "adaptive", tol, integrators::make_integrator(name, control))) break;  // tighter: longer still
       }
     if (std::isfinite(limit)) {
       double lo = 0.25 * limit, hi = 2.0 * limit;  // bisection between a stable and an unstable step
