@@ -4,10 +4,12 @@
 
 #include <algorithm>
 #include <fstream>
+#include <new>
 #include <unordered_map>
 
 #include "common/errors.hpp"
 #include "mesh/gmsh_session.hpp"
+#include "mesh/msh_header_check.hpp"
 
 namespace roifem::mesh {
 
@@ -124,8 +126,13 @@ TetMesh read_mesh(const std::filesystem::path& file, double length_unit) {
   if (!std::filesystem::is_regular_file(file)) throw InputError(source + ": no such mesh file");
   if (!std::ifstream(file)) throw InputError(source + ": cannot open the mesh file for reading");
   if (std::filesystem::file_size(file) == 0) throw InputError(source + ": the mesh file is empty");
+  check_msh_header_counts(file);
   GmshSession session;
-  gmsh_call(source, [&] { gmsh::open(source); });
+  try {
+    gmsh_call(source, [&] { gmsh::open(source); });
+  } catch (const std::bad_alloc&) {
+    throw InputError(source + ": Gmsh ran out of memory reading it (a corrupt count in a binary header?)");
+  }
   return extract_tet_mesh(source, length_unit);
 }
 
