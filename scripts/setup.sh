@@ -17,6 +17,7 @@ packages=(
   libcli11-dev             # command line
   libgtest-dev libgmock-dev
   libbenchmark-dev
+  clang libclang-rt-14-dev # libFuzzer harnesses (scripts/fuzz.sh)
   python3-h5py python3-matplotlib python3-numpy   # plots (Debian's /usr/bin/python3)
 )
 

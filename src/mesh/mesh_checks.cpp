@@ -1,6 +1,7 @@
 #include "mesh/mesh_checks.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include "common/errors.hpp"
@@ -20,11 +21,19 @@ std::string describe_tet(const TetMesh& mesh, Index e) {
 void check_mesh(const TetMesh& mesh) {
   if (mesh.num_tets() == 0) throw InputError(mesh.source + ": the mesh has no tetrahedra");
   if (!mesh.nodes.allFinite()) throw InputError(mesh.source + ": a node coordinate is NaN or infinite");
+  for (Index e = 0; e < mesh.num_tets(); ++e)
+    for (int n : mesh.tets[static_cast<std::size_t>(e)])
+      if (n < 0 || n >= mesh.num_nodes())
+        throw InputError(describe_tet(mesh, e) + " names node " + std::to_string(n) + ", but the mesh has " +
+                         std::to_string(mesh.num_nodes()) + " nodes");
   constexpr double degenerate_quality = 1e-6;
   for (Index e = 0; e < mesh.num_tets(); ++e) {
+    if (!std::isfinite(signed_volume(mesh, e)))
+      throw InputError(describe_tet(mesh, e) + ": its volume overflows (coordinates too large)");
     const double q = tet_quality(mesh, e);
     if (q < 0) throw InputError(describe_tet(mesh, e) + " is inverted (negative volume)");
-    if (q < degenerate_quality)
+    // !(q >= ...) also catches NaN: a tetrahedron whose nodes coincide (found by fuzzing).
+    if (!(q >= degenerate_quality))
       throw InputError(describe_tet(mesh, e) + " has zero volume (shape quality " + std::to_string(q) + ")");
   }
 }

@@ -12,7 +12,9 @@ struct MeshStatistics {
   Vec3 box_min = Vec3::Zero(), box_max = Vec3::Zero();  ///< m
 };
 
-/// Throws InputError for an inverted or degenerate (quality < 1e-6) tetrahedron.
+/// Throws InputError for no tetrahedra, a non-finite coordinate, a tetrahedron naming a node that
+/// does not exist, or an inverted or degenerate (quality < 1e-6) tetrahedron. mesh_statistics()
+/// expects a mesh that passed.
 void check_mesh(const TetMesh& mesh);
 MeshStatistics mesh_statistics(const TetMesh& mesh);
 

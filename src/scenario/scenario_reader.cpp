@@ -235,9 +235,76 @@ std::string toml_number(double v) {
   return out;
 }
 
+/// TOML 1.0 allows non-ASCII characters only inside strings and comments. toml++ 3.3 classifies a
+/// stray one (where a key or whitespace is expected) through tables that hit TOML_UNREACHABLE for
+/// many code points (U+00A1..U+0499 among them): undefined behaviour, found by fuzzing. Such a
+/// file is refused here, with the line and column, before toml++ sees it.
+void check_non_ascii_outside_strings(std::string_view text, const std::string& source) {
+  enum class In { code, comment, basic, literal, multi_basic, multi_literal } in = In::code;
+  long line = 1, column = 0;
+  auto starts = [&](std::size_t i, std::string_view s) { return text.substr(i, s.size()) == s; };
+  const std::size_t first = starts(0, "\xEF\xBB\xBF") ? 3 : 0;  // a UTF-8 byte order mark is fine
+  for (std::size_t i = first; i < text.size(); ++i) {
+    const char c = text[i];
+    ++column;
+    if (c == '\n') {
+      ++line;
+      column = 0;
+      if (in == In::comment || in == In::basic || in == In::literal) in = In::code;  // single-line ones end here
+      continue;
+    }
+    switch (in) {
+      case In::code:
+        if (static_cast<unsigned char>(c) >= 0x80)
+          throw InputError(source + ":" + std::to_string(line) + ":" + std::to_string(column) +
+                           ": non-ASCII character outside a string or comment (TOML allows them only there)");
+        if (c == '#') {
+          in = In::comment;
+        } else if (starts(i, R"(""")")) {
+          in = In::multi_basic;
+          i += 2;
+        } else if (starts(i, "'''")) {
+          in = In::multi_literal;
+          i += 2;
+        } else if (c == '"') {
+          in = In::basic;
+        } else if (c == '\'') {
+          in = In::literal;
+        }
+        break;
+      case In::comment: break;
+      case In::basic:
+        if (c == '\\')
+          ++i;
+        else if (c == '"')
+          in = In::code;
+        break;
+      case In::literal:
+        if (c == '\'') in = In::code;
+        break;
+      case In::multi_basic:
+        if (c == '\\') {
+          ++i;
+        } else if (starts(i, R"(""")")) {
+          in = In::code;
+          i += 2;
+        }
+        break;
+      case In::multi_literal:
+        if (starts(i, "'''")) {
+          in = In::code;
+          i += 2;
+        }
+        break;
+    }
+  }
+}
+
 }  // namespace
 
+
 Scenario parse_scenario(std::string_view text, const std::string& source, const std::filesystem::path& directory) {
+  check_non_ascii_outside_strings(text, source);
   toml::table root;
   try {
     root = toml::parse(text, source);

@@ -105,6 +105,26 @@ TEST(MeshChecks, ZeroVolumeTetrahedronIsNamedByIndex) {
   EXPECT_NE(msg.find("zero volume"), std::string::npos) << msg;
 }
 
+// Found by fuzzing: a tetrahedron whose four nodes coincide has quality 0/0 = NaN, which passed a
+// "q < threshold" test; and one naming a node that does not exist.
+TEST(MeshChecks, CoincidentNodesAndMissingNodesAreNamed) {
+  TetMesh mesh;
+  mesh.nodes = Eigen::Matrix3Xd::Zero(3, 4);
+  mesh.nodes.col(1) = Vec3(1, 0, 0);
+  mesh.nodes.col(2) = Vec3(0, 1, 0);
+  mesh.nodes.col(3) = Vec3(0, 0, 1);
+  mesh.tets = {{0, 0, 0, 0}};
+  std::string msg = error_of([&] { check_mesh(mesh); });
+  EXPECT_NE(msg.find("tetrahedron 0 (nodes 0, 0, 0, 0, 0-based) has zero volume"), std::string::npos) << msg;
+  mesh.tets = {{0, 1, 2, 7}};
+  msg = error_of([&] { check_mesh(mesh); });
+  EXPECT_NE(msg.find("names node 7, but the mesh has 4 nodes"), std::string::npos) << msg;
+  mesh.tets = {{0, 1, 2, 3}};
+  mesh.nodes *= 1e300;  // volume overflows
+  msg = error_of([&] { check_mesh(mesh); });
+  EXPECT_NE(msg.find("volume overflows"), std::string::npos) << msg;
+}
+
 TEST(MeshSets, MissingNamedSetListsTheExistingOnes) {
   const TetMesh mesh = read_mesh(std::string(ROIFEM_MESH_DIR) + "/brain-800.msh");
   const std::string msg = error_of([&] { mesh.set("skull"); });

@@ -103,6 +103,15 @@ TEST(ScenarioReader, BadReductionsAreNamed) {
   EXPECT_NE(error_of(replaced(valid, "radius_mm = 25", "radius_mm = 25\nmodes = 5")).find("belong to reduction"), std::string::npos);
 }
 
+// Found by fuzzing: toml++ 3.3 reaches undefined behaviour on a stray non-ASCII character where
+// a key is expected; TOML allows them only in strings and comments, and so do we.
+TEST(ScenarioReader, NonAsciiOutsideStringsAndCommentsIsNamedAndInsideIsFine) {
+  const std::string msg = error_of(replaced(valid, "[time]", "\xC2\xA1 = 1\n[time]"));
+  EXPECT_NE(msg.find("s.toml:18:1: non-ASCII character outside a string or comment"), std::string::npos) << msg;
+  const std::string fine = "\xEF\xBB\xBF# caf\xC3\xA9 \xC2\xB5m\n" + replaced(valid, "brain.msh", "caf\xC3\xA9/brain.msh");
+  EXPECT_EQ(parse_scenario(fine, "s.toml", "/data").mesh, std::filesystem::path("/data/caf\xC3\xA9/brain.msh"));
+}
+
 TEST(ScenarioReader, SyntaxErrorNamesFileAndLine) {
   const std::string msg = error_of("mesh = \"a.msh\"\n[time\ndt_s = 1\n");
   EXPECT_NE(msg.find("s.toml:2:"), std::string::npos) << msg;
