@@ -1,5 +1,6 @@
 // roifem: region-of-interest finite element models of the brain for surgery simulation.
 // CLI only: every sub-command lives in a *_commands.cpp file and calls the libraries.
+#include <cstdlib>
 #include <iostream>
 
 #include "app/commands.hpp"
@@ -31,7 +32,11 @@ int main(int argc, char** argv) {
     return 128 + e.signal;
   } catch (const std::exception& e) {
     std::cerr << "roifem: error: " << e.what() << '\n';
-    return 1;
+    // Every file is closed or discarded by now (RAII). Skip the atexit handlers: after a failed
+    // write (disk full), HDF5 1.10's own shutdown retries the flush and crashes.
+    std::cout.flush();
+    std::cerr.flush();
+    std::_Exit(1);
   }
   return 0;
 }
