@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# Builds the whole project with AddressSanitizer + UndefinedBehaviorSanitizer (the asan preset) and
+# runs the test suite under them. CI runs it after the Release tests. Third-party leaks (Gmsh,
+# OpenCASCADE) are suppressed in tests/sanitizers/lsan.supp.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/setup.sh
+cmake --preset asan >/dev/null
+cmake --build --preset asan
+ctest --preset asan -j 2 "$@"
