@@ -24,8 +24,7 @@ void Trapezoid::reset(const model::SecondOrderSystem& system, const model::State
   }
   // With mass-proportional damping C = alpha M (every model here) the right-hand side needs one
   // product with M instead of one with M and one with C: it matters when M has dense blocks.
-  alpha_ = system.M.squaredNorm() > 0 ? system.C.cwiseProduct(system.M).sum() / system.M.squaredNorm() : 0.0;
-  if (!((system.C - alpha_ * system.M).norm() <= 1e-14 * system.C.norm())) alpha_ = NAN;
+  alpha_ = model::mass_proportional_damping(system);
   t0_ = initial.t;
   k_ = 0;
   // Consistent initial acceleration: M a_0 = f(t_0) - C v_0 - K u_0.

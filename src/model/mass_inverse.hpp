@@ -13,6 +13,8 @@ class MassInverse {
   /// Throws ModelError when M is not positive definite.
   explicit MassInverse(const SparseMatrix& M);
   bool is_diagonal() const { return !factor_; }
+  /// M^-1 as a vector; only for a diagonal M.
+  const Vector& inverse_diagonal() const { return inverse_diagonal_; }
   void apply(const Eigen::Ref<const Vector>& b, Eigen::Ref<Vector> x) const;
   /// M^-1 B for a dense block of right-hand sides.
   DenseMatrix apply(const DenseMatrix& B) const;

@@ -48,9 +48,8 @@ ModalReference::ModalReference(const SecondOrderSystem& system, const State& ini
     throw ModelError("modal reference: " + std::to_string(n) + " dofs is more than the dense eigensolver's limit of " +
                      std::to_string(max_dofs));
   const DenseMatrix M(system.M), C(system.C);
-  alpha_ = C.cwiseProduct(M).sum() / M.squaredNorm();
-  if ((C - alpha_ * M).norm() > 1e-12 * (C.norm() + 1e-300))
-    throw InputError("modal reference: needs mass-proportional damping C = alpha M");
+  alpha_ = mass_proportional_damping(system);
+  if (!std::isfinite(alpha_)) throw InputError("modal reference: needs mass-proportional damping C = alpha M");
   // K phi = w^2 M phi; Eigen normalizes phi^T M phi = I. Lumped or full (Guyan, Craig-Bampton) M.
   const Eigen::GeneralizedSelfAdjointEigenSolver<DenseMatrix> eig(DenseMatrix(system.K), M);
   if (eig.info() != Eigen::Success) throw ModelError("modal reference: the eigensolver failed (is M positive definite?)");

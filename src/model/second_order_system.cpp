@@ -1,5 +1,7 @@
 #include "model/second_order_system.hpp"
 
+#include <cmath>
+
 namespace roifem::model {
 
 SparseMatrix diagonal_matrix(const Vector& d) {
@@ -35,6 +37,12 @@ void SecondOrderSystem::apply_mass(const Eigen::Ref<const Vector>& x, Eigen::Ref
     y.noalias() = M.transpose() * x;
   else
     M_split.apply(x, y);
+}
+
+double mass_proportional_damping(const SecondOrderSystem& system, double tolerance) {
+  const double m2 = system.M.squaredNorm();
+  const double alpha = m2 > 0 ? system.C.cwiseProduct(system.M).sum() / m2 : 0.0;
+  return (system.C - alpha * system.M).norm() <= tolerance * system.C.norm() ? alpha : NAN;
 }
 
 double kinetic_energy(const SecondOrderSystem& sys, const State& s) { return 0.5 * s.v.dot(sys.M * s.v); }

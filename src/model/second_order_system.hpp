@@ -41,6 +41,9 @@ struct State {
   Vector u, v;
 };
 
+/// alpha when C = alpha M (mass-proportional damping, to `tolerance` relative), else NaN.
+double mass_proportional_damping(const SecondOrderSystem& system, double tolerance = 1e-12);
+
 /// A diagonal as a sparse matrix.
 SparseMatrix diagonal_matrix(const Vector& d);
 

@@ -6,6 +6,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "common/errors.hpp"
 #include "model/mass_inverse.hpp"
@@ -14,22 +15,23 @@ namespace roifem::model {
 
 namespace {
 
-/// y = D K D x with D = M^-1/2 (diagonal): the operator Spectra iterates with.
-class ScaledStiffness {
+/// y = D A D x for a diagonal D and an operator A (y = A x by `apply`): the symmetric form Spectra
+/// iterates with. D K D with D = M^-1/2 gives w^2; D K^-1 D with D = M^1/2 gives 1 / w^2.
+class Scaled {
  public:
   using Scalar = double;
-  ScaledStiffness(const SecondOrderSystem& system, Vector scale)
-      : system_(system), scale_(std::move(scale)), x_(scale_.size()), y_(scale_.size()) {}
+  using Apply = std::function<void(const Vector&, Vector&)>;
+  Scaled(Apply apply, Vector scale) : apply_(std::move(apply)), scale_(std::move(scale)), x_(scale_.size()), y_(scale_.size()) {}
   Index rows() const { return scale_.size(); }
   Index cols() const { return scale_.size(); }
   void perform_op(const double* in, double* out) const {
     x_ = scale_.cwiseProduct(Eigen::Map<const Vector>(in, rows()));
-    system_.apply_stiffness(x_, y_);
+    apply_(x_, y_);
     Eigen::Map<Vector>(out, rows()) = scale_.cwiseProduct(y_);
   }
 
  private:
-  const SecondOrderSystem& system_;
+  Apply apply_;
   Vector scale_;
   mutable Vector x_, y_;
 };
@@ -68,26 +70,6 @@ class Mass {
   MassInverse inverse_;
 };
 
-/// y = D K^-1 D x with D = M^1/2: the shift-invert operator (eigenvalues 1 / w^2).
-class ScaledInverseStiffness {
- public:
-  using Scalar = double;
-  ScaledInverseStiffness(const solvers::Cholesky& factor, Vector scale)
-      : factor_(factor), scale_(std::move(scale)), x_(scale_.size()), y_(scale_.size()) {}
-  Index rows() const { return scale_.size(); }
-  Index cols() const { return scale_.size(); }
-  void perform_op(const double* in, double* out) const {
-    x_ = scale_.cwiseProduct(Eigen::Map<const Vector>(in, rows()));
-    factor_.solve(x_, y_);
-    Eigen::Map<Vector>(out, rows()) = scale_.cwiseProduct(y_);
-  }
-
- private:
-  const solvers::Cholesky& factor_;
-  Vector scale_;
-  mutable Vector x_, y_;
-};
-
 }  // namespace
 
 Modes lowest_modes(const Vector& mass_diagonal, const solvers::Cholesky& K_factor, Index count, double tolerance) {
@@ -107,8 +89,8 @@ Modes lowest_modes(const Vector& mass_diagonal, const solvers::Cholesky& K_facto
     modes.shapes = scale.cwiseInverse().asDiagonal() * dense.eigenvectors().rowwise().reverse().leftCols(count);
     return modes;
   }
-  ScaledInverseStiffness op(K_factor, scale);
-  Spectra::SymEigsSolver<ScaledInverseStiffness> lanczos(op, count, std::min<Index>(n, std::max<Index>(2 * count + 1, 20)));
+  Scaled op([&](const Vector& x, Vector& y) { K_factor.solve(x, y); }, scale);
+  Spectra::SymEigsSolver<Scaled> lanczos(op, count, std::min<Index>(n, std::max<Index>(2 * count + 1, 20)));
   lanczos.init();
   lanczos.compute(Spectra::SortRule::LargestAlge, 1000, tolerance);
   if (lanczos.info() != Spectra::CompInfo::Successful)
@@ -152,8 +134,8 @@ double highest_frequency(const SecondOrderSystem& system, double tolerance) {
     const DenseMatrix A = scale.asDiagonal() * DenseMatrix(system.K) * scale.asDiagonal();
     return std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<DenseMatrix>(A, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff()));
   }
-  ScaledStiffness op(system, scale);
-  Spectra::SymEigsSolver<ScaledStiffness> lanczos(op, 1, std::min<Index>(n, 20));
+  Scaled op([&](const Vector& x, Vector& y) { system.apply_stiffness(x, y); }, scale);
+  Spectra::SymEigsSolver<Scaled> lanczos(op, 1, std::min<Index>(n, 20));
   lanczos.init();
   lanczos.compute(Spectra::SortRule::LargestAlge, 1000, tolerance);
   if (lanczos.info() != Spectra::CompInfo::Successful)
