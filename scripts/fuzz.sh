@@ -1,11 +1,17 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer harnesses (fuzz/*_fuzzer.cpp, with Debian's clang, ASan and UBSan) and runs
-# each for a bounded time on its committed corpus (fuzz/corpus/NAME). CI runs it after the tests.
-#   usage: scripts/fuzz.sh [SECONDS_PER_HARNESS]   (default 60)
+# each on its committed corpus (fuzz/corpus/NAME).
+#   scripts/fuzz.sh                 what CI runs: a fixed seed and a fixed number of inputs per
+#                                   harness (about a minute each), so that a run is repeatable
+#   scripts/fuzz.sh --seconds N     exploring: a random seed, N seconds per harness; merge what it
+#                                   finds into the corpus with  build/fuzz/NAME_fuzzer -merge=1 fuzz/corpus/NAME build/fuzz/corpus-NAME
 # A crash leaves its input as build/fuzz/crash-* and fails the script.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-seconds=${1:-60}
+mode=()
+if [ "${1:-}" = --seconds ]; then
+  mode=(-max_total_time="${2:?--seconds needs a number}")
+fi
 out=build/fuzz
 mkdir -p "$out"
 # -DNDEBUG as in the shipped build: toml++ 3.3's internal debug assertions fire on some malformed
@@ -22,10 +28,16 @@ for name in scenario_reader mesh_checks; do
   work="$out/corpus-$name"
   rm -rf "$work"
   cp -r "fuzz/corpus/$name" "$work"  # new inputs go to the copy; the committed corpus stays as it is
-  echo "fuzzing $name for $seconds s (corpus: $(ls "$work" | wc -l) inputs)"
+  if [ ${#mode[@]} -eq 0 ]; then
+    declare -A runs=([scenario_reader]=150000 [mesh_checks]=600000)
+    limits=(-seed=1 -runs="${runs[$name]}")
+  else
+    limits=("${mode[@]}")
+  fi
+  echo "fuzzing $name: ${limits[*]} (corpus: $(ls "$work" | wc -l) inputs)"
   rm -f "$out"/crash-* "$out"/leak-* "$out"/timeout-* "$out"/oom-*
   status=0
-  "$out/${name}_fuzzer" -max_total_time="$seconds" -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$out/" "$work" \
+  "$out/${name}_fuzzer" "${limits[@]}" -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$out/" "$work" \
     > "$out/$name.log" 2>&1 || status=$?
   grep -E "^(stat::number_of_executed_units|stat::peak_rss_mb)|ERROR|SUMMARY" "$out/$name.log" || true
   if [ "$status" -ne 0 ]; then

@@ -242,6 +242,10 @@ std::string toml_number(double v) {
 void check_non_ascii_outside_strings(std::string_view text, const std::string& source) {
   enum class In { code, comment, basic, literal, multi_basic, multi_literal } in = In::code;
   long line = 1, column = 0;
+  // A quote opens a string only where TOML lets one begin (a key at the start of a line or after
+  // '.', a value after '=', '[', ',' or '{'); a stray quote elsewhere (`1111t"`) does not, so a
+  // non-ASCII character after it is still refused (fuzzing found that case).
+  char previous = '\n';  // the last non-blank character outside strings and comments
   auto starts = [&](std::size_t i, std::string_view s) { return text.substr(i, s.size()) == s; };
   const std::size_t first = starts(0, "\xEF\xBB\xBF") ? 3 : 0;  // a UTF-8 byte order mark is fine
   for (std::size_t i = first; i < text.size(); ++i) {
@@ -251,8 +255,10 @@ void check_non_ascii_outside_strings(std::string_view text, const std::string& s
       ++line;
       column = 0;
       if (in == In::comment || in == In::basic || in == In::literal) in = In::code;  // single-line ones end here
+      if (in == In::code) previous = '\n';
       continue;
     }
+    const bool string_may_start = std::string_view("\n.=[,{").find(previous) != std::string_view::npos;
     switch (in) {
       case In::code:
         if (static_cast<unsigned char>(c) >= 0x80)
@@ -260,39 +266,58 @@ void check_non_ascii_outside_strings(std::string_view text, const std::string& s
                            ": non-ASCII character outside a string or comment (TOML allows them only there)");
         if (c == '#') {
           in = In::comment;
-        } else if (starts(i, R"(""")")) {
+        } else if (string_may_start && starts(i, R"(""")")) {
           in = In::multi_basic;
           i += 2;
-        } else if (starts(i, "'''")) {
+        } else if (string_may_start && starts(i, "'''")) {
           in = In::multi_literal;
           i += 2;
-        } else if (c == '"') {
+        } else if (string_may_start && c == '"') {
           in = In::basic;
-        } else if (c == '\'') {
+        } else if (string_may_start && c == '\'') {
           in = In::literal;
         }
+        if (c != ' ' && c != '\t' && c != '\r') previous = c;
         break;
       case In::comment: break;
       case In::basic:
         if (c == '\\')
           ++i;
         else if (c == '"')
-          in = In::code;
+          in = In::code, previous = c;
         break;
       case In::literal:
-        if (c == '\'') in = In::code;
+        if (c == '\'') in = In::code, previous = c;
         break;
       case In::multi_basic:
         if (c == '\\') {
-          ++i;
+          // A line-ending backslash trims the whitespace that follows, and toml++ classifies the
+          // first character after it like code: it must be ASCII too (fuzzing found this one).
+          std::size_t j = i + 1;
+          while (j < text.size() && (text[j] == ' ' || text[j] == '\t' || text[j] == '\r')) ++j;
+          if (j < text.size() && text[j] == '\n') {
+            while (j < text.size() && (text[j] == ' ' || text[j] == '\t' || text[j] == '\r' || text[j] == '\n')) {
+              if (text[j] == '\n') ++line, column = 0;
+              else ++column;
+              ++j;
+            }
+            if (j < text.size() && static_cast<unsigned char>(text[j]) >= 0x80)
+              throw InputError(source + ":" + std::to_string(line) + ":" + std::to_string(column + 1) +
+                               ": non-ASCII character right after a line-ending backslash (not supported)");
+            i = j - 1;
+          } else {
+            ++i;
+          }
         } else if (starts(i, R"(""")")) {
           in = In::code;
+          previous = '"';
           i += 2;
         }
         break;
       case In::multi_literal:
         if (starts(i, "'''")) {
           in = In::code;
+          previous = '\'';
           i += 2;
         }
         break;

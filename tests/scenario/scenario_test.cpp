@@ -108,6 +108,11 @@ TEST(ScenarioReader, BadReductionsAreNamed) {
 TEST(ScenarioReader, NonAsciiOutsideStringsAndCommentsIsNamedAndInsideIsFine) {
   const std::string msg = error_of(replaced(valid, "[time]", "\xC2\xA1 = 1\n[time]"));
   EXPECT_NE(msg.find("s.toml:18:1: non-ASCII character outside a string or comment"), std::string::npos) << msg;
+  // A stray quote inside a malformed value opens no string (fuzzing found `1111t"` then a non-ASCII character).
+  EXPECT_NE(error_of("mesh =1111t\"\xC2\xB9=1\n").find("s.toml:1:13: non-ASCII character"), std::string::npos)
+      << error_of("mesh =1111t\"\xC2\xB9=1\n");
+  EXPECT_NE(error_of("m = \"\"\"a\\\n  \xCF\x9A\"\"\"\n").find("right after a line-ending backslash"), std::string::npos)
+      << error_of("m = \"\"\"a\\\n  \xCF\x9A\"\"\"\n");
   const std::string fine = "\xEF\xBB\xBF# caf\xC3\xA9 \xC2\xB5m\n" + replaced(valid, "brain.msh", "caf\xC3\xA9/brain.msh");
   EXPECT_EQ(parse_scenario(fine, "s.toml", "/data").mesh, std::filesystem::path("/data/caf\xC3\xA9/brain.msh"));
 }
