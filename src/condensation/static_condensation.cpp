@@ -1,10 +1,12 @@
 #include "condensation/static_condensation.hpp"
 
+#include <algorithm>
+
 #include "common/errors.hpp"
 #include "common/timer.hpp"
 #include "model/mass_inverse.hpp"
 #include "model/spectrum.hpp"
-#include "solvers/cholesky.hpp"
+#include "solvers/partial_cholesky.hpp"
 
 namespace roifem::condensation {
 
@@ -57,15 +59,24 @@ StaticCondensation::StaticCondensation(const model::SecondOrderSystem& full, con
   for (Index k : partition_.interface) interface_dofs.push_back(d[static_cast<std::size_t>(k)]);
 
   Stopwatch clock;
-  solvers::Cholesky K_ss_factor;
   if (!s.empty()) {
-    const SparseMatrix K_ss = roi::submatrix(full.K, s, s);
+    // One factorization of K over the static dofs and the interface, the interface ordered last:
+    // its trailing block is K_II - S, and its leading block solves with K_ss (no solve per
+    // interface column, no dense #s x #I matrix).
+    std::vector<Index> static_and_interface = s;
+    static_and_interface.insert(static_and_interface.end(), interface_dofs.begin(), interface_dofs.end());
+    std::sort(static_and_interface.begin(), static_and_interface.end());
+    std::vector<Index> trailing;
+    for (Index dof : interface_dofs)
+      trailing.push_back(std::lower_bound(static_and_interface.begin(), static_and_interface.end(), dof) -
+                         static_and_interface.begin());
     try {
-      K_ss_factor.compute(K_ss);
+      K_ss_factor_ = std::make_shared<const solvers::PartialCholesky>(
+          roi::submatrix(full.K, static_and_interface, static_and_interface), trailing);
     } catch (const solvers::NotPositiveDefinite& e) {
       std::string where = "a part of it is free to move as a rigid body";
       if (e.column >= 0) {
-        const Index node = dofs.full_dof(s[static_cast<std::size_t>(e.column)]) / 3;
+        const Index node = dofs.full_dof(static_and_interface[static_cast<std::size_t>(e.column)]) / 3;
         where = "the factorization stopped at node " + std::to_string(node);
       }
       throw ModelError("static part K_ss is singular: " + where +
@@ -73,24 +84,30 @@ StaticCondensation::StaticCondensation(const model::SecondOrderSystem& full, con
     }
     timings_.factorization_s = clock.seconds();
     clock.restart();
-    const DenseMatrix K_sI(roi::submatrix(full.K, s, interface_dofs));
-    X_ = K_ss_factor.solve_matrix(K_sI);
-    schur_ = K_sI.transpose() * X_;
-    // S is symmetric in exact arithmetic; make it so in floating point, so that products (which
-    // read one triangle) and factorizations (which read the other) see the same matrix.
+    K_sI_ = roi::submatrix(full.K, s, interface_dofs);
+    // S = K_II - (K_II - S); symmetric in exact arithmetic, and made so in floating point, so that
+    // products (which read one triangle) and factorizations (the other) see the same matrix.
+    const DenseMatrix K_II(roi::submatrix(full.K, interface_dofs, interface_dofs));
+    schur_ = K_II - K_ss_factor_->trailing_schur_complement();
     schur_ = (0.5 * (schur_ + schur_.transpose())).eval();
+    if (with_mass) {  // Guyan and Craig-Bampton carry the static part's mass through X = K_ss^-1 K_sI
+      X_.resize(static_cast<Index>(s.size()), n_i);
+      const DenseMatrix K_sI(K_sI_);
+      for (Index j = 0; j < n_i; ++j) X_.col(j) = K_ss_factor_->solve_leading(K_sI.col(j));
+    }
     timings_.interface_solve_s = clock.seconds();
   } else {
-    X_.resize(0, n_i);
     schur_ = DenseMatrix::Zero(n_i, n_i);
   }
+  if (s.empty()) X_.resize(0, n_i);
 
   const Vector M_s = roi::gather(full.M.diagonal(), s), C_s = roi::gather(full.C.diagonal(), s);
   if (with_modes && !s.empty()) {
     clock.restart();
+    const model::SolveK solve_K_ss = [factor = K_ss_factor_](const Vector& b, Vector& x) { factor->solve_leading(b, x); };
     const model::Modes modes = reduction.modes > 0
-                                   ? model::lowest_modes(M_s, K_ss_factor, std::min<Index>(reduction.modes, static_cast<Index>(s.size())))
-                                   : model::modes_below(M_s, K_ss_factor, reduction.cutoff_rad_s);
+                                   ? model::lowest_modes(M_s, solve_K_ss, std::min<Index>(reduction.modes, static_cast<Index>(s.size())))
+                                   : model::modes_below(M_s, solve_K_ss, reduction.cutoff_rad_s);
     omega_ = modes.omega;
     Phi_ = modes.shapes;
     timings_.modes_s = clock.seconds();
@@ -149,7 +166,7 @@ StaticCondensation::StaticCondensation(const model::SecondOrderSystem& full, con
     f.head(n_d) = roi::gather(p, d);
     if (!s.empty()) {
       const Vector p_s = roi::gather(p, s);
-      const Vector correction = X_.transpose() * p_s;
+      const Vector correction = K_sI_.transpose() * K_ss_factor_->solve_leading(p_s);  // X^T p_s
       for (Index a = 0; a < n_i; ++a) f[partition_.interface[static_cast<std::size_t>(a)]] -= correction[a];
       if (k > 0) f.tail(k) = Phi_.transpose() * p_s;
     }
@@ -158,7 +175,7 @@ StaticCondensation::StaticCondensation(const model::SecondOrderSystem& full, con
   static_response_ = full.load.mapped(static_cast<Index>(s.size()), [&](const Vector& p) {
     if (s.empty()) return Vector();
     const Vector p_s = roi::gather(p, s);
-    Vector z = K_ss_factor.solve(p_s);
+    Vector z = K_ss_factor_->solve_leading(p_s);
     if (k > 0) z.noalias() -= Phi_ * (Phi_.transpose() * p_s).cwiseQuotient(omega_.cwiseAbs2());
     return z;
   });
@@ -170,7 +187,7 @@ Vector StaticCondensation::recover_static(const Vector& y, double t) const {
   if (u_s.size() == 0) return u_s;
   Vector u_i(static_cast<Index>(partition_.interface.size()));
   for (std::size_t a = 0; a < partition_.interface.size(); ++a) u_i[static_cast<Index>(a)] = y[partition_.interface[a]];
-  u_s.noalias() -= X_ * u_i;
+  u_s -= K_ss_factor_->solve_leading(K_sI_ * u_i);  // X u_I
   if (num_modes() > 0) u_s.noalias() += Phi_ * y.tail(num_modes());
   return u_s;
 }

@@ -2,11 +2,14 @@
 /// Static condensation of the static part onto the ROI (Bro-Nielsen; Hansen & Larsen 1998):
 ///   K~ = K_dd - K_ds K_ss^-1 K_sd,   f~(t) = f_d(t) - K_ds K_ss^-1 f_s(t),
 ///   u_s = K_ss^-1 (f_s - K_sd u_d)    (the static part follows the ROI instantly).
-/// K_ss is factored once; only the interface columns are solved for:
-///   X = K_ss^-1 K_sI (dense, #s x #I), S = K_sI^T X (dense, #I x #I),
-/// so that K~ = K_dd - S on the interface block, f~ pattern = f_d - X^T f_s, u_s = z(t) - X u_I
-/// with z(t) = sum_k r_k(t) K_ss^-1 p_k,s precomputed per load pattern. The condensed system keeps
-/// K~ both assembled (for factorizations) and split as K_dd plus the dense block -S (for products).
+/// One Cholesky factorization of K over the static dofs and the interface I, with I ordered last
+/// (solvers::PartialCholesky), gives both S = K_Is K_ss^-1 K_sI (dense, #I x #I) from the factor's
+/// trailing block, and solves with K_ss from its leading block: no solve per interface column and
+/// no dense #s x #I matrix X = K_ss^-1 K_sI (Guyan and Craig-Bampton form X, for their mass).
+/// K~ = K_dd - S on the interface block, f~ pattern = f_d - K_Is K_ss^-1 f_s, and
+/// u_s = z(t) - K_ss^-1 K_sI u_I with z(t) = sum_k r_k(t) K_ss^-1 p_k,s precomputed per load
+/// pattern. The condensed system keeps K~ both assembled (for factorizations) and split as K_dd
+/// plus the dense block -S (for products).
 ///
 /// Three reductions share that machinery (T maps the reduced coordinates to all free dofs):
 ///  - static condensation (the paper's): M and C of the ROI kept as they are; the static part
@@ -18,17 +21,21 @@
 ///    K_r = diag(K~, W^2), M_r = [[M~, -P^T X^T M_ss Phi], [sym, I]], f_r = [f~; Phi^T f_s],
 ///    u_s = z(t) - Phi W^-2 Phi^T f_s(t) - X u_I + Phi eta. With every mode it is exact.
 /// M and C of the full model must be diagonal (lumped) for Guyan and Craig-Bampton.
+#include <memory>
 #include <string>
 
 #include "condensation/reduction.hpp"
 #include "fem/dof_map.hpp"
 #include "model/second_order_system.hpp"
 #include "roi/roi.hpp"
+#include "solvers/partial_cholesky.hpp"
 
 namespace roifem::condensation {
 
 struct CondensationTimings {
-  double factorization_s = 0, interface_solve_s = 0, modes_s = 0, assembly_s = 0;
+  double factorization_s = 0;    ///< ordering and the factorization of K over s and I
+  double interface_solve_s = 0;  ///< S read off the factor (and X, for Guyan and Craig-Bampton)
+  double modes_s = 0, assembly_s = 0;
 };
 
 
@@ -58,7 +65,9 @@ class StaticCondensation {
  private:
   roi::Partition partition_;
   model::SecondOrderSystem reduced_;
-  DenseMatrix X_;       ///< K_ss^-1 K_sI
+  std::shared_ptr<const solvers::PartialCholesky> K_ss_factor_;  ///< K over s and I, I last
+  SparseMatrix K_sI_;
+  DenseMatrix X_;       ///< K_ss^-1 K_sI (Guyan and Craig-Bampton only)
   DenseMatrix schur_;   ///< K_sI^T X
   Reduction reduction_;
   Vector omega_;        ///< Craig-Bampton mode frequencies

@@ -72,9 +72,8 @@ class Mass {
 
 }  // namespace
 
-Modes lowest_modes(const Vector& mass_diagonal, const solvers::Cholesky& K_factor, Index count, double tolerance) {
+Modes lowest_modes(const Vector& mass_diagonal, const SolveK& solve_K, Index count, double tolerance) {
   const Index n = mass_diagonal.size();
-  if (n != K_factor.size()) throw Error("internal: lowest_modes: M and K differ in size");
   if (count < 1 || count > n)
     throw InputError("lowest modes: asked for " + std::to_string(count) + " modes of a system with " + std::to_string(n) +
                      " dofs (1 to " + std::to_string(n) + ")");
@@ -82,14 +81,21 @@ Modes lowest_modes(const Vector& mass_diagonal, const solvers::Cholesky& K_facto
   const Vector scale = mass_diagonal.cwiseSqrt();
   Modes modes;
   if (2 * count >= n) {  // half the spectrum or more: dense
-    const DenseMatrix A = scale.asDiagonal() * K_factor.solve_matrix(DenseMatrix::Identity(n, n)) * scale.asDiagonal();
+    DenseMatrix A(n, n);
+    Vector e = Vector::Zero(n), column(n);
+    for (Index j = 0; j < n; ++j) {  // M^1/2 K^-1 M^1/2, a column at a time
+      e[j] = scale[j];
+      solve_K(e, column);
+      A.col(j) = scale.cwiseProduct(column);
+      e[j] = 0;
+    }
     const Eigen::SelfAdjointEigenSolver<DenseMatrix> dense(0.5 * (A + A.transpose()));
     // Ascending 1/w^2: the lowest w are the last columns.
     modes.omega = dense.eigenvalues().reverse().head(count).cwiseInverse().cwiseSqrt();
     modes.shapes = scale.cwiseInverse().asDiagonal() * dense.eigenvectors().rowwise().reverse().leftCols(count);
     return modes;
   }
-  Scaled op([&](const Vector& x, Vector& y) { K_factor.solve(x, y); }, scale);
+  Scaled op(solve_K, scale);
   Spectra::SymEigsSolver<Scaled> lanczos(op, count, std::min<Index>(n, std::max<Index>(2 * count + 1, 20)));
   lanczos.init();
   lanczos.compute(Spectra::SortRule::LargestAlge, 1000, tolerance);
@@ -101,10 +107,10 @@ Modes lowest_modes(const Vector& mass_diagonal, const solvers::Cholesky& K_facto
   return modes;
 }
 
-Modes modes_below(const Vector& mass_diagonal, const solvers::Cholesky& K_factor, double cutoff, double tolerance) {
+Modes modes_below(const Vector& mass_diagonal, const SolveK& solve_K, double cutoff, double tolerance) {
   const Index n = mass_diagonal.size();
   for (Index count = std::min<Index>(10, n);; count = std::min<Index>(2 * count, n)) {
-    Modes modes = lowest_modes(mass_diagonal, K_factor, count, tolerance);
+    Modes modes = lowest_modes(mass_diagonal, solve_K, count, tolerance);
     const Index below = static_cast<Index>((modes.omega.array() < cutoff).count());
     if (below < count || count == n) {
       modes.omega.conservativeResize(below);
@@ -112,6 +118,11 @@ Modes modes_below(const Vector& mass_diagonal, const solvers::Cholesky& K_factor
       return modes;
     }
   }
+}
+
+Modes lowest_modes(const Vector& mass_diagonal, const solvers::Cholesky& K_factor, Index count, double tolerance) {
+  if (mass_diagonal.size() != K_factor.size()) throw Error("internal: lowest_modes: M and K differ in size");
+  return lowest_modes(mass_diagonal, [&](const Vector& b, Vector& x) { K_factor.solve(b, x); }, count, tolerance);
 }
 
 double highest_frequency(const SecondOrderSystem& system, double tolerance) {

@@ -4,6 +4,8 @@
 /// (Spectra's implicitly restarted SymEigsSolver) on the symmetric M^-1/2 K M^-1/2, so that it
 /// costs a few dozen products with K at any size, where a dense eigensolver stops at a few
 /// thousand dofs.
+#include <functional>
+
 #include "model/second_order_system.hpp"
 #include "solvers/cholesky.hpp"
 
@@ -19,9 +21,12 @@ struct Modes {
 /// Lanczos in shift-invert form: the largest eigenvalues of M^1/2 K^-1 M^1/2, with K's Cholesky
 /// factor (already computed, as static condensation has it) doing the inverse; dense from half the
 /// spectrum up. Throws SolverError when Lanczos does not converge, InputError for a count outside [1, n].
+/// `solve_K(b, x)` sets x = K^-1 b.
+using SolveK = std::function<void(const Vector& b, Vector& x)>;
+Modes lowest_modes(const Vector& mass_diagonal, const SolveK& solve_K, Index count, double tolerance = 1e-10);
 Modes lowest_modes(const Vector& mass_diagonal, const solvers::Cholesky& K_factor, Index count, double tolerance = 1e-10);
 /// The modes below `cutoff` rad/s (at most n): lowest_modes with a growing count.
-Modes modes_below(const Vector& mass_diagonal, const solvers::Cholesky& K_factor, double cutoff, double tolerance = 1e-10);
+Modes modes_below(const Vector& mass_diagonal, const SolveK& solve_K, double cutoff, double tolerance = 1e-10);
 
 /// A full M (Guyan, Craig-Bampton) takes the generalized form, with M^-1 by Cholesky. Throws
 /// SolverError when Lanczos does not converge.

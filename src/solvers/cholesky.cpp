@@ -1,45 +1,15 @@
 #include "solvers/cholesky.hpp"
 
-#include <cholmod.h>
-
 #include <cstring>
 #include <string>
 
 #include "common/errors.hpp"
+#include "solvers/cholmod_views.hpp"
 
 namespace roifem::solvers {
 
-namespace {
-/// A cholmod_sparse header over an Eigen matrix's arrays (no copy).
-cholmod_sparse view(const SparseMatrix& A) {
-  cholmod_sparse s{};
-  s.nrow = static_cast<std::size_t>(A.rows());
-  s.ncol = static_cast<std::size_t>(A.cols());
-  s.nzmax = static_cast<std::size_t>(A.nonZeros());
-  s.p = const_cast<int*>(A.outerIndexPtr());
-  s.i = const_cast<int*>(A.innerIndexPtr());
-  s.x = const_cast<double*>(A.valuePtr());
-  s.stype = -1;  // symmetric, lower triangle used
-  s.itype = CHOLMOD_INT;
-  s.xtype = CHOLMOD_REAL;
-  s.dtype = CHOLMOD_DOUBLE;
-  s.sorted = 1;
-  s.packed = 1;
-  return s;
-}
-
-cholmod_dense view(const double* data, Index rows, Index cols) {
-  cholmod_dense d{};
-  d.nrow = static_cast<std::size_t>(rows);
-  d.ncol = static_cast<std::size_t>(cols);
-  d.nzmax = d.nrow * d.ncol;
-  d.d = d.nrow;
-  d.x = const_cast<double*>(data);
-  d.xtype = CHOLMOD_REAL;
-  d.dtype = CHOLMOD_DOUBLE;
-  return d;
-}
-}  // namespace
+using detail::dense_view;
+using detail::symmetric_view;
 
 NotPositiveDefinite::NotPositiveDefinite(Index col, double rc)
     : std::runtime_error(col >= 0 ? "matrix is not positive definite (factorization stopped at column " +
@@ -91,7 +61,7 @@ Cholesky::~Cholesky() = default;
 void Cholesky::analyze(const SparseMatrix& A) {
   if (A.rows() != A.cols()) throw Error("internal: Cholesky of a non-square matrix");
   if (!A.isCompressed()) throw Error("internal: Cholesky needs a compressed matrix");
-  cholmod_sparse a = view(A);
+  cholmod_sparse a = symmetric_view(A);
   impl_->free_workspace();
   if (impl_->factor) cholmod_free_factor(&impl_->factor, &impl_->common);
   impl_->factor = cholmod_analyze(&a, &impl_->common);
@@ -100,10 +70,14 @@ void Cholesky::analyze(const SparseMatrix& A) {
 
 void Cholesky::factorize(const SparseMatrix& A) {
   if (!impl_->factor || static_cast<Index>(impl_->factor->n) != A.rows()) analyze(A);
-  cholmod_sparse a = view(A);
+  cholmod_sparse a = symmetric_view(A);
   const int ok = cholmod_factorize(&a, impl_->factor, &impl_->common);
-  if (impl_->common.status == CHOLMOD_NOT_POSDEF)
-    throw NotPositiveDefinite(static_cast<Index>(impl_->factor->minor), 0.0);
+  if (impl_->common.status == CHOLMOD_NOT_POSDEF) {
+    // CHOLMOD's `minor` counts columns of the permuted matrix; name the column of A.
+    const auto* perm = static_cast<const int*>(impl_->factor->Perm);
+    const std::size_t minor = impl_->factor->minor;
+    throw NotPositiveDefinite(minor < impl_->factor->n && perm ? perm[minor] : -1, 0.0);
+  }
   impl_->check(ok, "factorization");
   // A positive semidefinite matrix (rigid-body modes) may factor with round-off-sized pivots.
   if (const double rc = rcond(); !(rc > 1e-15)) throw NotPositiveDefinite(-1, rc);
@@ -117,7 +91,7 @@ Vector Cholesky::solve(const Eigen::Ref<const Vector>& b) const {
 
 void Cholesky::solve(const Eigen::Ref<const Vector>& b, Eigen::Ref<Vector> x) const {
   if (!impl_->factor) throw Error("internal: Cholesky::solve before factorize");
-  cholmod_dense rhs = view(b.data(), b.size(), 1);
+  cholmod_dense rhs = dense_view(b.data(), b.size(), 1);
   auto* common = const_cast<cholmod_common*>(&impl_->common);
   const int ok = cholmod_solve2(CHOLMOD_A, impl_->factor, &rhs, nullptr, &impl_->x, nullptr, &impl_->y, &impl_->e,
                                 common);
@@ -128,7 +102,7 @@ void Cholesky::solve(const Eigen::Ref<const Vector>& b, Eigen::Ref<Vector> x) co
 DenseMatrix Cholesky::solve_matrix(const Eigen::Ref<const DenseMatrix>& B) const {
   if (!impl_->factor) throw Error("internal: Cholesky::solve before factorize");
   const DenseMatrix Bc = B;  // contiguous, column-major
-  cholmod_dense rhs = view(Bc.data(), Bc.rows(), Bc.cols());
+  cholmod_dense rhs = dense_view(Bc.data(), Bc.rows(), Bc.cols());
   auto* common = const_cast<cholmod_common*>(&impl_->common);
   cholmod_dense* X = cholmod_solve(CHOLMOD_A, impl_->factor, &rhs, common);
   impl_->check(X != nullptr, "solve");
