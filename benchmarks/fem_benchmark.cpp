@@ -1,14 +1,20 @@
-// Foundation benchmarks: mesh read, stiffness assembly (pattern + values) and Cholesky
-// factorization of K (base fixed), on generated brains.
+// Foundation benchmarks: mesh read, stiffness assembly (pattern + values), Cholesky factorization
+// of K (base fixed), and the condensation of K onto an ROI two ways, side by side: one partial
+// factorization with the interface ordered last (what roifem does), and the straightforward
+// factor of K_ss followed by one solve per interface column (X = K_ss^-1 K_sI, S = K_Is X).
 //   compile with: cmake --build --preset release --target roifem_fem_benchmark
 //   sample run:   ROIFEM_BENCH_SIZES=800,20000,100000 build/release/benchmarks/roifem_fem_benchmark
 //                   --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+
 #include "brain_meshes.hpp"
 #include "fem/assembly.hpp"
 #include "fem/static_solve.hpp"
 #include "mesh/gmsh_reader.hpp"
+#include "roi/roi.hpp"
+#include "solvers/partial_cholesky.hpp"
 
 namespace roifem::bench {
 namespace {
@@ -61,6 +67,48 @@ void factorize(benchmark::State& state, long nodes) {
   state.counters["nnz_L"] = cholesky.factor_nonzeros();
 }
 
+/// K and the static / interface split for an ROI of `roi_nodes` nodes nearest the target (0, 0, 40) mm.
+struct Split {
+  SparseMatrix K;
+  std::vector<Index> s, interface_dofs;
+  Split(const Model& model, Index roi_nodes) : K(fem::StiffnessAssembler(model.mesh, *model.dofs).stiffness(material)) {
+    const roi::RoiSpec spec{.kind = roi::RoiSpec::Kind::nearest, .center = Vec3(0, 0, 40 * mm), .radius = 0, .count = roi_nodes, .set = {}};
+    const auto p = roi::partition_dofs(K, *model.dofs, roi::select_roi_nodes(model.mesh, *model.dofs, spec));
+    s = p.s;
+    for (Index k : p.interface) interface_dofs.push_back(p.d[static_cast<std::size_t>(k)]);
+  }
+};
+
+void condense_partial_factorization(benchmark::State& state, long nodes, Index roi_nodes) {
+  const Model model(nodes);
+  const Split split(model, roi_nodes);
+  std::vector<Index> both = split.s;
+  both.insert(both.end(), split.interface_dofs.begin(), split.interface_dofs.end());
+  std::sort(both.begin(), both.end());
+  std::vector<Index> trailing;
+  for (Index dof : split.interface_dofs) trailing.push_back(std::lower_bound(both.begin(), both.end(), dof) - both.begin());
+  const SparseMatrix A = roi::submatrix(split.K, both, both);
+  for (auto _ : state) {
+    const solvers::PartialCholesky factor(A, trailing);
+    benchmark::DoNotOptimize(factor.trailing_schur_complement());
+  }
+  state.counters["interface_dofs"] = static_cast<double>(trailing.size());
+}
+
+void condense_column_solves(benchmark::State& state, long nodes, Index roi_nodes) {
+  const Model model(nodes);
+  const Split split(model, roi_nodes);
+  const SparseMatrix K_ss = roi::submatrix(split.K, split.s, split.s);
+  const DenseMatrix K_sI(roi::submatrix(split.K, split.s, split.interface_dofs));
+  for (auto _ : state) {
+    solvers::Cholesky factor;
+    factor.compute(K_ss);
+    const DenseMatrix X = factor.solve_matrix(K_sI);
+    benchmark::DoNotOptimize(DenseMatrix(K_sI.transpose() * X));
+  }
+  state.counters["interface_dofs"] = static_cast<double>(split.interface_dofs.size());
+}
+
 }  // namespace
 }  // namespace roifem::bench
 
@@ -73,6 +121,14 @@ int main(int argc, char** argv) {
     benchmark::RegisterBenchmark(("assemble_values" + suffix).c_str(), assemble_values, n)->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark(("assemble_total" + suffix).c_str(), assemble_total, n)->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark(("factorize" + suffix).c_str(), factorize, n)->Unit(benchmark::kMillisecond);
+    for (long roi : {300L, 1000L}) {
+      if (roi * 2 > n) continue;
+      const std::string which = suffix + "/roi:" + std::to_string(roi);
+      benchmark::RegisterBenchmark(("condense/partial_factorization" + which).c_str(), condense_partial_factorization, n, roi)
+          ->Unit(benchmark::kMillisecond);
+      benchmark::RegisterBenchmark(("condense/column_solves" + which).c_str(), condense_column_solves, n, roi)
+          ->Unit(benchmark::kMillisecond);
+    }
   }
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();

@@ -1,0 +1,19 @@
+#pragma once
+/// Runs a piece of work in a forked child process, so that each measured model starts from a
+/// clean heap and reports its own memory peak, and a model too large for the machine (killed by
+/// the OOM killer, or past its time limit) costs one row of the table instead of the whole run.
+#include <functional>
+#include <string>
+
+namespace roifem::bench {
+
+struct ChildResult {
+  bool ok = false;
+  std::string output;  ///< what the work returned (ok), or why it failed
+};
+
+/// `work` runs in the child; its return value comes back through a pipe. An exception in the
+/// child, a signal, or `timeout_s` passing gives ok = false with the reason.
+ChildResult run_in_child(const std::function<std::string()>& work, double timeout_s);
+
+}  // namespace roifem::bench

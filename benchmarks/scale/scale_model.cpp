@@ -1,0 +1,233 @@
+#include "scale/scale_model.hpp"
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <map>
+#include <memory>
+#include <sstream>
+
+#include "common/errors.hpp"
+#include "common/timer.hpp"
+#include "condensation/static_condensation.hpp"
+#include "integrators/trapezoid.hpp"
+#include "mesh/gmsh_reader.hpp"
+#include "mesh/mesh_checks.hpp"
+#include "model/fem_model.hpp"
+#include "simulation/run_loop.hpp"
+
+namespace roifem::bench {
+
+namespace {
+
+constexpr double dt = 0.05;             // the paper's step
+constexpr double wall_force_N = 0.01601;  // as scenarios/paper-setup1.toml
+
+double peak_rss_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // kB on Linux
+}
+
+struct Brain {
+  mesh::TetMesh mesh;
+  model::FemModel model;
+  double read_s = 0, assembly_s = 0;
+};
+
+std::unique_ptr<Brain> build_brain(const std::filesystem::path& mesh_file) {
+  auto brain = std::make_unique<Brain>();
+  Stopwatch clock;
+  brain->mesh = mesh::read_mesh(mesh_file);
+  mesh::check_mesh(brain->mesh);
+  brain->read_s = clock.seconds();
+  clock.restart();
+  brain->model = model::build_fem_model(brain->mesh, fem::material_preset("paper"), {"base"},
+                                        {{"opening_left", Vec3(-wall_force_N, 0, 0), model::Ramp{0.5}, {}},
+                                         {"opening_right", Vec3(wall_force_N, 0, 0), model::Ramp{0.5}, {}}});
+  brain->assembly_s = clock.seconds();
+  return brain;
+}
+
+/// Median and p99 of the per-tick time: load, step, displacement out.
+std::pair<double, double> time_steps(const model::SecondOrderSystem& system, integrators::Trapezoid& trapezoid,
+                                     const TimingOptions& timing, long& steps_timed) {
+  model::State state{0, Vector::Zero(system.size()), Vector::Zero(system.size())};
+  trapezoid.reset(system, state);
+  Vector out(system.size());
+  std::vector<double> seconds;
+  long target = timing.max_steps;
+  for (long k = 0; k < timing.warmup_steps + target; ++k) {
+    const Stopwatch clock;
+    trapezoid.step(state);
+    out = state.u;
+    const double s = clock.seconds();
+    if (k < timing.warmup_steps) {
+      target = std::clamp(static_cast<long>(timing.step_budget_s / s), std::min(10L, timing.max_steps), timing.max_steps);
+      continue;
+    }
+    seconds.push_back(s);
+  }
+  steps_timed = static_cast<long>(seconds.size());
+  return {simulation::median(seconds), simulation::percentile(seconds, 0.99)};
+}
+
+roi::RoiSpec nearest_target(Index count) {
+  return {.kind = roi::RoiSpec::Kind::nearest, .center = Vec3(0, 0, 40 * mm), .radius = 0, .count = count, .set = {}};
+}
+
+struct Condensed {
+  std::unique_ptr<condensation::StaticCondensation> condensation;
+  long interface_dofs = 0;
+};
+
+Condensed condense(const Brain& brain, Index roi_nodes) {
+  const auto& dofs = *brain.model.dofs;
+  const auto partition = roi::partition_dofs(brain.model.system.K, dofs, roi::select_roi_nodes(brain.mesh, dofs, nearest_target(roi_nodes)));
+  Condensed c;
+  c.interface_dofs = static_cast<long>(partition.interface.size());
+  c.condensation = std::make_unique<condensation::StaticCondensation>(brain.model.system, partition, dofs);
+  return c;
+}
+
+/// key=value lines.
+std::map<std::string, std::string> parse_fields(const std::string& text) {
+  std::map<std::string, std::string> fields;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);)
+    if (const auto eq = line.find('='); eq != std::string::npos) fields[line.substr(0, eq)] = line.substr(eq + 1);
+  return fields;
+}
+
+}  // namespace
+
+std::string ScaleMeasurement::serialize() const {
+  std::ostringstream out;
+  out.precision(17);
+  out << "nodes=" << nodes << "\ndofs=" << dofs << "\nroi_nodes=" << roi_nodes << "\nsystem_dofs=" << system_dofs
+      << "\ninterface_dofs=" << interface_dofs << "\nread_s=" << read_s << "\nassembly_s=" << assembly_s
+      << "\nfactorization_s=" << factorization_s << "\ncondensation_s=" << condensation_s
+      << "\nintegrator_setup_s=" << integrator_setup_s << "\nstep_median_s=" << step_median_s
+      << "\nstep_p99_s=" << step_p99_s << "\nsteps_timed=" << steps_timed << "\npeak_rss_mb=" << peak_rss_mb << "\n";
+  return out.str();
+}
+
+ScaleMeasurement ScaleMeasurement::parse(const std::string& text) {
+  auto f = parse_fields(text);
+  ScaleMeasurement m;
+  m.nodes = std::stol(f.at("nodes"));
+  m.dofs = std::stol(f.at("dofs"));
+  m.roi_nodes = std::stol(f.at("roi_nodes"));
+  m.system_dofs = std::stol(f.at("system_dofs"));
+  m.interface_dofs = std::stol(f.at("interface_dofs"));
+  m.read_s = std::stod(f.at("read_s"));
+  m.assembly_s = std::stod(f.at("assembly_s"));
+  m.factorization_s = std::stod(f.at("factorization_s"));
+  m.condensation_s = std::stod(f.at("condensation_s"));
+  m.integrator_setup_s = std::stod(f.at("integrator_setup_s"));
+  m.step_median_s = std::stod(f.at("step_median_s"));
+  m.step_p99_s = std::stod(f.at("step_p99_s"));
+  m.steps_timed = std::stol(f.at("steps_timed"));
+  m.peak_rss_mb = std::stod(f.at("peak_rss_mb"));
+  return m;
+}
+
+ScaleMeasurement measure_model(const std::filesystem::path& mesh_file, const ModelSpec& spec, const TimingOptions& timing) {
+  const auto brain = build_brain(mesh_file);
+  ScaleMeasurement m;
+  m.nodes = static_cast<long>(brain->mesh.num_nodes());
+  m.dofs = static_cast<long>(brain->model.system.size());
+  m.read_s = brain->read_s;
+  m.assembly_s = brain->assembly_s;
+  integrators::Trapezoid trapezoid(dt);
+  const model::SecondOrderSystem* system = &brain->model.system;
+  Condensed condensed;
+  if (spec.roi_nodes > 0) {
+    condensed = condense(*brain, spec.roi_nodes);
+    const auto& t = condensed.condensation->timings();
+    m.factorization_s = t.factorization_s;
+    m.condensation_s = t.interface_solve_s + t.assembly_s;
+    m.roi_nodes = static_cast<long>(condensed.condensation->partition().roi_nodes.size());
+    m.interface_dofs = condensed.interface_dofs;
+    system = &condensed.condensation->system();
+  }
+  m.system_dofs = static_cast<long>(system->size());
+  const auto [median, p99] = time_steps(*system, trapezoid, timing, m.steps_timed);
+  (spec.roi_nodes > 0 ? m.integrator_setup_s : m.factorization_s) = trapezoid.stats().factorization_s;
+  m.step_median_s = median;
+  m.step_p99_s = p99;
+  m.peak_rss_mb = peak_rss_mb();
+  return m;
+}
+
+std::string RateSearch::serialize() const {
+  std::ostringstream out;
+  out.precision(17);
+  out << "nodes=" << nodes << "\nroi_nodes=" << roi_nodes << "\nsystem_dofs=" << system_dofs
+      << "\ninterface_dofs=" << interface_dofs << "\nstep_median_s=" << step_median_s << "\nprobes=";
+  for (const auto& [count, s] : probes) out << count << ":" << s << ",";
+  out << "\n";
+  return out.str();
+}
+
+RateSearch RateSearch::parse(const std::string& text) {
+  auto f = parse_fields(text);
+  RateSearch r;
+  r.nodes = std::stol(f.at("nodes"));
+  r.roi_nodes = std::stol(f.at("roi_nodes"));
+  r.system_dofs = std::stol(f.at("system_dofs"));
+  r.interface_dofs = std::stol(f.at("interface_dofs"));
+  r.step_median_s = std::stod(f.at("step_median_s"));
+  std::istringstream probes(f.at("probes"));
+  for (std::string item; std::getline(probes, item, ',');)
+    if (const auto colon = item.find(':'); colon != std::string::npos)
+      r.probes.emplace_back(std::stol(item.substr(0, colon)), std::stod(item.substr(colon + 1)));
+  return r;
+}
+
+RateSearch largest_roi_at_rate(const std::filesystem::path& mesh_file, double max_step_s, const TimingOptions& timing,
+                               double resolution) {
+  const auto brain = build_brain(mesh_file);
+  RateSearch r;
+  r.nodes = static_cast<long>(brain->mesh.num_nodes());
+  const long free_nodes = static_cast<long>(brain->model.system.size() / 3);  // an upper bound on ROI sizes worth probing
+  auto probe = [&](long count) {
+    const Condensed c = condense(*brain, count);
+    integrators::Trapezoid trapezoid(dt);
+    long steps = 0;
+    const double median = time_steps(c.condensation->system(), trapezoid, timing, steps).first;
+    r.probes.emplace_back(count, median);
+    if (median <= max_step_s && count > r.roi_nodes) {
+      r.roi_nodes = count;
+      r.system_dofs = static_cast<long>(c.condensation->system().size());
+      r.interface_dofs = c.interface_dofs;
+      r.step_median_s = median;
+    }
+    return median <= max_step_s;
+  };
+  long lo = 0, hi = 0;  // largest count known to hold, smallest known to fail
+  for (long count = 1000;; count *= 2) {
+    count = std::min(count, free_nodes);
+    if (!probe(count)) {
+      hi = count;
+      break;
+    }
+    lo = count;
+    if (count == free_nodes) return r;
+  }
+  if (lo == 0)  // 1000 already fails: halve down
+    for (long count = hi / 2; count >= 10; count /= 2) {
+      if (probe(count)) {
+        lo = count;
+        break;
+      }
+      hi = count;
+    }
+  while (lo > 0 && static_cast<double>(hi - lo) > resolution * static_cast<double>(lo)) {
+    const long mid = (lo + hi) / 2;
+    (probe(mid) ? lo : hi) = mid;
+  }
+  return r;
+}
+
+}  // namespace roifem::bench

@@ -1,0 +1,60 @@
+#pragma once
+/// One measured model of a generated brain, built the way `roifem paper` builds its models (paper
+/// material, base fixed, the opening's walls pulled apart over 0.5 s, trapezoidal rule at
+/// dt = 0.05 s): the full dynamic model, or a condensed one whose ROI is the `roi_nodes` nodes
+/// nearest the surgical target (0, 0, 40) mm.
+///
+/// A step is everything a simulator needs each tick: the new load, the step, and the
+/// displacement out (copied to a buffer the renderer or haptic device would read).
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "common/types.hpp"
+
+namespace roifem::bench {
+
+struct ModelSpec {
+  std::string label;   ///< "full", "roi-300", "roi-3%", ...
+  Index roi_nodes = 0; ///< 0: the full model
+};
+
+struct TimingOptions {
+  long max_steps = 200;        ///< timed steps at most
+  double step_budget_s = 15;   ///< fewer steps when a model steps slowly (at least 10)
+  long warmup_steps = 3;
+};
+
+struct ScaleMeasurement {
+  long nodes = 0, dofs = 0, roi_nodes = 0, system_dofs = 0, interface_dofs = 0;
+  double read_s = 0;             ///< mesh file read and checked
+  double assembly_s = 0;         ///< dof map, K, M, C and loads
+  double factorization_s = 0;    ///< condensed: ordering + factor of K over s and I; full: K_eff's factor
+  double condensation_s = 0;     ///< S read off the factor, loads reduced, reduced system assembled
+  double integrator_setup_s = 0; ///< condensed: the factor of the condensed K_eff
+  double step_median_s = 0, step_p99_s = 0;
+  long steps_timed = 0;
+  double peak_rss_mb = 0;
+  double setup_s() const { return assembly_s + factorization_s + condensation_s + integrator_setup_s; }
+
+  std::string serialize() const;
+  static ScaleMeasurement parse(const std::string& text);
+};
+
+ScaleMeasurement measure_model(const std::filesystem::path& mesh_file, const ModelSpec& spec, const TimingOptions& timing);
+
+/// The largest ROI (nodes nearest the target) whose condensed step holds `max_step_s` (median),
+/// found by doubling and bisection to within `resolution` (relative); the model is built once.
+struct RateSearch {
+  long nodes = 0;
+  long roi_nodes = 0, system_dofs = 0, interface_dofs = 0;  ///< of the largest ROI that holds
+  double step_median_s = 0;
+  std::vector<std::pair<long, double>> probes;  ///< (ROI nodes, step median s), in probing order
+  std::string serialize() const;
+  static RateSearch parse(const std::string& text);
+};
+
+RateSearch largest_roi_at_rate(const std::filesystem::path& mesh_file, double max_step_s, const TimingOptions& timing,
+                               double resolution = 0.05);
+
+}  // namespace roifem::bench
