@@ -7,7 +7,7 @@
 ///   A_ll^-1 b = P^T L^-T [I 0]^T [I 0] L^-1 P [b; 0]   (the leading block of the factor solves A_ll).
 /// Static condensation needs exactly these two (A = K over the static dofs and the interface), and
 /// gets them from one factorization instead of one solve per interface column. The leading indices
-/// keep CHOLMOD's own fill-reducing ordering of A_ll (AMD or METIS, postordered); the trailing ones
+/// keep their places in CHOLMOD's own fill-reducing ordering of A (AMD or METIS); the trailing ones
 /// follow in the order given. Supernodal, with BLAS.
 #include <memory>
 #include <vector>
