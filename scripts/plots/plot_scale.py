@@ -30,14 +30,14 @@ def main(directory):
         order = sorted(range(len(nodes)), key=nodes.__getitem__)
         ax.loglog([nodes[i] for i in order], [step[i] for i in order], "o-", label=f"roifem {model}")
     for nodes, step, label in PAPER_1998:
-        ax.loglog([nodes], [step], "k^" if label == "full" else "kv", markersize=8, label=f"1998: {label}")
+        ax.loglog([nodes], [step], "k^" if label == "full" else "kv", markersize=9, markerfacecolor="none", label=f"1998: {label}")
     ax.axhline(0.05, color="tab:green", linestyle="--", label="20 Hz (real time at dt = 0.05 s)")
     ax.axhline(0.001, color="tab:red", linestyle="--", label="1 kHz (haptic)")
     ax.set_xlabel("brain nodes")
     ax.set_ylabel("time per step (s), median")
     ax.set_title("Trapezoidal step: full and condensed brains")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8, loc="upper left")
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0))
     save(fig, os.path.join(directory, "scale.png"))
 
 
