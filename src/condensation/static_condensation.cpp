@@ -160,25 +160,27 @@ StaticCondensation::StaticCondensation(const model::SecondOrderSystem& full, con
   if (!with_mass) reduced_.M_split = {};  // diagonal: the plain product is the fast one
 
   // f_r = [f_d - X^T f_s on the interface; Phi^T f_s] per load pattern; K_ss^-1 f_s kept for
-  // recovering u_s (less its modal part, which eta carries).
-  reduced_.load = full.load.mapped(n_r, [&](const Vector& p) {
+  // recovering u_s (less its modal part, which eta carries). One K_ss solve per pattern serves both.
+  reduced_.load = model::LoadHistory(n_r);
+  static_response_ = model::LoadHistory(static_cast<Index>(s.size()));
+  for (const auto& term : full.load.terms()) {
     Vector f = Vector::Zero(n_r);
-    f.head(n_d) = roi::gather(p, d);
+    f.head(n_d) = roi::gather(term.pattern, d);
+    Vector z;
     if (!s.empty()) {
-      const Vector p_s = roi::gather(p, s);
-      const Vector correction = K_sI_.transpose() * K_ss_factor_->solve_leading(p_s);  // X^T p_s
+      const Vector p_s = roi::gather(term.pattern, s);
+      z = K_ss_factor_->solve_leading(p_s);
+      const Vector correction = K_sI_.transpose() * z;  // X^T p_s
       for (Index a = 0; a < n_i; ++a) f[partition_.interface[static_cast<std::size_t>(a)]] -= correction[a];
-      if (k > 0) f.tail(k) = Phi_.transpose() * p_s;
+      if (k > 0) {
+        const Vector participation = Phi_.transpose() * p_s;
+        f.tail(k) = participation;
+        z.noalias() -= Phi_ * participation.cwiseQuotient(omega_.cwiseAbs2());
+      }
     }
-    return f;
-  });
-  static_response_ = full.load.mapped(static_cast<Index>(s.size()), [&](const Vector& p) {
-    if (s.empty()) return Vector();
-    const Vector p_s = roi::gather(p, s);
-    Vector z = K_ss_factor_->solve_leading(p_s);
-    if (k > 0) z.noalias() -= Phi_ * (Phi_.transpose() * p_s).cwiseQuotient(omega_.cwiseAbs2());
-    return z;
-  });
+    reduced_.load.add(std::move(f), term.ramp);
+    static_response_.add(std::move(z), term.ramp);
+  }
   timings_.assembly_s = clock.seconds();
 }
 
