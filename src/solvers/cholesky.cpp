@@ -46,15 +46,7 @@ struct Cholesky::Impl {
     if (y) cholmod_free_dense(&y, c);
     if (e) cholmod_free_dense(&e, c);
   }
-  void check(bool ok, const char* what) const {
-    if (!ok || common.status < CHOLMOD_OK)
-      throw SolverError(std::string("CHOLMOD ") + what + " failed (status " + std::to_string(common.status) +
-                        (common.status == CHOLMOD_OUT_OF_MEMORY ? ": out of memory"
-                         : common.status == CHOLMOD_TOO_LARGE
-                             ? ": the factor would need more than 2^31 entries, beyond CHOLMOD's 32-bit interface"
-                             : "") +
-                        ")");
-  }
+  void check(bool ok, const char* what) const { detail::check_status(common, ok, what); }
 };
 
 Cholesky::Cholesky(Kind kind) : impl_(std::make_unique<Impl>(kind)) {}

@@ -1,7 +1,11 @@
 #pragma once
-/// CHOLMOD headers over Eigen's arrays (no copy): internal to the solvers.
+/// CHOLMOD headers over Eigen's arrays (no copy), and its status turned into an exception:
+/// internal to the solvers.
 #include <cholmod.h>
 
+#include <string>
+
+#include "common/errors.hpp"
 #include "common/types.hpp"
 
 namespace roifem::solvers::detail {
@@ -35,6 +39,16 @@ inline cholmod_dense dense_view(const double* data, Index rows, Index cols) {
   d.xtype = CHOLMOD_REAL;
   d.dtype = CHOLMOD_DOUBLE;
   return d;
+}
+
+/// Throws SolverError when a CHOLMOD call failed (`ok` false or an error status), naming `what`.
+inline void check_status(const cholmod_common& common, bool ok, const char* what) {
+  if (ok && common.status >= CHOLMOD_OK) return;
+  const char* why = common.status == CHOLMOD_OUT_OF_MEMORY ? ": out of memory"
+                    : common.status == CHOLMOD_TOO_LARGE
+                        ? ": the factor would need more than 2^31 entries, beyond CHOLMOD's 32-bit interface"
+                        : "";
+  throw SolverError(std::string("CHOLMOD ") + what + " failed (status " + std::to_string(common.status) + why + ")");
 }
 
 }  // namespace roifem::solvers::detail

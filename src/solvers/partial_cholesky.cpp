@@ -35,15 +35,7 @@ struct PartialCholesky::Impl {
   Impl(const Impl&) = delete;
   Impl& operator=(const Impl&) = delete;
 
-  void check(bool ok, const char* what) const {
-    if (!ok || common.status < CHOLMOD_OK)
-      throw SolverError(std::string("CHOLMOD ") + what + " failed (status " + std::to_string(common.status) +
-                        (common.status == CHOLMOD_OUT_OF_MEMORY ? ": out of memory"
-                         : common.status == CHOLMOD_TOO_LARGE
-                             ? ": the factor would need more than 2^31 entries, beyond CHOLMOD's 32-bit interface"
-                             : "") +
-                        ")");
-  }
+  void check(bool ok, const char* what) const { detail::check_status(common, ok, what); }
 };
 
 PartialCholesky::PartialCholesky(const SparseMatrix& A, const std::vector<Index>& trailing)
