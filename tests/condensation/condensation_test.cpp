@@ -4,6 +4,7 @@
 
 #include "common/errors.hpp"
 #include "integrators/trapezoid.hpp"
+#include "mesh/box_mesh.hpp"
 #include "mesh/gmsh_reader.hpp"
 #include "model/fem_model.hpp"
 
@@ -73,6 +74,35 @@ TEST(StaticCondensation, CondensedStiffnessIsSymmetricPositiveDefinite) {
   EXPECT_LT((K - SparseMatrix(K.transpose())).norm(), 1e-12 * K.norm());
   solvers::Cholesky cholesky;
   EXPECT_NO_THROW(cholesky.compute(K));
+}
+
+TEST(StaticCondensation, StaticPieceHeldByNothingIsAModelErrorNamingANodeOfIt) {
+  // Two boxes that share no node: the first fixed on its face x0 and holding the ROI, the second
+  // held by nothing, so all static and free to move as a rigid body: K_ss is singular.
+  const mesh::TetMesh a = mesh::structured_box_mesh(2, 2, 2, 0.01, 0.01, 0.01);
+  mesh::TetMesh both = a;
+  const Index n_a = a.num_nodes();
+  both.nodes.conservativeResize(3, 2 * n_a);
+  both.nodes.rightCols(n_a) = a.nodes.colwise() + Vec3(0.05, 0, 0);
+  for (const auto& tet : a.tets)
+    both.tets.push_back({tet[0] + static_cast<int>(n_a), tet[1] + static_cast<int>(n_a), tet[2] + static_cast<int>(n_a),
+                         tet[3] + static_cast<int>(n_a)});
+  both.sets = {{"x0", a.sets.at("x0")}};
+  const model::FemModel model = model::build_fem_model(both, fem::material_preset("paper"), {"x0"}, {});
+  const roi::RoiSpec spec{.kind = roi::RoiSpec::Kind::nearest, .center = Vec3(0.01, 0.005, 0.005), .radius = 0, .count = 5, .set = {}};
+  const auto p = roi::partition_dofs(model.system.K, *model.dofs, roi::select_roi_nodes(both, *model.dofs, spec));
+  try {
+    const StaticCondensation condensed(model.system, p, *model.dofs);
+    FAIL() << "expected ModelError";
+  } catch (const ModelError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("static part K_ss is singular"), std::string::npos) << message;
+    // When a node is named, it is one of the loose box's (CHOLMOD's column mapped back to A's).
+    if (const auto at = message.find("at node "); at != std::string::npos) {
+      EXPECT_GE(std::stol(message.substr(at + 8)), n_a) << message;
+    }
+    std::printf("%s\n", message.c_str());
+  }
 }
 
 TEST(RoiSelection, EmptyRoiIsAModelErrorNamingTheRoi) {
