@@ -41,6 +41,14 @@ std::vector<int> select_roi_nodes(const mesh::TetMesh& mesh, const fem::DofMap& 
       if (spec.count > static_cast<Index>(free_nodes.size()))
         throw ModelError("ROI of " + std::to_string(spec.count) + " nodes asked, but the mesh has only " +
                          std::to_string(free_nodes.size()) + " free nodes");
+      // A target outside the mesh would silently pick boundary nodes (a length in metres read as
+      // millimetres does that): refuse a target outside the mesh's bounding box.
+      const Vec3 low = mesh.nodes.rowwise().minCoeff(), high = mesh.nodes.rowwise().maxCoeff();
+      if ((spec.center.array() < low.array()).any() || (spec.center.array() > high.array()).any())
+        throw ModelError("ROI target (" + spec.describe() + ") lies outside the mesh " + mesh.source + ", whose box is (" +
+                         std::to_string(low.x() / mm) + ", " + std::to_string(low.y() / mm) + ", " +
+                         std::to_string(low.z() / mm) + ") to (" + std::to_string(high.x() / mm) + ", " +
+                         std::to_string(high.y() / mm) + ", " + std::to_string(high.z() / mm) + ") mm");
       roi = free_nodes;
       auto distance = [&](int n) { return (mesh.node(n) - spec.center).squaredNorm(); };
       std::nth_element(roi.begin(), roi.begin() + spec.count - 1, roi.end(), [&](int a, int b) {

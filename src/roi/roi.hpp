@@ -23,7 +23,8 @@ struct RoiSpec {
 };
 
 /// The ROI's nodes (sorted), among nodes with at least one free dof. ModelError for an empty
-/// ROI (naming the spec) or a count larger than the free nodes.
+/// ROI (naming the spec), a count larger than the free nodes, or a `nearest` target outside the
+/// mesh's bounding box.
 std::vector<int> select_roi_nodes(const mesh::TetMesh& mesh, const fem::DofMap& dofs, const RoiSpec& spec);
 
 struct Partition {

@@ -117,6 +117,21 @@ TEST(RoiSelection, EmptyRoiIsAModelErrorNamingTheRoi) {
   }
 }
 
+TEST(RoiSelection, NearestTargetOutsideTheMeshIsAModelErrorNamingTargetAndBox) {
+  const PaperBrain brain;
+  roi::RoiSpec spec = nearest(100);
+  spec.center = Vec3(0, 0, 40);  // 40 m: millimetres mistaken for metres
+  try {
+    roi::select_roi_nodes(brain.mesh, *brain.model.dofs, spec);
+    FAIL() << "expected ModelError";
+  } catch (const ModelError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("100 nodes nearest (0, 0, 40000) mm"), std::string::npos) << message;
+    EXPECT_NE(message.find("lies outside the mesh"), std::string::npos) << message;
+    EXPECT_NE(message.find("brain-800.msh"), std::string::npos) << message;
+  }
+}
+
 TEST(RoiSelection, NearestPicksTheClosestFreeNodes) {
   const PaperBrain brain;
   const auto spec = nearest(50);
