@@ -7,6 +7,7 @@
 
 #include "common/errors.hpp"
 #include "scenario/scenario.hpp"
+#include "scenario/toml_text_guard.hpp"
 
 namespace roifem::scenario {
 
@@ -235,101 +236,11 @@ std::string toml_number(double v) {
   return out;
 }
 
-/// TOML 1.0 allows non-ASCII characters only inside strings and comments. toml++ 3.3 classifies a
-/// stray one (where a key or whitespace is expected) through tables that hit TOML_UNREACHABLE for
-/// many code points (U+00A1..U+0499 among them): undefined behaviour, found by fuzzing. Such a
-/// file is refused here, with the line and column, before toml++ sees it.
-void check_non_ascii_outside_strings(std::string_view text, const std::string& source) {
-  enum class In { code, comment, basic, literal, multi_basic, multi_literal } in = In::code;
-  long line = 1, column = 0;
-  // A quote opens a string only where TOML lets one begin (a key at the start of a line or after
-  // '.', a value after '=', '[', ',' or '{'); a stray quote elsewhere (`1111t"`) does not, so a
-  // non-ASCII character after it is still refused (fuzzing found that case).
-  char previous = '\n';  // the last non-blank character outside strings and comments
-  auto starts = [&](std::size_t i, std::string_view s) { return text.substr(i, s.size()) == s; };
-  const std::size_t first = starts(0, "\xEF\xBB\xBF") ? 3 : 0;  // a UTF-8 byte order mark is fine
-  for (std::size_t i = first; i < text.size(); ++i) {
-    const char c = text[i];
-    ++column;
-    if (c == '\n') {
-      ++line;
-      column = 0;
-      if (in == In::comment || in == In::basic || in == In::literal) in = In::code;  // single-line ones end here
-      if (in == In::code) previous = '\n';
-      continue;
-    }
-    const bool string_may_start = std::string_view("\n.=[,{").find(previous) != std::string_view::npos;
-    switch (in) {
-      case In::code:
-        if (static_cast<unsigned char>(c) >= 0x80)
-          throw InputError(source + ":" + std::to_string(line) + ":" + std::to_string(column) +
-                           ": non-ASCII character outside a string or comment (TOML allows them only there)");
-        if (c == '#') {
-          in = In::comment;
-        } else if (string_may_start && starts(i, R"(""")")) {
-          in = In::multi_basic;
-          i += 2;
-        } else if (string_may_start && starts(i, "'''")) {
-          in = In::multi_literal;
-          i += 2;
-        } else if (string_may_start && c == '"') {
-          in = In::basic;
-        } else if (string_may_start && c == '\'') {
-          in = In::literal;
-        }
-        if (c != ' ' && c != '\t' && c != '\r') previous = c;
-        break;
-      case In::comment: break;
-      case In::basic:
-        if (c == '\\')
-          ++i;
-        else if (c == '"')
-          in = In::code, previous = c;
-        break;
-      case In::literal:
-        if (c == '\'') in = In::code, previous = c;
-        break;
-      case In::multi_basic:
-        if (c == '\\') {
-          // A line-ending backslash trims the whitespace that follows, and toml++ classifies the
-          // first character after it like code: it must be ASCII too (fuzzing found this one).
-          std::size_t j = i + 1;
-          while (j < text.size() && (text[j] == ' ' || text[j] == '\t' || text[j] == '\r')) ++j;
-          if (j < text.size() && text[j] == '\n') {
-            while (j < text.size() && (text[j] == ' ' || text[j] == '\t' || text[j] == '\r' || text[j] == '\n')) {
-              if (text[j] == '\n') ++line, column = 0;
-              else ++column;
-              ++j;
-            }
-            if (j < text.size() && static_cast<unsigned char>(text[j]) >= 0x80)
-              throw InputError(source + ":" + std::to_string(line) + ":" + std::to_string(column + 1) +
-                               ": non-ASCII character right after a line-ending backslash (not supported)");
-            i = j - 1;
-          } else {
-            ++i;
-          }
-        } else if (starts(i, R"(""")")) {
-          in = In::code;
-          previous = '"';
-          i += 2;
-        }
-        break;
-      case In::multi_literal:
-        if (starts(i, "'''")) {
-          in = In::code;
-          previous = '\'';
-          i += 2;
-        }
-        break;
-    }
-  }
-}
-
 }  // namespace
 
 
 Scenario parse_scenario(std::string_view text, const std::string& source, const std::filesystem::path& directory) {
-  check_non_ascii_outside_strings(text, source);
+  check_toml_text(text, source);
   toml::table root;
   try {
     root = toml::parse(text, source);

@@ -113,6 +113,21 @@ TEST(ScenarioReader, NonAsciiOutsideStringsAndCommentsIsNamedAndInsideIsFine) {
       << error_of("mesh =1111t\"\xC2\xB9=1\n");
   EXPECT_NE(error_of("m = \"\"\"a\\\n  \xCF\x9A\"\"\"\n").find("right after a line-ending backslash"), std::string::npos)
       << error_of("m = \"\"\"a\\\n  \xCF\x9A\"\"\"\n");
+  // A non-ASCII character after a backslash (and blanks) in a string: fuzzing found `\` then U+03DA.
+  for (const std::string bad : {"m = \"\"\"hehif-\n\\\xCF\x9A(yo\"\"\"\n", "m = \"\"\"a\\  \xCF\x9A\"\"\"\n", "m = \"a\\\xC3\xA9\"\n"})
+    EXPECT_NE(error_of(bad).find("non-ASCII character after a backslash"), std::string::npos) << error_of(bad);
+  EXPECT_NE(error_of("m = \"a\\\xC3\xA9\"\n").find("s.toml:1:8:"), std::string::npos) << error_of("m = \"a\\\xC3\xA9\"\n");
+  // toml++ scans a bare value to its end (whitespace, ']', '}', ',' or '#') before refusing it:
+  // a quote inside one opens no string. Each of these reached undefined behaviour in toml++.
+  for (const std::string bare : {"1.", "+.", "1979-05-27.", "12:00.", "0x1.", "1{", "[1{", "tr."}) {
+    const std::string text = "x = " + bare + "\"\xC3\xA9\"\n";
+    const std::string column = std::to_string(6 + bare.size());
+    EXPECT_NE(error_of(text).find("s.toml:1:" + column + ": non-ASCII character outside"), std::string::npos) << error_of(text);
+  }
+  // Where TOML lets a key or a value begin, a quote opens a string, over lines in an array.
+  const std::string strings = "a.\"\xC3\xA9\" = 1\n[ \"\xC3\xA9\" ]\nx = [ # \xC3\xA9\n  1, \"\xC3\xA9\",\n  '\xC3\xA9',\n]\n"
+                              "y = { \"\xC3\xA9\" = '''\xC3\xA9''', b = [\"\xC3\xA9\"] }\n";
+  EXPECT_EQ(error_of(strings).find("non-ASCII"), std::string::npos) << error_of(strings);
   const std::string fine = "\xEF\xBB\xBF# caf\xC3\xA9 \xC2\xB5m\n" + replaced(valid, "brain.msh", "caf\xC3\xA9/brain.msh");
   EXPECT_EQ(parse_scenario(fine, "s.toml", "/data").mesh, std::filesystem::path("/data/caf\xC3\xA9/brain.msh"));
 }
