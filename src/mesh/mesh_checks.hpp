@@ -13,7 +13,8 @@ struct MeshStatistics {
 };
 
 /// Throws InputError for no tetrahedra, a non-finite coordinate, a tetrahedron naming a node that
-/// does not exist, or an inverted or degenerate (quality < 1e-6) tetrahedron. mesh_statistics()
+/// does not exist, an inverted or degenerate (quality < 1e-6) tetrahedron, or two nodes at the same
+/// point (within 1e-10 of the bounding box's diagonal). mesh_statistics()
 /// expects a mesh that passed.
 void check_mesh(const TetMesh& mesh);
 MeshStatistics mesh_statistics(const TetMesh& mesh);

@@ -8,8 +8,9 @@
 
 namespace roifem::mesh {
 
-/// Throws InputError when a $Nodes or $Elements header of an MSH 2.2 or 4.1 file (ASCII, or the
-/// ASCII header lines of MSH 2.2 binary) claims more entries than the file has bytes.
+/// Throws InputError when a $Nodes or $Elements header of an MSH 2.2 or 4.1 file (ASCII, the
+/// ASCII header lines of MSH 2.2 binary, or the 8-byte little-endian header of MSH 4.1 binary)
+/// claims more entries than the file has bytes.
 void check_msh_header_counts(const std::filesystem::path& file);
 
 }  // namespace roifem::mesh

@@ -125,6 +125,30 @@ TEST(MeshChecks, CoincidentNodesAndMissingNodesAreNamed) {
   EXPECT_NE(msg.find("volume overflows"), std::string::npos) << msg;
 }
 
+TEST(MeshChecks, CoincidentNodesAreASeamNamedByBothNodes) {
+  // Two tetrahedra on either side of the face (1, 2, 3), the second given its own copies of the
+  // face's nodes (tags 5, 6, 7): a seam. Sharing the nodes instead passes.
+  TempDir dir;
+  const std::string nodes = "1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n5 0 0 0\n6 1 0 0\n7 0 1 0\n8 0 0 -1\n";
+  auto two_tets = [&](const std::string& second) {
+    return "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n8\n" + nodes +
+           "$EndNodes\n$Elements\n2\n1 4 2 1 1 1 2 3 4\n2 4 2 1 1 " + second + "\n$EndElements\n";
+  };
+  const TetMesh seam = read_mesh(write_file(dir / "seam.msh", two_tets("5 7 6 8")));
+  const std::string msg = error_of([&] { check_mesh(seam); });
+  EXPECT_NE(msg.find("seam.msh: nodes 0 and 4 (0-based) coincide at (0, 0, 0) mm"), std::string::npos) << msg;
+  const TetMesh shared = read_mesh(write_file(dir / "shared.msh", two_tets("1 3 2 8")));
+  EXPECT_NO_THROW(check_mesh(shared));
+  // Near but not within 1e-10 of the diagonal: two distinct points.
+  TetMesh close = shared;
+  close.nodes.conservativeResize(3, close.num_nodes() + 1);
+  const double diagonal = (shared.nodes.rowwise().maxCoeff() - shared.nodes.rowwise().minCoeff()).norm();
+  close.nodes.col(close.num_nodes() - 1) = close.nodes.col(0) + Vec3(1e-9 * diagonal, 0, 0);
+  EXPECT_NO_THROW(check_mesh(close));
+  close.nodes.col(close.num_nodes() - 1) = close.nodes.col(0) + Vec3(1e-11 * diagonal, 0, 0);
+  EXPECT_NE(error_of([&] { check_mesh(close); }).find("coincide"), std::string::npos);
+}
+
 TEST(MeshSets, MissingNamedSetListsTheExistingOnes) {
   const TetMesh mesh = read_mesh(std::string(ROIFEM_MESH_DIR) + "/brain-800.msh");
   const std::string msg = error_of([&] { mesh.set("skull"); });
