@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <fstream>
+#include <vector>
 #include <system_error>
 
 #include "common/errors.hpp"
@@ -12,6 +13,7 @@ namespace roifem {
 namespace fs = std::filesystem;
 
 AtomicFile::AtomicFile(fs::path final_path) : final_(std::move(final_path)) {
+  if (final_.has_parent_path()) ensure_writable_directory(final_.parent_path());
   // Same directory (rename is atomic only within a file system), same extension (Gmsh, HDF5
   // and XDMF readers look at it), a process id so two runs never share a temporary.
   temporary_ = final_;
@@ -41,6 +43,27 @@ void ensure_writable_directory(const fs::path& directory) {
   if (ec) throw InputError(directory.string() + ": cannot create output directory: " + ec.message());
   if (::access(directory.c_str(), W_OK) != 0)
     throw InputError(directory.string() + ": output directory is not writable");
+}
+
+void check_output_directory(const fs::path& directory) {
+  std::error_code ec;
+  if (fs::exists(directory, ec)) {
+    if (!fs::is_directory(directory, ec))
+      throw InputError(directory.string() + ": cannot create output directory: it is a file");
+    if (::access(directory.c_str(), W_OK | X_OK) != 0)
+      throw InputError(directory.string() + ": output directory is not writable");
+    return;
+  }
+  // Create it as a probe (permissions alone do not tell: root may write anywhere but /proc), then
+  // remove what was created, up to the nearest ancestor that existed.
+  fs::path existing = fs::absolute(directory, ec);
+  std::vector<fs::path> created;
+  while (!existing.empty() && !fs::exists(existing, ec) && existing != existing.parent_path()) {
+    created.push_back(existing);
+    existing = existing.parent_path();
+  }
+  ensure_writable_directory(directory);
+  for (const fs::path& p : created) fs::remove(p, ec);
 }
 
 }  // namespace roifem

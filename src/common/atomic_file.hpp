@@ -7,7 +7,8 @@ namespace roifem {
 
 class AtomicFile {
  public:
-  /// `suffix` is kept at the end of the temporary name (some writers pick the format by extension).
+  /// Creates the final path's directory if it is missing (InputError if it cannot). The
+  /// temporary name keeps the final extension (some writers pick the format by it).
   explicit AtomicFile(std::filesystem::path final_path);
   AtomicFile(const AtomicFile&) = delete;
   AtomicFile& operator=(const AtomicFile&) = delete;
@@ -29,5 +30,11 @@ class AtomicFile {
 
 /// Throws InputError naming `directory` if it cannot be created or written.
 void ensure_writable_directory(const std::filesystem::path& directory);
+
+/// Fails early and leaves nothing behind: throws InputError naming `directory` unless it is a
+/// writable directory or could be created (it is created and removed again to find out).
+/// Commands call it before any work; the directory itself appears with the first AtomicFile, so
+/// a run refused on its input leaves no empty directory behind.
+void check_output_directory(const std::filesystem::path& directory);
 
 }  // namespace roifem

@@ -101,7 +101,7 @@ bool runs_stably(const std::string& name, double dt, const model::SecondOrderSys
 }  // namespace
 
 CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o, std::ostream& log) {
-  ensure_writable_directory(o.out);
+  check_output_directory(o.out);
   const auto built = simulation::build_scenario_model(sc);
   const model::SecondOrderSystem& system = built->system();
   const double t_end = o.t_end > 0 ? std::min(o.t_end, sc.dt * static_cast<double>(sc.steps)) : sc.dt * static_cast<double>(sc.steps);

@@ -139,7 +139,7 @@ PaperResults run_paper_experiment(const PaperOptions& o, std::ostream& log) {
   if (!(o.opening_mm > 0)) throw InputError("paper: --opening-mm must be positive");
   if (o.reductions.empty() || o.reductions.front().kind != condensation::ReductionKind::static_condensation)
     throw InputError("paper: the first reduction must be static condensation (the paper's)");
-  ensure_writable_directory(o.out);
+  check_output_directory(o.out);
   PaperResults results;
 
   const mesh::TetMesh mesh = mesh::read_mesh(o.mesh);

@@ -118,7 +118,7 @@ RoiSizeResults run_roi_size(const RoiSizeOptions& o, std::ostream& log) {
   if (!sc.roi || (sc.roi->kind != roi::RoiSpec::Kind::ball && sc.roi->kind != roi::RoiSpec::Kind::nearest))
     throw InputError(sc.file.string() + ": roi-size needs an ROI target: [roi] kind = \"nearest\" (target_mm) or \"ball\" (center_mm)");
   const Vec3 target = sc.roi->center;
-  if (!o.out.empty()) ensure_writable_directory(o.out);
+  if (!o.out.empty()) check_output_directory(o.out);
   scenario::Scenario full_scenario = sc;
   full_scenario.roi.reset();
   const auto full = simulation::build_scenario_model(full_scenario);

@@ -43,7 +43,7 @@ class FieldMapper {
 }  // namespace
 
 ScenarioRunSummary run_scenario(const scenario::Scenario& sc, const std::filesystem::path& out, std::ostream& log) {
-  ensure_writable_directory(out);
+  check_output_directory(out);
   auto integrator = integrators::make_integrator(sc.integrator, sc.dt);  // an unknown name fails before any work
   ScenarioRunSummary summary;
   Stopwatch setup_clock;
