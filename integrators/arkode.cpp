@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "common/errors.hpp"
+#include "common/number_text.hpp"
 #include "integrators/block_matrix.hpp"
 #include "model/mass_inverse.hpp"
 
@@ -31,7 +32,7 @@ Arkode::~Arkode() {
 
 void Arkode::check(int flag, const char* call, double t) const {
   if (flag < 0)
-    throw SolverError(method_.name + ": " + call + " failed at t = " + std::to_string(t) + " s: " +
+    throw SolverError(method_.name + ": " + call + " failed at t = " + number_text(t) + " s: " +
                       ARKStepGetReturnFlagName(flag));
 }
 
@@ -194,15 +195,15 @@ void Arkode::advance_to(double t_out, model::State& state) {
   // At a fixed step the error weights are 1 (see reset), so ARKODE's "too much accuracy" test
   // (eps ||y|| > 1) is what a diverging solution trips first: report it as the divergence it is.
   if (flag == ARK_TOO_MUCH_ACC && !control_.adaptive)
-    throw SolverError(method_.name + ": the solution diverged (|y| > 1/eps) by t = " + std::to_string(t_reached) + " s, step " +
+    throw SolverError(method_.name + ": the solution diverged (|y| > 1/eps) by t = " + number_text(t_reached) + " s, step " +
                       std::to_string(steps) + "; the step is beyond the method's stability limit");
   if (flag < 0)
-    throw SolverError(method_.name + ": failed at t = " + std::to_string(t_reached) + " s (step " + std::to_string(steps) +
+    throw SolverError(method_.name + ": failed at t = " + number_text(t_reached) + " s (step " + std::to_string(steps) +
                       "): " + ARKStepGetReturnFlagName(flag) + last_error_.detail());
   const Index n = system_->size();
   const auto y = sundials::view(y_.get());
   if (!y.allFinite())
-    throw SolverError(method_.name + ": the solution diverged (non-finite values) by t = " + std::to_string(t_reached) +
+    throw SolverError(method_.name + ": the solution diverged (non-finite values) by t = " + number_text(t_reached) +
                       " s, step " + std::to_string(steps) + "; the step is beyond the method's stability limit");
   state.t = t_reached;
   state.u = y.head(n);

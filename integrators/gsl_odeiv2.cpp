@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "common/errors.hpp"
+#include "common/number_text.hpp"
 
 namespace roifem::integrators {
 
@@ -88,14 +89,14 @@ void GslOdeiv2::advance_to(double t_out, model::State& state) {
     const double steps = (t_out - t_) / control_.dt;
     const auto n = static_cast<unsigned long>(std::lround(steps));
     if (std::abs(steps - static_cast<double>(n)) > 1e-9 * std::max(1.0, steps))
-      throw InputError(name_ + ": t_out = " + std::to_string(t_out) + " s is not on the grid of dt");
+      throw InputError(name_ + ": t_out = " + number_text(t_out) + " s is not on the grid of dt");
     if (n > 0) status = gsl_odeiv2_driver_apply_fixed_step(driver_, &t_, control_.dt, n, y_.data());
   }
   if (pending_) std::rethrow_exception(std::exchange(pending_, nullptr));
   if (status != GSL_SUCCESS)
-    throw SolverError(name_ + ": failed at t = " + std::to_string(t_) + " s: " + gsl_strerror(status));
+    throw SolverError(name_ + ": failed at t = " + number_text(t_) + " s: " + gsl_strerror(status));
   if (!y_.allFinite())
-    throw SolverError(name_ + ": the solution diverged (non-finite values) by t = " + std::to_string(t_) +
+    throw SolverError(name_ + ": the solution diverged (non-finite values) by t = " + number_text(t_) +
                       " s; the step is beyond the method's stability limit");
   stats_.steps = static_cast<long>(driver_->e->count);  // cumulative; the driver's n is per call
   stats_.failed_steps = static_cast<long>(driver_->e->failed_steps);

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "common/errors.hpp"
+#include "common/number_text.hpp"
 #include "integrators/block_matrix.hpp"
 #include "integrators/sundials/ida_support.hpp"
 #include "solvers/cholesky.hpp"
@@ -102,11 +103,11 @@ void Ida::advance_to(double t_out, model::State& state) {
   long steps = 0;
   IDAGetNumSteps(memory_, &steps);
   if (flag < 0)
-    throw SolverError(name_ + ": failed at t = " + std::to_string(t_reached) + " s (step " + std::to_string(steps) +
+    throw SolverError(name_ + ": failed at t = " + number_text(t_reached) + " s (step " + std::to_string(steps) +
                       "): " + IDAGetReturnFlagName(flag) + last_error_.detail());
   const Index n = system_->size();
   const auto y = sundials::view(y_.get());
-  if (!y.allFinite()) throw SolverError(name_ + ": non-finite solution at t = " + std::to_string(t_reached) + " s");
+  if (!y.allFinite()) throw SolverError(name_ + ": non-finite solution at t = " + number_text(t_reached) + " s");
   state.t = t_reached;
   state.u = y.head(n);
   state.v = y.tail(n);

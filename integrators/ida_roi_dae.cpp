@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "common/errors.hpp"
+#include "common/number_text.hpp"
 #include "integrators/block_matrix.hpp"
 #include "integrators/sundials/ida_support.hpp"
 
@@ -115,7 +116,7 @@ void IdaRoiDae::advance_to(double t_out, Vector& u_d, Vector& u_s) {
   const int flag = IDASolve(memory_, t_out, &t_, y_.get(), yp_.get(), IDA_NORMAL);
   if (pending_) std::rethrow_exception(std::exchange(pending_, nullptr));
   if (flag < 0)
-    throw SolverError("IDA ROI DAE: failed at t = " + std::to_string(t_) + " s: " + IDAGetReturnFlagName(flag) + last_error_.detail());
+    throw SolverError("IDA ROI DAE: failed at t = " + number_text(t_) + " s: " + IDAGetReturnFlagName(flag) + last_error_.detail());
   const Index nd = K_dd_.rows(), ns = K_ss_.rows();
   const auto y = sundials::view(y_.get());
   u_d = y.head(nd);

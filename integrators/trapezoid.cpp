@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "common/errors.hpp"
+#include "common/number_text.hpp"
 #include "common/timer.hpp"
 
 namespace roifem::integrators {
@@ -76,7 +77,7 @@ void Trapezoid::advance_to(double t_out, model::State& state) {
   const double steps = (t_out - t0_) / dt_;
   const long target = std::lround(steps);
   if (std::abs(steps - static_cast<double>(target)) > 1e-9 * std::max(1.0, std::abs(steps)) || target < k_)
-    throw InputError("trapezoid: t_out = " + std::to_string(t_out) + " s is not a later point of the grid t0 + k dt");
+    throw InputError("trapezoid: t_out = " + number_text(t_out) + " s is not a later point of the grid t0 + k dt");
   while (k_ < target) step(state);
 }
 

@@ -178,6 +178,24 @@ TEST(Ida, MeetsItsToleranceAgainstTheModalSolution) {
   }
 }
 
+TEST(Arkode, LibraryFailureStopsNamingMethodTimeStepAndTheFlag) {
+  // A tolerance far below the unit roundoff: the error test fails at every step size down to hmin.
+  const Cantilever c(1e-3, 0.25);
+  auto method = make_integrator("arkode-erk5", StepControl{.dt = 1e-4, .adaptive = true, .rtol = 1e-30, .atol = 1e-40});
+  model::State s = c.rest();
+  method->reset(c.sys(), s);
+  try {
+    method->advance_to(0.5, s);
+    FAIL() << "expected SolverError";
+  } catch (const SolverError& e) {
+    const std::string msg = e.what();
+    std::printf("%s\n", msg.c_str());
+    EXPECT_NE(msg.find("arkode-erk5: failed at t = "), std::string::npos) << msg;
+    EXPECT_NE(msg.find("(step "), std::string::npos) << msg;
+    EXPECT_NE(msg.find("ARK_ERR_FAILURE (ARKODE: At t = "), std::string::npos) << msg;
+  }
+}
+
 TEST(Arkode, AdaptiveModeMeetsItsToleranceAgainstTheModalSolution) {
   const Cantilever c(1e-3, 0.25);
   const Vector exact = model::ModalReference(c.sys(), c.rest()).displacement(0.5);
