@@ -9,6 +9,7 @@
 
 #include "common/errors.hpp"
 #include "mesh/gmsh_session.hpp"
+#include "mesh/msh2_diagnosis.hpp"
 #include "mesh/msh_header_check.hpp"
 
 namespace roifem::mesh {
@@ -130,6 +131,10 @@ TetMesh read_mesh(const std::filesystem::path& file, double length_unit) {
   GmshSession session;
   try {
     gmsh_call(source, [&] { gmsh::open(source); });
+  } catch (const InputError&) {
+    const std::string where = diagnose_msh2_ascii(file);  // Gmsh names no line for MSH 2
+    if (where.empty()) throw;
+    throw InputError(source + ":" + where);
   } catch (const std::bad_alloc&) {
     throw InputError(source + ": Gmsh ran out of memory reading it (a corrupt count in a binary header?)");
   }

@@ -5,6 +5,7 @@
 #include "mesh/brain_mesh.hpp"
 #include "mesh/gmsh_reader.hpp"
 #include "mesh/mesh_checks.hpp"
+#include "mesh/msh2_diagnosis.hpp"
 #include "test_support.hpp"
 
 namespace roifem::mesh {
@@ -68,6 +69,26 @@ TEST(MeshReader, TruncatedFileIsNamed) {
   const auto file = write_file(dir / "truncated.msh", full.substr(0, full.find("3 0 1 0")));
   const std::string msg = error_of([&] { read_mesh(file); });
   EXPECT_NE(msg.find("truncated.msh"), std::string::npos) << msg;
+}
+
+TEST(MeshReader, TruncatedOrMalformedMsh2NamesTheLine) {
+  // Gmsh says only "Error loading" for these; the line at fault is found after it fails.
+  TempDir dir;
+  const std::string full = test::single_tet_msh(test::unit_tet_nodes, "1 2 3 4");
+  auto message = [&](const std::string& name, const std::string& text) {
+    return error_of([&] { read_mesh(write_file(dir / name, text)); });
+  };
+  std::string msg = message("cut.msh", full.substr(0, full.find("3 0 1 0")));
+  EXPECT_NE(msg.find("cut.msh:7: the file ends inside $Nodes after 2 of 4 nodes (truncated?)"), std::string::npos) << msg;
+  std::string bad = full;
+  bad.replace(bad.find("3 0 1 0"), 7, "3 0 one 0");
+  msg = message("node.msh", bad);
+  EXPECT_NE(msg.find("node.msh:8: node 3 of 4: expected 'tag x y z', got '3 0 one 0'"), std::string::npos) << msg;
+  bad = full;
+  bad.replace(bad.find("1 4 2 1 1 1 2 3 4"), 17, "1 4 2 1 1 1 2 3 x");
+  msg = message("element.msh", bad);
+  EXPECT_NE(msg.find("element.msh:13: element 1 of 1: expected"), std::string::npos) << msg;
+  EXPECT_EQ(diagnose_msh2_ascii(write_file(dir / "good.msh", full)), "");
 }
 
 TEST(MeshReader, TruncatedShippedBrainIsNamed) {
