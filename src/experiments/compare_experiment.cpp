@@ -8,6 +8,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "common/number_text.hpp"
 #include "common/timer.hpp"
 #include "integrators/factory.hpp"
 #include "integrators/stability.hpp"
@@ -106,7 +107,7 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
   const model::SecondOrderSystem& system = built->system();
   const double t_end = o.t_end > 0 ? std::min(o.t_end, sc.dt * static_cast<double>(sc.steps)) : sc.dt * static_cast<double>(sc.steps);
   const long outputs = std::lround(t_end / sc.dt);
-  if (outputs < 1) throw InputError("compare: --t-end must cover at least one output step of " + std::to_string(sc.dt) + " s");
+  if (outputs < 1) throw InputError("compare: --t-end must cover at least one output step of " + number_text(sc.dt) + " s");
   std::vector<std::string> names = o.integrators.empty() ? integrators::integrator_names() : o.integrators;
   for (const auto& name : names) (void)integrators::integrator_order(name);  // unknown names fail before any work
 

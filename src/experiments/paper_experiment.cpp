@@ -8,6 +8,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "common/number_text.hpp"
 #include "common/timer.hpp"
 #include "fem/static_solve.hpp"
 #include "condensation/static_condensation.hpp"
@@ -133,7 +134,7 @@ void print_table2(const PaperResults& r, std::ostream& log) {
 }  // namespace
 
 PaperResults run_paper_experiment(const PaperOptions& o, std::ostream& log) {
-  if (!(o.dt > 0)) throw InputError("paper: dt = " + std::to_string(o.dt) + " s must be positive");
+  if (!(o.dt > 0)) throw InputError("paper: dt = " + number_text(o.dt) + " s must be positive");
   if (o.steps <= 0) throw InputError("paper: steps must be positive");
   if (o.timing_steps < 1) throw InputError("paper: timing steps must be positive");
   if (!(o.opening_mm > 0)) throw InputError("paper: --opening-mm must be positive");

@@ -6,6 +6,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "common/number_text.hpp"
 #include "common/timer.hpp"
 #include "condensation/static_condensation.hpp"
 #include "experiments/roi_error.hpp"
@@ -112,7 +113,7 @@ class Search {
 
 RoiSizeResults run_roi_size(const RoiSizeOptions& o, std::ostream& log) {
   if (!(o.max_error_mm > 0) || !std::isfinite(o.max_error_mm))
-    throw InputError("roi-size: --max-error-mm must be positive (got " + std::to_string(o.max_error_mm) + ")");
+    throw InputError("roi-size: --max-error-mm must be positive (got " + number_text(o.max_error_mm) + ")");
   if (o.reductions.empty()) throw InputError("roi-size: no reduction to size");
   scenario::Scenario sc = scenario::read_scenario(o.scenario);
   if (!sc.roi || (sc.roi->kind != roi::RoiSpec::Kind::ball && sc.roi->kind != roi::RoiSpec::Kind::nearest))

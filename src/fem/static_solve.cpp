@@ -1,6 +1,7 @@
 #include "fem/static_solve.hpp"
 
 #include "common/errors.hpp"
+#include "common/number_text.hpp"
 
 namespace roifem::fem {
 
@@ -17,7 +18,7 @@ void factorize_stiffness(solvers::Cholesky& solver, const SparseMatrix& K, const
                        std::to_string(full / 3) + ", component " + "xyz"[full % 3] +
                        " (is that part of the mesh held by any fixed node?)");
     }
-    throw ModelError(what + " is singular (reciprocal condition " + std::to_string(e.rcond) +
+    throw ModelError(what + " is singular (reciprocal condition " + number_text(e.rcond) +
                      "): a part of the mesh is free to move as a rigid body; fix nodes on every piece");
   }
 }

@@ -7,6 +7,7 @@
 #include <unordered_map>
 
 #include "common/errors.hpp"
+#include "common/number_text.hpp"
 
 namespace roifem::mesh {
 
@@ -78,7 +79,7 @@ void check_mesh(const TetMesh& mesh) {
     if (q < 0) throw InputError(describe_tet(mesh, e) + " is inverted (negative volume)");
     // !(q >= ...) also catches NaN: a tetrahedron whose nodes coincide (found by fuzzing).
     if (!(q >= degenerate_quality))
-      throw InputError(describe_tet(mesh, e) + " has zero volume (shape quality " + std::to_string(q) + ")");
+      throw InputError(describe_tet(mesh, e) + " has zero volume (shape quality " + number_text(q) + ")");
   }
   check_no_coincident_nodes(mesh);  // after the volumes: every coordinate is finite and bounded
 }

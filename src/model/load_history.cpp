@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "common/errors.hpp"
+#include "common/number_text.hpp"
 
 namespace roifem::model {
 
@@ -13,7 +14,7 @@ double Ramp::value(double t) const {
 
 void LoadHistory::add(Vector pattern, Ramp ramp) {
   if (pattern.size() != size_) throw Error("internal: load pattern of the wrong size");
-  if (!(ramp.duration >= 0)) throw InputError("load ramp duration " + std::to_string(ramp.duration) + " s must be >= 0");
+  if (!(ramp.duration >= 0)) throw InputError("load ramp duration " + number_text(ramp.duration) + " s must be >= 0");
   terms_.push_back({std::move(pattern), ramp});
 }
 

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "common/errors.hpp"
+#include "common/number_text.hpp"
 
 namespace roifem::roi {
 
@@ -32,7 +33,7 @@ std::vector<int> select_roi_nodes(const mesh::TetMesh& mesh, const fem::DofMap& 
   switch (spec.kind) {
     case RoiSpec::Kind::all: roi = free_nodes; break;
     case RoiSpec::Kind::ball:
-      if (!(spec.radius > 0)) throw InputError("ROI ball radius " + std::to_string(spec.radius / mm) + " mm must be positive");
+      if (!(spec.radius > 0)) throw InputError("ROI ball radius " + number_text(spec.radius / mm) + " mm must be positive");
       for (int n : free_nodes)
         if ((mesh.node(n) - spec.center).norm() <= spec.radius) roi.push_back(n);
       break;
@@ -46,9 +47,9 @@ std::vector<int> select_roi_nodes(const mesh::TetMesh& mesh, const fem::DofMap& 
       const Vec3 low = mesh.nodes.rowwise().minCoeff(), high = mesh.nodes.rowwise().maxCoeff();
       if ((spec.center.array() < low.array()).any() || (spec.center.array() > high.array()).any())
         throw ModelError("ROI target (" + spec.describe() + ") lies outside the mesh " + mesh.source + ", whose box is (" +
-                         std::to_string(low.x() / mm) + ", " + std::to_string(low.y() / mm) + ", " +
-                         std::to_string(low.z() / mm) + ") to (" + std::to_string(high.x() / mm) + ", " +
-                         std::to_string(high.y() / mm) + ", " + std::to_string(high.z() / mm) + ") mm");
+                         number_text(low.x() / mm) + ", " + number_text(low.y() / mm) + ", " +
+                         number_text(low.z() / mm) + ") to (" + number_text(high.x() / mm) + ", " +
+                         number_text(high.y() / mm) + ", " + number_text(high.z() / mm) + ") mm");
       roi = free_nodes;
       auto distance = [&](int n) { return (mesh.node(n) - spec.center).squaredNorm(); };
       std::nth_element(roi.begin(), roi.begin() + spec.count - 1, roi.end(), [&](int a, int b) {

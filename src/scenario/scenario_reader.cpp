@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "common/errors.hpp"
+#include "common/number_text.hpp"
 #include "scenario/scenario.hpp"
 #include "scenario/toml_text_guard.hpp"
 
@@ -299,7 +300,7 @@ Scenario parse_scenario(std::string_view text, const std::string& source, const 
     s.dt = time.number("dt_s", s.dt);
     s.steps = time.integer("steps").value_or(s.steps);
     time.close();
-    if (!(s.dt > 0)) throw InputError(source + ": key 'time.dt_s' must be positive (got " + std::to_string(s.dt) + ")");
+    if (!(s.dt > 0)) throw InputError(source + ": key 'time.dt_s' must be positive (got " + number_text(s.dt) + ")");
     if (s.steps <= 0) throw InputError(source + ": key 'time.steps' must be positive (got " + std::to_string(s.steps) + ")");
   }
   if (const toml::table* t = top.subtable("output")) {

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "common/errors.hpp"
+#include "common/number_text.hpp"
 #include "common/timer.hpp"
 #include "simulation/interrupt.hpp"
 #include "simulation/progress.hpp"
@@ -13,7 +14,7 @@ namespace roifem::simulation {
 
 RunSummary run(integrators::Integrator& integrator, model::State& state, double dt, long steps,
                const std::vector<StepObserver>& observers, const std::string& progress_label) {
-  if (!(dt > 0)) throw InputError("time step dt = " + std::to_string(dt) + " s must be positive");
+  if (!(dt > 0)) throw InputError("time step dt = " + number_text(dt) + " s must be positive");
   if (steps <= 0) throw InputError("number of steps " + std::to_string(steps) + " must be positive");
   RunSummary summary;
   summary.step_seconds.reserve(static_cast<std::size_t>(steps));

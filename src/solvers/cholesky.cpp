@@ -4,6 +4,7 @@
 #include <string>
 
 #include "common/errors.hpp"
+#include "common/number_text.hpp"
 #include "solvers/cholmod_views.hpp"
 
 namespace roifem::solvers {
@@ -15,7 +16,7 @@ NotPositiveDefinite::NotPositiveDefinite(Index col, double rc)
     : std::runtime_error(col >= 0 ? "matrix is not positive definite (factorization stopped at column " +
                                         std::to_string(col) + ")"
                                   : "matrix is singular to working precision (reciprocal condition " +
-                                        std::to_string(rc) + ")"),
+                                        number_text(rc) + ")"),
       column(col),
       rcond(rc) {}
 
