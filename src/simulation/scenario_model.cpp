@@ -1,5 +1,6 @@
 #include "simulation/scenario_model.hpp"
 
+#include "common/errors.hpp"
 #include "mesh/gmsh_reader.hpp"
 #include "mesh/mesh_checks.hpp"
 
@@ -13,8 +14,12 @@ std::unique_ptr<ScenarioModel> build_scenario_model(const scenario::Scenario& sc
   const fem::DofMap& dofs = *m->full.dofs;
   if (sc.roi) {
     m->roi_nodes = roi::select_roi_nodes(m->mesh, dofs, *sc.roi);
-    m->condensation = std::make_unique<condensation::StaticCondensation>(
-        m->full.system, roi::partition_dofs(m->full.system.K, dofs, m->roi_nodes), dofs, sc.reduction);
+    try {
+      m->condensation = std::make_unique<condensation::StaticCondensation>(
+          m->full.system, roi::partition_dofs(m->full.system.K, dofs, m->roi_nodes), dofs, sc.reduction);
+    } catch (const ModelError& e) {  // a singular static part: name the mesh whose nodes it names
+      throw ModelError(m->mesh.source + ": " + e.what());
+    }
   }
   return m;
 }
