@@ -33,7 +33,7 @@ Arkode::~Arkode() {
 void Arkode::check(int flag, const char* call, double t) const {
   if (flag < 0)
     throw SolverError(method_.name + ": " + call + " failed at t = " + number_text(t) + " s: " +
-                      ARKStepGetReturnFlagName(flag));
+                      sundials::flag_name(ARKStepGetReturnFlagName(flag)));
 }
 
 void Arkode::evaluate_rhs(double t, const double* y, double* ydot) {
@@ -199,7 +199,7 @@ void Arkode::advance_to(double t_out, model::State& state) {
                       std::to_string(steps) + "; the step is beyond the method's stability limit");
   if (flag < 0)
     throw SolverError(method_.name + ": failed at t = " + number_text(t_reached) + " s (step " + std::to_string(steps) +
-                      "): " + ARKStepGetReturnFlagName(flag) + last_error_.detail());
+                      "): " + sundials::flag_name(ARKStepGetReturnFlagName(flag)) + last_error_.detail());
   const Index n = system_->size();
   const auto y = sundials::view(y_.get());
   if (!y.allFinite())

@@ -80,7 +80,7 @@ void Ida::reset(const model::SecondOrderSystem& system, const model::State& init
   memory_ = IDACreate(context_.get());
   if (!memory_) throw SolverError(name_ + ": IDACreate failed");
   auto check = [&](int flag, const char* call) {
-    if (flag < 0) throw SolverError(name_ + ": " + call + " failed: " + IDAGetReturnFlagName(flag));
+    if (flag < 0) throw SolverError(name_ + ": " + call + " failed: " + sundials::flag_name(IDAGetReturnFlagName(flag)));
   };
   check(IDAInit(memory_, residual, initial.t, y_.get(), yp_.get()), "IDAInit");
   check(IDASetUserData(memory_, this), "IDASetUserData");
@@ -104,7 +104,7 @@ void Ida::advance_to(double t_out, model::State& state) {
   IDAGetNumSteps(memory_, &steps);
   if (flag < 0)
     throw SolverError(name_ + ": failed at t = " + number_text(t_reached) + " s (step " + std::to_string(steps) +
-                      "): " + IDAGetReturnFlagName(flag) + last_error_.detail());
+                      "): " + sundials::flag_name(IDAGetReturnFlagName(flag)) + last_error_.detail());
   const Index n = system_->size();
   const auto y = sundials::view(y_.get());
   if (!y.allFinite()) throw SolverError(name_ + ": non-finite solution at t = " + number_text(t_reached) + " s");

@@ -91,7 +91,7 @@ void IdaRoiDae::reset(double t0) {
   id.head(2 * nd).setOnes();  // differential: u_d, v_d
   id.tail(ns).setZero();      // algebraic: u_s
   auto check = [&](int flag, const char* call) {
-    if (flag < 0) throw SolverError(std::string("IDA ROI DAE: ") + call + " failed: " + IDAGetReturnFlagName(flag));
+    if (flag < 0) throw SolverError(std::string("IDA ROI DAE: ") + call + " failed: " + sundials::flag_name(IDAGetReturnFlagName(flag)));
   };
   memory_ = IDACreate(context_.get());
   if (!memory_) throw SolverError("IDA ROI DAE: IDACreate failed");
@@ -116,7 +116,7 @@ void IdaRoiDae::advance_to(double t_out, Vector& u_d, Vector& u_s) {
   const int flag = IDASolve(memory_, t_out, &t_, y_.get(), yp_.get(), IDA_NORMAL);
   if (pending_) std::rethrow_exception(std::exchange(pending_, nullptr));
   if (flag < 0)
-    throw SolverError("IDA ROI DAE: failed at t = " + number_text(t_) + " s: " + IDAGetReturnFlagName(flag) + last_error_.detail());
+    throw SolverError("IDA ROI DAE: failed at t = " + number_text(t_) + " s: " + sundials::flag_name(IDAGetReturnFlagName(flag)) + last_error_.detail());
   const Index nd = K_dd_.rows(), ns = K_ss_.rows();
   const auto y = sundials::view(y_.get());
   u_d = y.head(nd);

@@ -7,6 +7,7 @@
 #include <sundials/sundials_matrix.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
+#include <cstdlib>
 #include <memory>
 #include <string>
 
@@ -61,6 +62,14 @@ inline Vector make_vector(Index n, SUNContext ctx) {
 /// A view of an N_Vector's data as an Eigen vector.
 inline Eigen::Map<Eigen::VectorXd> view(N_Vector v) {
   return {N_VGetArrayPointer(v), static_cast<Index>(N_VGetLength(v))};
+}
+
+/// The name of a return flag from ARKStepGetReturnFlagName / IDAGetReturnFlagName, which
+/// malloc the string they return: copied, and the original freed.
+inline std::string flag_name(char* owned) {
+  std::string name = owned ? owned : "unknown flag";
+  std::free(owned);
+  return name;
 }
 
 /// Throws SolverError "<what> failed (flag F)" when flag < 0.
