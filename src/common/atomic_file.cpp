@@ -3,8 +3,8 @@
 #include <unistd.h>
 
 #include <fstream>
-#include <vector>
 #include <system_error>
+#include <vector>
 
 #include "common/errors.hpp"
 
@@ -47,23 +47,15 @@ void ensure_writable_directory(const fs::path& directory) {
 
 void check_output_directory(const fs::path& directory) {
   std::error_code ec;
-  if (fs::exists(directory, ec)) {
-    if (!fs::is_directory(directory, ec))
-      throw InputError(directory.string() + ": cannot create output directory: it is a file");
-    if (::access(directory.c_str(), W_OK | X_OK) != 0)
-      throw InputError(directory.string() + ": output directory is not writable");
-    return;
-  }
-  // Create it as a probe (permissions alone do not tell: root may write anywhere but /proc), then
-  // remove what was created, up to the nearest ancestor that existed.
-  fs::path existing = fs::absolute(directory, ec);
-  std::vector<fs::path> created;
-  while (!existing.empty() && !fs::exists(existing, ec) && existing != existing.parent_path()) {
-    created.push_back(existing);
-    existing = existing.parent_path();
-  }
+  if (fs::exists(directory, ec) && !fs::is_directory(directory, ec))
+    throw InputError(directory.string() + ": cannot create output directory: it is a file");
+  // A missing directory is created as a probe (permissions alone do not tell: root may write
+  // anywhere but /proc), then removed again, up to the nearest ancestor that existed.
+  std::vector<fs::path> missing;
+  for (fs::path p = fs::absolute(directory, ec); !p.empty() && !fs::exists(p, ec) && p != p.parent_path(); p = p.parent_path())
+    missing.push_back(p);
   ensure_writable_directory(directory);
-  for (const fs::path& p : created) fs::remove(p, ec);
+  for (const fs::path& p : missing) fs::remove(p, ec);
 }
 
 }  // namespace roifem
