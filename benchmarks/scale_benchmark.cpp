@@ -5,9 +5,10 @@
 // DIR/scale.csv (and DIR/haptic.csv) and DIR/scale.png.
 //   compile with: cmake --build --preset release --target roifem_scale_benchmark
 //   sample run:   build/release/benchmarks/roifem_scale_benchmark --nodes 800 5000 20000 100000 300000
-//                   --rois 300 1000 3% --haptic 20000 100000 300000 --out results/scale
+//                   --rois 300 1000 3% --haptic 20000 100000 300000 --full-cg 100000 300000 --out results/scale
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <optional>
@@ -26,6 +27,8 @@ struct Options {
   std::vector<long> nodes{800, 5000, 20000};
   std::vector<std::string> rois{"300", "1000", "3%"};
   std::vector<long> haptic{};
+  std::vector<long> full_cg{};  ///< sizes at which the full model also runs by trapezoid-cg
+  long cg_check_steps = 20;
   double haptic_rate_hz = 1000;
   std::filesystem::path out = "scale-results";
   TimingOptions timing;
@@ -45,10 +48,16 @@ std::string row_text(long nodes, const std::string& label, const std::optional<S
                      const std::optional<ScaleMeasurement>& full, const std::string& failure) {
   if (!m) return io::format("%8ld %-10s  failed: %s", nodes, label.c_str(), failure.c_str());
   const double vs_full = full ? full->step_median_s / m->step_median_s : 0;
-  return io::format("%8ld %-10s %6ld %8ld %6ld %8.2f %9.2f %9.2f %8.2f %10.3f %10.3f %9.0f %8.0f %8s", nodes, label.c_str(),
+  std::string note;
+  if (m->cg_iterations_per_step > 0) {
+    note = io::format("  CG %.0f iterations/step; ", m->cg_iterations_per_step);
+    note += m->deviation_vs_direct >= 0 ? io::format("max |u_cg - u_direct| / max |u| = %.1e", m->deviation_vs_direct)
+                                        : (m->check_note.empty() ? std::string("not checked") : m->check_note);
+  }
+  return io::format("%8ld %-10s %6ld %8ld %6ld %8.2f %9.2f %9.2f %8.2f %10.3f %10.3f %9.2f %8.0f %8s%s", nodes, label.c_str(),
                     m->roi_nodes, m->system_dofs, m->interface_dofs, m->assembly_s, m->factorization_s, m->condensation_s,
                     m->integrator_setup_s, m->step_median_s * 1e3, m->step_p99_s * 1e3, 1.0 / m->step_median_s,
-                    m->peak_rss_mb, full ? io::format("%.1fx", vs_full).c_str() : "-");
+                    m->peak_rss_mb, full ? io::format("%.3gx", vs_full).c_str() : "-", note.c_str());
 }
 
 int run(const Options& o) {
@@ -56,31 +65,35 @@ int run(const Options& o) {
   io::CsvWriter csv(o.out / "scale.csv",
                     "nodes,model,roi_nodes,system_dofs,interface_dofs,read_s,assembly_s,factorization_s,condensation_s,"
                     "integrator_setup_s,setup_s,step_median_ms,step_p99_ms,frame_rate_hz,steps_timed,peak_rss_mb,"
-                    "step_vs_full,status");
+                    "step_vs_full,cg_iterations_per_step,cg_deviation_vs_direct,status");
   std::printf("Scale: trapezoidal rule, dt = 0.05 s; a step = new load + step + displacement out; medians over the timed steps\n");
   std::printf("%8s %-10s %6s %8s %6s %8s %9s %9s %8s %10s %10s %9s %8s %8s\n", "nodes", "model", "ROI", "dofs", "iface",
               "assem s", "factor s", "condens s", "K_eff s", "step ms", "p99 ms", "rate Hz", "peak MB", "vs full");
   for (long n : o.nodes) {
     const auto mesh_file = brain_mesh_file(n);
     std::vector<ModelSpec> models{{"full", 0}};
-    for (const auto& r : o.rois) models.push_back(roi_spec(r, n));
+    if (std::find(o.full_cg.begin(), o.full_cg.end(), n) != o.full_cg.end())
+      models.push_back({"full-cg", 0, true, o.cg_check_steps});
+    for (const auto& r : o.rois)
+      if (r != "none") models.push_back(roi_spec(r, n));
     std::optional<ScaleMeasurement> full;
     for (const auto& spec : models) {
       const ChildResult child =
           run_in_child([&] { return measure_model(mesh_file, spec, o.timing).serialize(); }, o.model_timeout_s);
       std::optional<ScaleMeasurement> m;
       if (child.ok) m = ScaleMeasurement::parse(child.output);
-      if (spec.roi_nodes == 0) full = m;
-      std::printf("%s\n", row_text(n, spec.label, m, spec.roi_nodes ? full : std::nullopt, child.output).c_str());
+      if (spec.roi_nodes == 0 && !spec.conjugate_gradients) full = m;
+      std::printf("%s\n", row_text(n, spec.label, m, spec.label != "full" ? full : std::nullopt, child.output).c_str());
       std::fflush(stdout);
       if (m)
-        csv.row(io::format("%ld,%s,%ld,%ld,%ld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%ld,%.6g,%.6g,ok", m->nodes,
+        csv.row(io::format("%ld,%s,%ld,%ld,%ld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%ld,%.6g,%.6g,%.6g,%.6g,ok", m->nodes,
                            spec.label.c_str(), m->roi_nodes, m->system_dofs, m->interface_dofs, m->read_s, m->assembly_s,
                            m->factorization_s, m->condensation_s, m->integrator_setup_s, m->setup_s(),
                            m->step_median_s * 1e3, m->step_p99_s * 1e3, 1.0 / m->step_median_s, m->steps_timed,
-                           m->peak_rss_mb, full && spec.roi_nodes ? full->step_median_s / m->step_median_s : 1.0));
+                           m->peak_rss_mb, full && spec.label != "full" ? full->step_median_s / m->step_median_s : 1.0,
+                           m->cg_iterations_per_step, m->deviation_vs_direct));
       else
-        csv.row(io::format("%ld,%s,,,,,,,,,,,,,,,,failed", n, spec.label.c_str()));
+        csv.row(io::format("%ld,%s,,,,,,,,,,,,,,,,,,failed", n, spec.label.c_str()));
     }
   }
   csv.close();
@@ -122,8 +135,16 @@ int main(int argc, char** argv) {
                "setup time, memory, and the largest ROI at a haptic rate. Meshes are generated once and cached\n"
                "in $ROIFEM_MESH_CACHE (default ./bench-meshes)."};
   app.add_option("--nodes", o.nodes, "brain sizes (nodes)")->capture_default_str();
-  app.add_option("--rois", o.rois, "condensed models: ROI sizes in nodes, or a percentage of the brain's nodes")->capture_default_str();
+  app.add_option("--rois", o.rois, "condensed models: ROI sizes in nodes, a percentage of the brain's nodes, or none")
+      ->capture_default_str();
   app.add_option("--haptic", o.haptic, "brain sizes at which to search the largest ROI that holds --rate")->capture_default_str();
+  app.add_option("--full-cg", o.full_cg,
+                 "brain sizes at which the full model also runs by trapezoid-cg (conjugate gradients, no factor: "
+                 "for brains whose factor does not fit in memory)")
+      ->capture_default_str();
+  app.add_option("--cg-check-steps", o.cg_check_steps,
+                 "steps over which trapezoid-cg is compared with the direct solve (where its factor fits; 0: no check)")
+      ->capture_default_str();
   app.add_option("--rate", o.haptic_rate_hz, "haptic rate (Hz)")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--out", o.out, "directory for scale.csv, haptic.csv and scale.png")->capture_default_str();
   app.add_option("--steps", o.timing.max_steps, "timed steps per model at most")->capture_default_str()->check(CLI::PositiveNumber);

@@ -60,7 +60,7 @@ ArkodeMethod arkode_method(const std::string& name) {
 }
 
 std::vector<std::string> integrator_names() {
-  std::vector<std::string> names{"trapezoid", "ida-bdf5", "ida-bdf2"};
+  std::vector<std::string> names{"trapezoid", "trapezoid-cg", "ida-bdf5", "ida-bdf2"};
   for (const auto& [name, method] : arkode_methods()) names.push_back(name);
   for (const auto& [name, method] : gsl_methods()) names.push_back(name);
   return names;
@@ -70,6 +70,10 @@ std::unique_ptr<Integrator> make_integrator(const std::string& name, const StepC
   if (name == "trapezoid") {
     if (control.adaptive) throw InputError("integrator 'trapezoid' has a fixed step only (no rtol/atol)");
     return std::make_unique<Trapezoid>(control.dt);
+  }
+  if (name == "trapezoid-cg") {
+    if (control.adaptive) throw InputError("integrator 'trapezoid-cg' has a fixed step only (no rtol/atol)");
+    return std::make_unique<Trapezoid>(control.dt, solvers::CgSettings{});
   }
   if (name == "ida-bdf5" || name == "ida-bdf2") {
     StepControl adaptive = control;
@@ -92,7 +96,7 @@ std::unique_ptr<Integrator> make_integrator(const std::string& name, const StepC
 }
 
 int integrator_order(const std::string& name) {
-  if (name == "trapezoid" || name == "ida-bdf2") return 2;
+  if (name == "trapezoid" || name == "trapezoid-cg" || name == "ida-bdf2") return 2;
   if (name == "ida-bdf5") return 5;
   if (auto it = arkode_methods().find(name); it != arkode_methods().end()) return it->second.order;
   if (auto it = gsl_methods().find(name); it != gsl_methods().end()) return it->second.order;

@@ -1,6 +1,8 @@
 #pragma once
 /// Integrators chosen by name. An unknown name is an InputError listing the valid ones.
 ///   trapezoid                 the hand-written trapezoidal rule (Newmark average acceleration)
+///   trapezoid-cg              the same with K_eff solved by Jacobi-preconditioned CG (no factor:
+///                             for brains whose factor does not fit in memory; ~20x slower)
 ///   arkode-erk2 .. erk5       ARKODE explicit RK: Heun-Euler 2, Bogacki-Shampine 3, Zonneveld 4, Dormand-Prince 5
 ///   arkode-sdirk2, -ark3, -esdirk4, -esdirk5   ARKODE implicit: SDIRK-2-1-2, ARK324 (implicit table),
 ///                             ESDIRK436L2SA (order 4), ESDIRK547L2SA (order 5); KLU, linear

@@ -12,6 +12,7 @@ namespace roifem::integrators {
 /// Counters every integrator reports (zero where the method has no such thing).
 struct Stats {
   long steps = 0, rhs_evals = 0, jac_evals = 0, lin_setups = 0, lin_solves = 0, failed_steps = 0;
+  long lin_iterations = 0;     ///< iterations of an iterative linear solver (trapezoid-cg)
   double factorization_s = 0;  ///< seconds in linear-solver setups: orderings, analyses, factorizations
 };
 

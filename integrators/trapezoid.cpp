@@ -9,19 +9,24 @@
 namespace roifem::integrators {
 
 Trapezoid::Trapezoid(double dt) : dt_(dt) {
-  if (!(dt > 0) || !std::isfinite(dt)) throw InputError("trapezoid: time step dt = " + std::to_string(dt) + " s must be positive");
+  if (!(dt > 0) || !std::isfinite(dt)) throw InputError("trapezoid: time step dt = " + number_text(dt) + " s must be positive");
 }
+
+Trapezoid::Trapezoid(double dt, solvers::CgSettings cg) : Trapezoid(dt) { cg_.emplace(cg); }
 
 void Trapezoid::reset(const model::SecondOrderSystem& system, const model::State& initial) {
   system_ = &system;
   const Index n = system.size();
   if (initial.u.size() != n || initial.v.size() != n) throw Error("internal: trapezoid: state size mismatch");
-  const SparseMatrix K_eff = system.K + (2.0 / dt_) * system.C + (4.0 / (dt_ * dt_)) * system.M;
+  SparseMatrix K_eff = system.K + (2.0 / dt_) * system.C + (4.0 / (dt_ * dt_)) * system.M;
   const Stopwatch clock;
   try {
-    K_eff_.compute(K_eff);
+    if (cg_)
+      cg_->compute(std::move(K_eff));  // no second copy of K_eff
+    else
+      K_eff_.compute(K_eff);
   } catch (const solvers::NotPositiveDefinite& e) {
-    throw SolverError(std::string("trapezoid: K + 2/dt C + 4/dt^2 M is not positive definite: ") + e.what());
+    throw SolverError(std::string(name()) + ": K + 2/dt C + 4/dt^2 M is not positive definite: " + e.what());
   }
   // With mass-proportional damping C = alpha M (every model here) the right-hand side needs one
   // product with M instead of one with M and one with C: it matters when M has dense blocks.
@@ -59,7 +64,16 @@ void Trapezoid::step(model::State& s) {
     work_ = (2.0 / dt_) * s.u + s.v;
     rhs_.noalias() += system_->C * work_;
   }
-  K_eff_.solve(rhs_, u_next_);
+  if (cg_) {
+    u_next_ = s.u + dt_ * s.v + (0.5 * dt_ * dt_) * a_;  // the guess: constant acceleration
+    try {
+      stats_.lin_iterations += cg_->solve(rhs_, u_next_);
+    } catch (const SolverError& e) {
+      throw SolverError(std::string("trapezoid-cg: step ") + std::to_string(k_) + ", t = " + number_text(s.t) + " s: " + e.what());
+    }
+  } else {
+    K_eff_.solve(rhs_, u_next_);
+  }
   // a_{n+1} = c_u (u_{n+1} - u_n) - c_v v_n - a_n, then v and u.
   work_ = c_u * (u_next_ - s.u) - c_v * s.v - a_;
   s.v += 0.5 * dt_ * (a_ + work_);
@@ -69,7 +83,7 @@ void Trapezoid::step(model::State& s) {
   ++stats_.rhs_evals;
   ++stats_.lin_solves;
   if (!s.u.allFinite())
-    throw SolverError("trapezoid: non-finite displacement at step " + std::to_string(k_) + ", t = " + std::to_string(s.t) + " s");
+    throw SolverError(std::string(name()) + ": non-finite displacement at step " + std::to_string(k_) + ", t = " + number_text(s.t) + " s");
 }
 
 void Trapezoid::advance_to(double t_out, model::State& state) {

@@ -72,6 +72,29 @@ std::pair<double, double> time_steps(const model::SecondOrderSystem& system, int
   return {simulation::median(seconds), simulation::percentile(seconds, 0.99)};
 }
 
+/// trapezoid-cg against the direct solve, in lockstep from rest (after the timing, so that the
+/// direct factor's memory is not counted in the measured peak).
+void check_against_direct(const model::SecondOrderSystem& system, long steps, ScaleMeasurement& m) {
+  integrators::Trapezoid direct(dt), cg(dt, solvers::CgSettings{});
+  model::State a{0, Vector::Zero(system.size()), Vector::Zero(system.size())}, b = a;
+  try {
+    direct.reset(system, a);
+  } catch (const std::exception& e) {
+    m.check_note = std::string("direct solve unavailable: ") + e.what();
+    std::replace(m.check_note.begin(), m.check_note.end(), '\n', ' ');  // one key=value line
+    return;
+  }
+  cg.reset(system, b);
+  double worst = 0, peak = 0;
+  for (long k = 0; k < steps; ++k) {
+    direct.step(a);
+    cg.step(b);
+    peak = std::max(peak, a.u.norm());
+    worst = std::max(worst, (b.u - a.u).norm());
+  }
+  m.deviation_vs_direct = worst / peak;
+}
+
 roi::RoiSpec nearest_target(Index count) {
   return {.kind = roi::RoiSpec::Kind::nearest, .center = Vec3(0, 0, 40 * mm), .radius = 0, .count = count, .set = {}};
 }
@@ -108,7 +131,9 @@ std::string ScaleMeasurement::serialize() const {
       << "\ninterface_dofs=" << interface_dofs << "\nread_s=" << read_s << "\nassembly_s=" << assembly_s
       << "\nfactorization_s=" << factorization_s << "\ncondensation_s=" << condensation_s
       << "\nintegrator_setup_s=" << integrator_setup_s << "\nstep_median_s=" << step_median_s
-      << "\nstep_p99_s=" << step_p99_s << "\nsteps_timed=" << steps_timed << "\npeak_rss_mb=" << peak_rss_mb << "\n";
+      << "\nstep_p99_s=" << step_p99_s << "\nsteps_timed=" << steps_timed << "\npeak_rss_mb=" << peak_rss_mb
+      << "\ncg_iterations_per_step=" << cg_iterations_per_step << "\ndeviation_vs_direct=" << deviation_vs_direct
+      << "\ncheck_note=" << check_note << "\n";
   return out.str();
 }
 
@@ -129,6 +154,9 @@ ScaleMeasurement ScaleMeasurement::parse(const std::string& text) {
   m.step_p99_s = std::stod(f.at("step_p99_s"));
   m.steps_timed = std::stol(f.at("steps_timed"));
   m.peak_rss_mb = std::stod(f.at("peak_rss_mb"));
+  m.cg_iterations_per_step = std::stod(f.at("cg_iterations_per_step"));
+  m.deviation_vs_direct = std::stod(f.at("deviation_vs_direct"));
+  m.check_note = f.at("check_note");
   return m;
 }
 
@@ -139,7 +167,8 @@ ScaleMeasurement measure_model(const std::filesystem::path& mesh_file, const Mod
   m.dofs = static_cast<long>(brain->model.system.size());
   m.read_s = brain->read_s;
   m.assembly_s = brain->assembly_s;
-  integrators::Trapezoid trapezoid(dt);
+  integrators::Trapezoid trapezoid = spec.conjugate_gradients ? integrators::Trapezoid(dt, solvers::CgSettings{})
+                                                               : integrators::Trapezoid(dt);
   const model::SecondOrderSystem* system = &brain->model.system;
   Condensed condensed;
   if (spec.roi_nodes > 0) {
@@ -157,6 +186,11 @@ ScaleMeasurement measure_model(const std::filesystem::path& mesh_file, const Mod
   m.step_median_s = median;
   m.step_p99_s = p99;
   m.peak_rss_mb = peak_rss_mb();
+  if (spec.conjugate_gradients) {
+    const auto& st = trapezoid.stats();
+    m.cg_iterations_per_step = static_cast<double>(st.lin_iterations) / static_cast<double>(st.steps);
+    if (spec.check_steps > 0) check_against_direct(*system, spec.check_steps, m);
+  }
   return m;
 }
 

@@ -15,8 +15,10 @@
 namespace roifem::bench {
 
 struct ModelSpec {
-  std::string label;   ///< "full", "roi-300", "roi-3%", ...
+  std::string label;   ///< "full", "full-cg", "roi-300", "roi-3%", ...
   Index roi_nodes = 0; ///< 0: the full model
+  bool conjugate_gradients = false;  ///< the full model by trapezoid-cg (no factor) instead of CHOLMOD
+  long check_steps = 0;              ///< trapezoid-cg: steps compared against the direct solve (when its factor fits)
 };
 
 struct TimingOptions {
@@ -35,6 +37,9 @@ struct ScaleMeasurement {
   double step_median_s = 0, step_p99_s = 0;
   long steps_timed = 0;
   double peak_rss_mb = 0;
+  double cg_iterations_per_step = 0;  ///< trapezoid-cg
+  double deviation_vs_direct = -1;    ///< trapezoid-cg: max_k |u_cg - u| / max_k |u| over check_steps; -1: not checked
+  std::string check_note;             ///< why the check did not run
   double setup_s() const { return assembly_s + factorization_s + condensation_s + integrator_setup_s; }
 
   std::string serialize() const;

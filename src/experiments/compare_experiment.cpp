@@ -28,9 +28,11 @@ bool is_explicit(const std::string& name) {
   return name.rfind("arkode-erk", 0) == 0 || name == "gsl-rk4" || name == "gsl-rk8pd" || name == "gsl-msadams";
 }
 bool has_fixed_mode(const std::string& name) {
-  return name == "trapezoid" || name.rfind("arkode-", 0) == 0 || name == "gsl-rk4" || name == "gsl-rk4imp";
+  return name.rfind("trapezoid", 0) == 0 || name.rfind("arkode-", 0) == 0 || name == "gsl-rk4" || name == "gsl-rk4imp";
 }
-bool has_adaptive_mode(const std::string& name) { return name != "trapezoid" && name.rfind("arkode-trapezoid", 0) != 0; }
+bool has_adaptive_mode(const std::string& name) {
+  return name.rfind("trapezoid", 0) != 0 && name.rfind("arkode-trapezoid", 0) != 0;
+}
 
 /// The exact solution on the output grid, and what a run is measured against.
 struct Reference {

@@ -135,8 +135,9 @@ ScenarioRunSummary run_scenario(const scenario::Scenario& sc, const std::filesys
   }
 
   const auto& st = run_summary.stats;
-  h5.attribute("counters", format("steps=%ld rhs_evals=%ld jac_evals=%ld lin_setups=%ld lin_solves=%ld failed_steps=%ld",
-                                  st.steps, st.rhs_evals, st.jac_evals, st.lin_setups, st.lin_solves, st.failed_steps));
+  h5.attribute("counters", format("steps=%ld rhs_evals=%ld jac_evals=%ld lin_setups=%ld lin_solves=%ld lin_iterations=%ld failed_steps=%ld",
+                                  st.steps, st.rhs_evals, st.jac_evals, st.lin_setups, st.lin_solves, st.lin_iterations,
+                                  st.failed_steps));
   h5.attribute("status", "complete");
   h5.close();
   file.commit();

@@ -7,6 +7,7 @@
 
 #include "common/errors.hpp"
 #include "mesh/box_mesh.hpp"
+#include "mesh/gmsh_reader.hpp"
 #include "model/energy.hpp"
 #include "model/fem_model.hpp"
 
@@ -117,6 +118,51 @@ TEST(Trapezoid, RejectsNonPositiveTimeStepAndOffGridTimes) {
   Trapezoid trapezoid(0.05);
   trapezoid.reset(c.sys(), s);
   EXPECT_THROW(trapezoid.advance_to(0.07, s), InputError);
+}
+
+
+TEST(Trapezoid, ConjugateGradientsGiveTheDirectSolvesAnswerOverThePaperRun) {
+  // The paper's full model (shipped brain, nearly incompressible material, walls pulled over
+  // 0.5 s), 200 steps of dt = 0.05 s by both solves of K_eff.
+  const mesh::TetMesh mesh = mesh::read_mesh(std::string(ROIFEM_MESH_DIR) + "/brain-800.msh");
+  const auto model = model::build_fem_model(mesh, fem::material_preset("paper"), {"base"},
+                                            {{"opening_left", Vec3(-0.016, 0, 0), model::Ramp{0.5}},
+                                             {"opening_right", Vec3(0.016, 0, 0), model::Ramp{0.5}}});
+  const auto& sys = model.system;
+  model::State direct_state{0.0, Vector::Zero(sys.size()), Vector::Zero(sys.size())};
+  model::State cg_state = direct_state;
+  Trapezoid direct(0.05), cg(0.05, solvers::CgSettings{});
+  direct.reset(sys, direct_state);
+  cg.reset(sys, cg_state);
+  EXPECT_EQ(cg.name(), "trapezoid-cg");
+  double worst = 0, peak = 0;
+  for (int k = 0; k < 200; ++k) {
+    direct.step(direct_state);
+    cg.step(cg_state);
+    peak = std::max(peak, direct_state.u.norm());
+    worst = std::max(worst, (cg_state.u - direct_state.u).norm());
+  }
+  std::printf("trapezoid-cg against trapezoid, 200 steps: max |u_cg - u| / max |u| = %.2e, %.0f CG iterations per step\n",
+              worst / peak, static_cast<double>(cg.stats().lin_iterations) / 200.0);
+  EXPECT_GT(peak, 1e-4);  // the walls moved (metres)
+  EXPECT_LT(worst / peak, 1e-8);
+  EXPECT_EQ(cg.stats().steps, 200);
+  EXPECT_GT(cg.stats().lin_iterations, 200);
+}
+
+TEST(Trapezoid, ConjugateGradientsThatRunOutNameTheStep) {
+  const Cantilever c(0.8, 0.05, 0.3);
+  model::State s{0.0, Vector::Zero(c.sys().size()), Vector::Zero(c.sys().size())};
+  Trapezoid cg(0.01, solvers::CgSettings{.tolerance = 1e-12, .max_iterations = 2});
+  cg.reset(c.sys(), s);
+  try {
+    cg.step(s);
+    FAIL() << "expected SolverError";
+  } catch (const SolverError& e) {
+    EXPECT_NE(std::string(e.what()).find("trapezoid-cg: step 1, t = 0.01 s: conjugate gradients did not converge in 2"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace
