@@ -32,8 +32,20 @@ void add_paper_command(CLI::App& app, Action& action) {
       ->capture_default_str();
   cmd->add_option("--steps", o->steps, "Time steps per run")->capture_default_str();
   cmd->add_option("--timing-steps", o->timing_steps, "Steps timed per model for Table 2 (medians)")->capture_default_str();
+  auto reductions = std::make_shared<std::vector<std::string>>();
+  for (const auto& r : o->reductions) reductions->push_back(r.label());
+  cmd->add_option("--reductions", *reductions,
+                  "Reductions of the static part compared at the fastest ramp (static first): static, guyan, "
+                  "craig-bampton-K")
+      ->capture_default_str();
   cmd->add_flag("!--no-plots", o->plots, "Skip the PNG plots");
-  cmd->callback([&action, o] { action = [o] { experiments::run_paper_experiment(*o, std::cout); }; });
+  cmd->callback([&action, o, reductions] {
+    action = [o, reductions] {
+      o->reductions.clear();
+      for (const auto& label : *reductions) o->reductions.push_back(condensation::parse_reduction(label));
+      experiments::run_paper_experiment(*o, std::cout);
+    };
+  });
 }
 
 }  // namespace roifem::app
