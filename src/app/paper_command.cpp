@@ -36,7 +36,7 @@ void add_paper_command(CLI::App& app, Action& action) {
   for (const auto& r : o->reductions) reductions->push_back(r.label());
   cmd->add_option("--reductions", *reductions,
                   "Reductions of the static part compared at the fastest ramp (static first): static, guyan, "
-                  "craig-bampton-K")
+                  "craig-bampton-K, pod-K")
       ->capture_default_str();
   cmd->add_flag("!--no-plots", o->plots, "Skip the PNG plots");
   cmd->callback([&action, o, reductions] {

@@ -8,18 +8,21 @@
 
 namespace roifem::condensation {
 
-enum class ReductionKind { static_condensation, guyan, craig_bampton };
+enum class ReductionKind { static_condensation, guyan, craig_bampton, pod };
 
 struct Reduction {
   ReductionKind kind = ReductionKind::static_condensation;
-  Index modes = 0;          ///< Craig-Bampton: fixed-interface modes kept, or 0 to use the cut-off
+  Index modes = 0;          ///< Craig-Bampton: fixed-interface modes kept, or 0 to use the cut-off; POD: vectors
   double cutoff_rad_s = 0;  ///< Craig-Bampton with modes == 0: every mode below this frequency
+  double snapshot_dt_s = 0.05;  ///< POD: the full model's training run (step responses), step and length
+  long snapshot_steps = 200;
 
-  /// "static", "guyan", "craig-bampton-10" or "craig-bampton-below-50rad/s".
+  /// "static", "guyan", "craig-bampton-10", "craig-bampton-below-50rad/s" or "pod-40".
   std::string label() const {
     switch (kind) {
       case ReductionKind::static_condensation: return "static";
       case ReductionKind::guyan: return "guyan";
+      case ReductionKind::pod: return "pod-" + std::to_string(modes);
       case ReductionKind::craig_bampton: break;
     }
     if (modes > 0) return "craig-bampton-" + std::to_string(modes);
@@ -29,7 +32,8 @@ struct Reduction {
   }
 };
 
-/// The inverse of label() for "static", "guyan" and "craig-bampton-K"; InputError otherwise.
+/// The inverse of label() for "static", "guyan", "craig-bampton-K" and "pod-K" (training at the
+/// default dt and steps); InputError otherwise.
 inline Reduction parse_reduction(const std::string& label) {
   if (label == "static") return {};
   if (label == "guyan") return {.kind = ReductionKind::guyan};
@@ -39,7 +43,14 @@ inline Reduction parse_reduction(const std::string& label) {
     const Index modes = std::stol(label.substr(prefix.size()));
     if (modes > 0) return {.kind = ReductionKind::craig_bampton, .modes = modes};
   }
-  throw InputError("unknown reduction '" + label + "': use static, guyan or craig-bampton-K (K modes, K >= 1)");
+  const std::string pod = "pod-";
+  if (label.rfind(pod, 0) == 0 && label.size() > pod.size() &&
+      label.find_first_not_of("0123456789", pod.size()) == std::string::npos) {
+    const Index vectors = std::stol(label.substr(pod.size()));
+    if (vectors > 0) return {.kind = ReductionKind::pod, .modes = vectors};
+  }
+  throw InputError("unknown reduction '" + label +
+                   "': use static, guyan, craig-bampton-K (K modes, K >= 1) or pod-K (K POD vectors, K >= 1)");
 }
 
 }  // namespace roifem::condensation

@@ -4,6 +4,7 @@
 
 #include "common/errors.hpp"
 #include "common/timer.hpp"
+#include "condensation/pod_basis.hpp"
 #include "model/mass_inverse.hpp"
 #include "model/spectrum.hpp"
 #include "solvers/partial_cholesky.hpp"
@@ -48,7 +49,9 @@ StaticCondensation::StaticCondensation(const model::SecondOrderSystem& full, con
   const auto& s = partition_.s;
   if (d.empty()) throw ModelError("static condensation: the ROI has no free dof");
   const bool with_mass = reduction.kind != ReductionKind::static_condensation;
-  const bool with_modes = reduction.kind == ReductionKind::craig_bampton;
+  const bool with_pod = reduction.kind == ReductionKind::pod;
+  const bool with_modes = reduction.kind == ReductionKind::craig_bampton || with_pod;
+  if (with_pod && reduction.modes <= 0) throw InputError("POD reduction: give a positive number of vectors");
   if (with_modes && reduction.modes <= 0 && !(reduction.cutoff_rad_s > 0))
     throw InputError("Craig-Bampton: give a positive number of modes or a positive cut-off frequency");
   if (with_mass && !(model::is_diagonal(full.M) && model::is_diagonal(full.C)))
@@ -105,7 +108,10 @@ StaticCondensation::StaticCondensation(const model::SecondOrderSystem& full, con
   if (with_modes && !s.empty()) {
     clock.restart();
     const model::SolveK solve_K_ss = [factor = K_ss_factor_](const Vector& b, Vector& x) { factor->solve_leading(b, x); };
-    const model::Modes modes = reduction.modes > 0
+    const model::Modes modes =
+        with_pod ? pod_basis({full, partition_, X_, reduction.snapshot_dt_s, reduction.snapshot_steps},
+                             std::min<Index>(reduction.modes, static_cast<Index>(s.size())))
+        : reduction.modes > 0
                                    ? model::lowest_modes(M_s, solve_K_ss, std::min<Index>(reduction.modes, static_cast<Index>(s.size())))
                                    : model::modes_below(M_s, solve_K_ss, reduction.cutoff_rad_s);
     omega_ = modes.omega;

@@ -11,7 +11,7 @@
 /// pattern. The condensed system keeps K~ both assembled (for factorizations) and split as K_dd
 /// plus the dense block -S (for products).
 ///
-/// Three reductions share that machinery (T maps the reduced coordinates to all free dofs):
+/// Four reductions share that machinery (T maps the reduced coordinates to all free dofs):
 ///  - static condensation (the paper's): M and C of the ROI kept as they are; the static part
 ///    answers without inertia.
 ///  - Guyan: T = [I; -X P] (P picks the interface), M~ = T^T M T = M_dd + P^T X^T M_ss X P, and
@@ -20,6 +20,8 @@
 ///    M_ss Phi W^2) added as generalized coordinates eta: T = [[I, 0], [-X P, Phi]], so
 ///    K_r = diag(K~, W^2), M_r = [[M~, -P^T X^T M_ss Phi], [sym, I]], f_r = [f~; Phi^T f_s],
 ///    u_s = z(t) - Phi W^-2 Phi^T f_s(t) - X u_I + Phi eta. With every mode it is exact.
+///  - POD: the same with Phi learnt from the full model's step responses (pod_basis.hpp): any
+///    M_ss-orthonormal Phi with Phi^T K_ss Phi = W^2 diagonal fits the formulas above.
 /// M and C of the full model must be diagonal (lumped) for Guyan and Craig-Bampton.
 #include <memory>
 #include <string>
@@ -51,7 +53,7 @@ class StaticCondensation {
   const model::SecondOrderSystem& system() const { return reduced_; }
   const roi::Partition& partition() const { return partition_; }
   const Reduction& reduction() const { return reduction_; }
-  /// Fixed-interface modes kept (0 unless Craig-Bampton) and their frequencies (rad/s).
+  /// Fixed-interface modes (Craig-Bampton) or vectors (POD) kept, and their (Ritz) frequencies (rad/s).
   Index num_modes() const { return static_cast<Index>(omega_.size()); }
   const Vector& mode_frequencies() const { return omega_; }
   /// u over all free dofs from the reduced coordinates y = [u_d; eta] at time t (u_s recovered).

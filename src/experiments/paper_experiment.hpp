@@ -35,7 +35,8 @@ struct PaperOptions {
   std::vector<condensation::Reduction> reductions{
       {}, {.kind = condensation::ReductionKind::guyan}, {.kind = condensation::ReductionKind::craig_bampton, .modes = 5},
       {.kind = condensation::ReductionKind::craig_bampton, .modes = 10},
-      {.kind = condensation::ReductionKind::craig_bampton, .modes = 20}};
+      {.kind = condensation::ReductionKind::craig_bampton, .modes = 20},
+      {.kind = condensation::ReductionKind::pod, .modes = 40}};
 };
 
 struct PaperCurve {  ///< one setup, one reduction, one ramp

@@ -179,13 +179,21 @@ condensation::Reduction read_reduction(StrictTable& t) {
     r.kind = ReductionKind::guyan;
   } else if (kind == "craig-bampton") {
     r.kind = ReductionKind::craig_bampton;
+  } else if (kind == "pod") {
+    r.kind = ReductionKind::pod;
   } else {
-    throw InputError(t.source() + ": key 'roi.reduction' must be one of static, guyan, craig-bampton (got '" + kind + "')");
+    throw InputError(t.source() + ": key 'roi.reduction' must be one of static, guyan, craig-bampton, pod (got '" + kind + "')");
   }
   const auto modes = t.integer("modes");
   const double cutoff = t.number("cutoff_rad_s", 0.0);
+  if (r.kind == ReductionKind::pod) {
+    if (cutoff != 0) throw InputError(t.source() + ": key 'roi.cutoff_rad_s' belongs to reduction = \"craig-bampton\"");
+    if (!modes || *modes <= 0) throw InputError(t.source() + ": reduction = \"pod\" needs a positive key 'roi.modes'");
+    r.modes = *modes;
+    return r;
+  }
   if (r.kind != ReductionKind::craig_bampton && (modes || cutoff != 0))
-    throw InputError(t.source() + ": keys 'roi.modes' and 'roi.cutoff_rad_s' belong to reduction = \"craig-bampton\"");
+    throw InputError(t.source() + ": keys 'roi.modes' and 'roi.cutoff_rad_s' belong to reduction = \"craig-bampton\" (or \"pod\")");
   if (r.kind == ReductionKind::craig_bampton) {
     if (modes && *modes <= 0) throw InputError(t.source() + ": key 'roi.modes' must be positive (got " + std::to_string(*modes) + ")");
     if (cutoff < 0) throw InputError(t.source() + ": key 'roi.cutoff_rad_s' must be positive");
@@ -303,6 +311,8 @@ Scenario parse_scenario(std::string_view text, const std::string& source, const 
     if (!(s.dt > 0)) throw InputError(source + ": key 'time.dt_s' must be positive (got " + number_text(s.dt) + ")");
     if (s.steps <= 0) throw InputError(source + ": key 'time.steps' must be positive (got " + std::to_string(s.steps) + ")");
   }
+  s.reduction.snapshot_dt_s = s.dt;  // a POD basis is trained on the run's own step and length
+  s.reduction.snapshot_steps = s.steps;
   if (const toml::table* t = top.subtable("output")) {
     StrictTable output(*t, source, "output");
     s.field_every = output.integer("field_every").value_or(s.field_every);
@@ -354,6 +364,7 @@ std::string Scenario::resolved_toml() const {
     switch (reduction.kind) {
       case condensation::ReductionKind::static_condensation: o << "reduction = \"static\"\n"; break;
       case condensation::ReductionKind::guyan: o << "reduction = \"guyan\"\n"; break;
+      case condensation::ReductionKind::pod: o << "reduction = \"pod\"\nmodes = " << reduction.modes << "\n"; break;
       case condensation::ReductionKind::craig_bampton:
         o << "reduction = \"craig-bampton\"\n";
         if (reduction.modes > 0)

@@ -90,6 +90,12 @@ TEST(ScenarioReader, ReadsTheReductionOfTheStaticPart) {
   EXPECT_EQ(parse_scenario(cut.resolved_toml(), "r.toml", "/data").reduction.cutoff_rad_s, 40.0);
   EXPECT_EQ(parse_scenario(replaced(valid, "radius_mm = 25", "radius_mm = 25\nreduction = \"guyan\""), "s.toml", "/data").reduction.kind,
             condensation::ReductionKind::guyan);
+  const Scenario pod = parse_scenario(replaced(valid, "radius_mm = 25", "radius_mm = 25\nreduction = \"pod\"\nmodes = 40"),
+                                      "s.toml", "/data");
+  EXPECT_EQ(pod.reduction.label(), "pod-40");
+  EXPECT_EQ(pod.reduction.snapshot_dt_s, pod.dt);  // trained on the run's own step and length
+  EXPECT_EQ(pod.reduction.snapshot_steps, pod.steps);
+  EXPECT_EQ(parse_scenario(pod.resolved_toml(), "r.toml", "/data").reduction.label(), "pod-40");
 }
 
 TEST(ScenarioReader, BadReductionsAreNamed) {
@@ -101,6 +107,11 @@ TEST(ScenarioReader, BadReductionsAreNamed) {
                 .find("'roi.modes' must be positive"),
             std::string::npos);
   EXPECT_NE(error_of(replaced(valid, "radius_mm = 25", "radius_mm = 25\nmodes = 5")).find("belong to reduction"), std::string::npos);
+  EXPECT_NE(error_of(replaced(valid, "radius_mm = 25", "radius_mm = 25\nreduction = \"pod\"")).find("needs a positive key 'roi.modes'"),
+            std::string::npos);
+  EXPECT_NE(error_of(replaced(valid, "radius_mm = 25", "radius_mm = 25\nreduction = \"pod\"\nmodes = 4\ncutoff_rad_s = 9"))
+                .find("'roi.cutoff_rad_s' belongs to reduction = \"craig-bampton\""),
+            std::string::npos);
 }
 
 // Found by fuzzing: toml++ 3.3 reaches undefined behaviour on a stray non-ASCII character where
