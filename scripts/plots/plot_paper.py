@@ -56,7 +56,7 @@ def main(directory):
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize=8)
     axes[0][0].set_ylabel("max error over the ROI nodes (mm)")
-    fig.suptitle("Static part reduced with inertia: Guyan and Craig-Bampton vs static condensation")
+    fig.suptitle("Static part reduced with inertia: Guyan, Craig-Bampton and POD vs static condensation")
     save(fig, os.path.join(directory, "reductions.png"))
 
     models, ours = [], []
