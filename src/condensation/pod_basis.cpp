@@ -38,7 +38,8 @@ DenseMatrix fixed_interface_snapshots(const PodTraining& in) {
   DenseMatrix snapshots(static_cast<Index>(s.size()), in.steps * static_cast<Index>(inputs.size()));
   Vector u_I(static_cast<Index>(in.partition.interface.size()));
   Index column = 0;
-  for (const auto& [ramp, pattern] : inputs) {
+  for (const auto& input : inputs) {
+    const Vector& pattern = input.second;
     Vector u = Vector::Zero(n), v = u, a = u, u_next(n), a_next(n);
     for (long k = 0; k < in.steps; ++k) {  // the load is switched on just after t = 0
       const Vector rhs = pattern + M.cwiseProduct(c_u * u + c_v * v + a) + C.cwiseProduct((2.0 / dt) * u + v);

@@ -17,6 +17,14 @@ struct Reduction {
   double snapshot_dt_s = 0.05;  ///< POD: the full model's training run (step responses), step and length
   long snapshot_steps = 200;
 
+  /// The same reduction with a POD basis trained on a run of `steps` steps of `dt` (the run it serves).
+  Reduction trained_on(double dt, long steps) const {
+    Reduction r = *this;
+    r.snapshot_dt_s = dt;
+    r.snapshot_steps = steps;
+    return r;
+  }
+
   /// "static", "guyan", "craig-bampton-10", "craig-bampton-below-50rad/s" or "pod-40".
   std::string label() const {
     switch (kind) {
@@ -32,23 +40,22 @@ struct Reduction {
   }
 };
 
+/// K from "PREFIXK" with K a positive integer, or 0.
+inline Index positive_count_after(const std::string& label, const std::string& prefix) {
+  if (label.rfind(prefix, 0) != 0 || label.size() == prefix.size() ||
+      label.find_first_not_of("0123456789", prefix.size()) != std::string::npos)
+    return 0;
+  return std::stol(label.substr(prefix.size()));
+}
+
 /// The inverse of label() for "static", "guyan", "craig-bampton-K" and "pod-K" (training at the
 /// default dt and steps); InputError otherwise.
 inline Reduction parse_reduction(const std::string& label) {
   if (label == "static") return {};
   if (label == "guyan") return {.kind = ReductionKind::guyan};
-  const std::string prefix = "craig-bampton-";
-  if (label.rfind(prefix, 0) == 0 && label.size() > prefix.size() &&
-      label.find_first_not_of("0123456789", prefix.size()) == std::string::npos) {
-    const Index modes = std::stol(label.substr(prefix.size()));
-    if (modes > 0) return {.kind = ReductionKind::craig_bampton, .modes = modes};
-  }
-  const std::string pod = "pod-";
-  if (label.rfind(pod, 0) == 0 && label.size() > pod.size() &&
-      label.find_first_not_of("0123456789", pod.size()) == std::string::npos) {
-    const Index vectors = std::stol(label.substr(pod.size()));
-    if (vectors > 0) return {.kind = ReductionKind::pod, .modes = vectors};
-  }
+  if (const Index modes = positive_count_after(label, "craig-bampton-"); modes > 0)
+    return {.kind = ReductionKind::craig_bampton, .modes = modes};
+  if (const Index vectors = positive_count_after(label, "pod-"); vectors > 0) return {.kind = ReductionKind::pod, .modes = vectors};
   throw InputError("unknown reduction '" + label +
                    "': use static, guyan, craig-bampton-K (K modes, K >= 1) or pod-K (K POD vectors, K >= 1)");
 }

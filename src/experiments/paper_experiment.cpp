@@ -179,10 +179,9 @@ PaperResults run_paper_experiment(const PaperOptions& o, std::ostream& log) {
       s.name = "setup" + std::to_string(k + 1);
       s.reduction = reduction.label();
       Stopwatch clock;
-      condensation::Reduction trained = reduction;  // a POD basis learns from the paper's own step and length
-      trained.snapshot_dt_s = o.dt;
-      trained.snapshot_steps = o.steps;
-      s.condensation = std::make_unique<condensation::StaticCondensation>(full.system, partition, dofs, trained);
+      // A POD basis learns from the paper's own step and length.
+      s.condensation = std::make_unique<condensation::StaticCondensation>(full.system, partition, dofs,
+                                                                          reduction.trained_on(o.dt, o.steps));
       s.setup_s = clock.seconds();
       s.node_dofs = roi_node_dofs(partition, dofs);
       log << format("    %-18s %4lld dofs, reduced in %.3f s", s.reduction.c_str(), static_cast<long long>(s.condensation->system().size()),

@@ -56,10 +56,9 @@ class Search {
     const roi::RoiSpec spec{.kind = roi::RoiSpec::Kind::nearest, .center = sc_.roi->center, .radius = 0, .count = n, .set = {}};
     const fem::DofMap& dofs = *full_.full.dofs;
     const auto partition = roi::partition_dofs(full_.system().K, dofs, roi::select_roi_nodes(full_.mesh, dofs, spec));
-    condensation::Reduction trained = reduction;  // a POD basis learns from the scenario's own step and length
-    trained.snapshot_dt_s = sc_.dt;
-    trained.snapshot_steps = sc_.steps;
-    return std::make_unique<condensation::StaticCondensation>(full_.system(), partition, dofs, trained);
+    // A POD basis learns from the scenario's own step and length.
+    return std::make_unique<condensation::StaticCondensation>(full_.system(), partition, dofs,
+                                                              reduction.trained_on(sc_.dt, sc_.steps));
   }
 
   RoiSizeRow find(const condensation::Reduction& reduction, Index free_nodes) {

@@ -311,8 +311,7 @@ Scenario parse_scenario(std::string_view text, const std::string& source, const 
     if (!(s.dt > 0)) throw InputError(source + ": key 'time.dt_s' must be positive (got " + number_text(s.dt) + ")");
     if (s.steps <= 0) throw InputError(source + ": key 'time.steps' must be positive (got " + std::to_string(s.steps) + ")");
   }
-  s.reduction.snapshot_dt_s = s.dt;  // a POD basis is trained on the run's own step and length
-  s.reduction.snapshot_steps = s.steps;
+  s.reduction = s.reduction.trained_on(s.dt, s.steps);  // a POD basis learns from the run's own step and length
   if (const toml::table* t = top.subtable("output")) {
     StrictTable output(*t, source, "output");
     s.field_every = output.integer("field_every").value_or(s.field_every);
