@@ -5,12 +5,24 @@
 
 #include "common/errors.hpp"
 #include "common/number_text.hpp"
+#include "solvers/blas_threads.hpp"
 #include "solvers/cholmod_views.hpp"
 
 namespace roifem::solvers {
 
 using detail::dense_view;
 using detail::symmetric_view;
+
+namespace {
+// A single-vector solve with a supernodal factor of fewer entries than this (40 MB) runs the BLAS
+// on one thread (see blas_threads.hpp). OpenBLAS threads a dgemv above 9,216 entries, so a small
+// factor's solve pays a hand-off per supernode for little work: `roifem paper`'s pod-40 model on
+// setup 1 (a dense block of 316 rows) steps at 1.55x plain condensation with two threads and 1.38x
+// with one. The scale benchmark's ROI models from 800 to 20k nodes (factors up to 2.3e6 entries)
+// step alike either way, within the machine's noise; the 3% ROI of the 100k-node brain (1.0e7
+// entries) stepped in 4.3 ms on two threads against 6.2 ms on one, so large factors keep both.
+constexpr double one_thread_solve_below = 5e6;
+}  // namespace
 
 NotPositiveDefinite::NotPositiveDefinite(Index col, double rc)
     : std::runtime_error(col >= 0 ? "matrix is not positive definite (factorization stopped at column " +
@@ -88,6 +100,8 @@ Vector Cholesky::solve(const Eigen::Ref<const Vector>& b) const {
 
 void Cholesky::solve(const Eigen::Ref<const Vector>& b, Eigen::Ref<Vector> x) const {
   if (!impl_->factor) throw Error("internal: Cholesky::solve before factorize");
+  const bool small = impl_->factor->is_super && static_cast<double>(impl_->factor->xsize) < one_thread_solve_below;
+  const BlasThreadsScope blas(small ? 1 : BlasThreadsScope::unchanged);
   cholmod_dense rhs = dense_view(b.data(), b.size(), 1);
   auto* common = const_cast<cholmod_common*>(&impl_->common);
   const int ok = cholmod_solve2(CHOLMOD_A, impl_->factor, &rhs, nullptr, &impl_->x, nullptr, &impl_->y, &impl_->e,
