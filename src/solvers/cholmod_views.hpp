@@ -4,6 +4,7 @@
 #include <cholmod.h>
 
 #include <string>
+#include <vector>
 
 #include "common/errors.hpp"
 #include "common/types.hpp"
@@ -27,6 +28,24 @@ inline cholmod_sparse symmetric_view(const SparseMatrix& A) {
   s.packed = 1;
   return s;
 }
+
+/// The same symmetric matrix for CHOLMOD's 64-bit interface (cholmod_l_*): the index arrays copied
+/// to SuiteSparse_long, the values still Eigen's. For factors beyond 2^31 entries (the 300k-node
+/// brain's static part).
+struct LongSymmetricView {
+  std::vector<SuiteSparse_long> p, i;
+  cholmod_sparse view{};
+
+  explicit LongSymmetricView(const SparseMatrix& A)
+      : p(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1), i(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros()) {
+    view = symmetric_view(A);
+    view.p = p.data();
+    view.i = i.data();
+    view.itype = CHOLMOD_LONG;
+  }
+  LongSymmetricView(const LongSymmetricView&) = delete;
+  LongSymmetricView& operator=(const LongSymmetricView&) = delete;
+};
 
 /// A column-major dense block of rows x cols.
 inline cholmod_dense dense_view(const double* data, Index rows, Index cols) {

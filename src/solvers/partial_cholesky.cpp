@@ -10,27 +10,31 @@
 namespace roifem::solvers {
 
 
+// CHOLMOD's 64-bit interface throughout (cholmod_l_*, SuiteSparse_long indices): the static part
+// of the 300k-node brain factors to more than 2^31 entries, beyond the 32-bit one.
+using Long = SuiteSparse_long;
+
 struct PartialCholesky::Impl {
   cholmod_common common{};
   cholmod_factor* factor = nullptr;
   Index n = 0, n_leading = 0;
   std::vector<Index> leading;      ///< A's leading indices, ascending
-  std::vector<int> leading_order;  ///< factor position k < n_leading -> position in `leading`
+  std::vector<Long> leading_order;  ///< factor position k < n_leading -> position in `leading`
   double analysis_s = 0, factorization_s = 0;
   // Workspaces of cholmod_solve2, kept between solves; mutable: solving changes no visible state.
   mutable cholmod_dense *x1 = nullptr, *x2 = nullptr, *y = nullptr, *e = nullptr;
   mutable Vector rhs;
 
   Impl() {
-    cholmod_start(&common);
+    cholmod_l_start(&common);
     common.print = 0;
     common.error_handler = nullptr;
   }
   ~Impl() {
     for (cholmod_dense** d : {&x1, &x2, &y, &e})
-      if (*d) cholmod_free_dense(d, &common);
-    if (factor) cholmod_free_factor(&factor, &common);
-    cholmod_finish(&common);
+      if (*d) cholmod_l_free_dense(d, &common);
+    if (factor) cholmod_l_free_factor(&factor, &common);
+    cholmod_l_finish(&common);
   }
   Impl(const Impl&) = delete;
   Impl& operator=(const Impl&) = delete;
@@ -43,7 +47,8 @@ PartialCholesky::PartialCholesky(const SparseMatrix& A, const std::vector<Index>
   auto& m = *impl_;
   if (A.rows() != A.cols()) throw Error("internal: PartialCholesky of a non-square matrix");
   m.n = A.rows();
-  std::vector<int> new_index(static_cast<std::size_t>(m.n), 0);
+  if (!A.isCompressed()) throw Error("internal: PartialCholesky needs a compressed matrix");
+  std::vector<Long> new_index(static_cast<std::size_t>(m.n), 0);
   for (Index t : trailing) {
     if (t < 0 || t >= m.n || new_index[static_cast<std::size_t>(t)] < 0)
       throw Error("internal: PartialCholesky: trailing index " + std::to_string(t) + " out of range or repeated");
@@ -51,7 +56,7 @@ PartialCholesky::PartialCholesky(const SparseMatrix& A, const std::vector<Index>
   }
   for (Index i = 0; i < m.n; ++i)
     if (new_index[static_cast<std::size_t>(i)] == 0) {
-      new_index[static_cast<std::size_t>(i)] = static_cast<int>(m.leading.size());
+      new_index[static_cast<std::size_t>(i)] = static_cast<Long>(m.leading.size());
       m.leading.push_back(i);
     } else {
       new_index[static_cast<std::size_t>(i)] = -1;
@@ -63,21 +68,21 @@ PartialCholesky::PartialCholesky(const SparseMatrix& A, const std::vector<Index>
   //    trailing indices then moved to the end, the others keeping their relative order. One
   //    ordering instead of one for A_ll and one for A: on the 100k-node brain with a 3% ROI it
   //    gives the same fill (3.7e8) and saves 2.4 s of METIS.
-  std::vector<int> perm;
+  detail::LongSymmetricView a(A);
+  std::vector<Long> perm;
   perm.reserve(static_cast<std::size_t>(m.n));
   {
-    cholmod_sparse a = detail::symmetric_view(A);
-    cholmod_factor* symbolic = cholmod_analyze(&a, &m.common);
+    cholmod_factor* symbolic = cholmod_l_analyze(&a.view, &m.common);
     m.check(symbolic != nullptr, "analysis");
-    const auto* p = static_cast<const int*>(symbolic->Perm);
+    const auto* p = static_cast<const Long*>(symbolic->Perm);
     for (Index k = 0; k < m.n; ++k)
-      if (const int i = p[k]; new_index[static_cast<std::size_t>(i)] >= 0) {
+      if (const Long i = p[k]; new_index[static_cast<std::size_t>(i)] >= 0) {
         perm.push_back(i);
         m.leading_order.push_back(new_index[static_cast<std::size_t>(i)]);
       }
-    cholmod_free_factor(&symbolic, &m.common);
+    cholmod_l_free_factor(&symbolic, &m.common);
   }
-  for (Index t : trailing) perm.push_back(static_cast<int>(t));
+  for (Index t : trailing) perm.push_back(static_cast<Long>(t));
 
   // 2. That order with the trailing indices last, taken as given (no postordering, which could
   //    move trailing columns forward), supernodal so that the trailing block is read off dense.
@@ -85,21 +90,20 @@ PartialCholesky::PartialCholesky(const SparseMatrix& A, const std::vector<Index>
   m.common.method[0].ordering = CHOLMOD_GIVEN;
   m.common.postorder = 0;
   m.common.supernodal = CHOLMOD_SUPERNODAL;
-  cholmod_sparse a = detail::symmetric_view(A);
-  m.factor = cholmod_analyze_p(&a, perm.data(), nullptr, 0, &m.common);
+  m.factor = cholmod_l_analyze_p(&a.view, perm.data(), nullptr, 0, &m.common);
   m.check(m.factor != nullptr, "analysis");
-  if (std::memcmp(m.factor->Perm, perm.data(), perm.size() * sizeof(int)) != 0)
+  if (std::memcmp(m.factor->Perm, perm.data(), perm.size() * sizeof(Long)) != 0)
     throw Error("internal: PartialCholesky: CHOLMOD changed the given ordering");
   m.analysis_s = clock.seconds();
   clock.restart();
-  const int ok = cholmod_factorize(&a, m.factor, &m.common);
+  const int ok = cholmod_l_factorize(&a.view, m.factor, &m.common);
   if (m.common.status == CHOLMOD_NOT_POSDEF) {
     const std::size_t minor = m.factor->minor;
-    throw NotPositiveDefinite(minor < perm.size() ? perm[minor] : -1, 0.0);
+    throw NotPositiveDefinite(minor < perm.size() ? static_cast<Index>(perm[minor]) : -1, 0.0);
   }
   m.check(ok, "factorization");
   if (!m.factor->is_super || !m.factor->is_ll) throw Error("internal: PartialCholesky: expected a supernodal LL^T factor");
-  if (const double rc = cholmod_rcond(m.factor, &m.common); !(rc > 1e-15)) throw NotPositiveDefinite(-1, rc);
+  if (const double rc = cholmod_l_rcond(m.factor, &m.common); !(rc > 1e-15)) throw NotPositiveDefinite(-1, rc);
   m.factorization_s = clock.seconds();
 }
 
@@ -112,20 +116,20 @@ DenseMatrix PartialCholesky::trailing_schur_complement() const {
   const cholmod_factor& L = *m.factor;
   const Index n_t = m.n - m.n_leading, first = m.n_leading;
   DenseMatrix L_tt = DenseMatrix::Zero(n_t, n_t);
-  const auto* super = static_cast<const int*>(L.super);
-  const auto* pi = static_cast<const int*>(L.pi);
-  const auto* px = static_cast<const int*>(L.px);
-  const auto* rows = static_cast<const int*>(L.s);
+  const auto* super = static_cast<const Long*>(L.super);
+  const auto* pi = static_cast<const Long*>(L.pi);
+  const auto* px = static_cast<const Long*>(L.px);
+  const auto* rows = static_cast<const Long*>(L.s);
   const auto* x = static_cast<const double*>(L.x);
   // Supernode s holds columns super[s] .. super[s+1]-1 as a dense column-major block whose rows
   // are rows[pi[s] .. pi[s+1]), the first of them its own columns (its diagonal block).
   for (std::size_t s = 0; s < L.nsuper; ++s) {
-    const Index k1 = super[s], k2 = super[s + 1];
+    const Long k1 = super[s], k2 = super[s + 1];
     if (k2 <= first) continue;
-    const Index nrows = pi[s + 1] - pi[s];
-    for (Index j = std::max(k1, first); j < k2; ++j)
-      for (Index p = j - k1; p < nrows; ++p)
-        L_tt(rows[pi[s] + p] - first, j - first) = x[px[s] + (j - k1) * nrows + p];
+    const Long nrows = pi[s + 1] - pi[s];
+    for (Long j = std::max<Long>(k1, first); j < k2; ++j)
+      for (Long p = j - k1; p < nrows; ++p)
+        L_tt(static_cast<Index>(rows[pi[s] + p] - first), static_cast<Index>(j - first)) = x[px[s] + (j - k1) * nrows + p];
   }
   DenseMatrix S = DenseMatrix::Zero(n_t, n_t);
   S.selfadjointView<Eigen::Lower>().rankUpdate(L_tt);
@@ -140,10 +144,10 @@ void PartialCholesky::solve_leading(const Eigen::Ref<const Vector>& b, Eigen::Re
   for (Index k = 0; k < m.n_leading; ++k) m.rhs[k] = b[m.leading_order[static_cast<std::size_t>(k)]];
   auto* common = const_cast<cholmod_common*>(&m.common);
   cholmod_dense rhs = detail::dense_view(m.rhs.data(), m.n, 1);
-  m.check(cholmod_solve2(CHOLMOD_L, m.factor, &rhs, nullptr, &m.x1, nullptr, &m.y, &m.e, common), "solve");
+  m.check(cholmod_l_solve2(CHOLMOD_L, m.factor, &rhs, nullptr, &m.x1, nullptr, &m.y, &m.e, common), "solve");
   auto* z = static_cast<double*>(m.x1->x);
   std::fill(z + m.n_leading, z + m.n, 0.0);
-  m.check(cholmod_solve2(CHOLMOD_Lt, m.factor, m.x1, nullptr, &m.x2, nullptr, &m.y, &m.e, common), "solve");
+  m.check(cholmod_l_solve2(CHOLMOD_Lt, m.factor, m.x1, nullptr, &m.x2, nullptr, &m.y, &m.e, common), "solve");
   const auto* w = static_cast<const double*>(m.x2->x);
   for (Index k = 0; k < m.n_leading; ++k) x[m.leading_order[static_cast<std::size_t>(k)]] = w[k];
 }
