@@ -6,7 +6,8 @@
 /// it saves (see cholesky.cpp). Large factorizations and solves still want every thread.
 ///
 /// OpenBLAS only: its `openblas_set_num_threads` is looked up by name at run time, so that roifem
-/// links against any BLAS; with another BLAS the scope does nothing.
+/// links against any BLAS; with another BLAS the scope does nothing. The count is one per process:
+/// scopes suit a program that calls the BLAS from one thread, as roifem does.
 namespace roifem::solvers {
 
 class BlasThreadsScope {

@@ -20,7 +20,8 @@ namespace {
 // setup 1 (a dense block of 316 rows) steps at 1.55x plain condensation with two threads and 1.38x
 // with one. The scale benchmark's ROI models from 800 to 20k nodes (factors up to 2.3e6 entries)
 // step alike either way, within the machine's noise; the 3% ROI of the 100k-node brain (1.0e7
-// entries) stepped in 4.3 ms on two threads against 6.2 ms on one, so large factors keep both.
+// entries) stepped in 4.3 ms on two threads against 6.2 ms on one (one pair of runs), so large
+// factors keep both.
 constexpr double one_thread_solve_below = 5e6;
 }  // namespace
 
