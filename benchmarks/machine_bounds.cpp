@@ -9,29 +9,24 @@
 #include <cblas.h>
 #include <omp.h>
 
-#include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <vector>
 
+#include "common/timer.hpp"
+#include "simulation/run_loop.hpp"
+
 namespace {
 
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
+using roifem::Stopwatch;
+using roifem::simulation::median;
 
 double dgemm_gflops(int n, int repeats) {
   std::vector<double> A(static_cast<std::size_t>(n) * n, 1.0), B(A.size(), 0.5), C(A.size(), 0.0);
   std::vector<double> rates;
   for (int r = 0; r < repeats; ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
+    const Stopwatch clock;
     cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n, n, n, 1.0, A.data(), n, B.data(), n, 0.0, C.data(), n);
-    rates.push_back(2.0 * n * static_cast<double>(n) * n / seconds_since(t0) / 1e9);
+    rates.push_back(2.0 * n * static_cast<double>(n) * n / clock.seconds() / 1e9);
   }
   return median(rates);
 }
@@ -41,11 +36,11 @@ double read_gb_per_s(std::size_t bytes, int repeats) {
   std::vector<double> rates;
   double total = 0;
   for (int r = 0; r < repeats; ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
+    const Stopwatch clock;
     double sum = 0;
 #pragma omp parallel for reduction(+ : sum)
     for (std::size_t i = 0; i < x.size(); ++i) sum += x[i];
-    rates.push_back(static_cast<double>(bytes) / seconds_since(t0) / 1e9);
+    rates.push_back(static_cast<double>(bytes) / clock.seconds() / 1e9);
     total += sum;
   }
   if (total < 0) std::printf("unreachable\n");  // keeps the sums alive

@@ -108,12 +108,13 @@ StaticCondensation::StaticCondensation(const model::SecondOrderSystem& full, con
   if (with_modes && !s.empty()) {
     clock.restart();
     const model::SolveK solve_K_ss = [factor = K_ss_factor_](const Vector& b, Vector& x) { factor->solve_leading(b, x); };
-    const model::Modes modes =
-        with_pod ? pod_basis({full, partition_, X_, reduction.snapshot_dt_s, reduction.snapshot_steps},
-                             std::min<Index>(reduction.modes, static_cast<Index>(s.size())))
-        : reduction.modes > 0
-                                   ? model::lowest_modes(M_s, solve_K_ss, std::min<Index>(reduction.modes, static_cast<Index>(s.size())))
-                                   : model::modes_below(M_s, solve_K_ss, reduction.cutoff_rad_s);
+    const Index most = static_cast<Index>(s.size());
+    const model::Modes modes = [&] {
+      if (with_pod)
+        return pod_basis({full, partition_, X_, reduction.snapshot_dt_s, reduction.snapshot_steps}, std::min(reduction.modes, most));
+      if (reduction.modes > 0) return model::lowest_modes(M_s, solve_K_ss, std::min(reduction.modes, most));
+      return model::modes_below(M_s, solve_K_ss, reduction.cutoff_rad_s);
+    }();
     omega_ = modes.omega;
     Phi_ = modes.shapes;
     timings_.modes_s = clock.seconds();

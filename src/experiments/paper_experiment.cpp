@@ -62,12 +62,13 @@ std::vector<std::vector<double>> time_steps(const std::vector<const model::Secon
   std::vector<std::vector<double>> seconds(systems.size());
   trapezoids.reserve(systems.size());
   states.reserve(systems.size());
-  for (const auto* system : systems) {
+  for (std::size_t m = 0; m < systems.size(); ++m) {
+    const auto& system = *systems[m];
     trapezoids.emplace_back(dt);
-    states.push_back({0, Vector::Zero(system->size()), Vector::Zero(system->size())});
-    trapezoids.back().reset(*system, states.back());
-    for (int k = 0; k < 20; ++k) trapezoids.back().step(states.back());
-    seconds[trapezoids.size() - 1].reserve(static_cast<std::size_t>(steps));
+    states.push_back({0, Vector::Zero(system.size()), Vector::Zero(system.size())});
+    trapezoids[m].reset(system, states[m]);
+    for (int k = 0; k < 20; ++k) trapezoids[m].step(states[m]);
+    seconds[m].reserve(static_cast<std::size_t>(steps));
   }
   for (long done = 0; done < steps; done += block)
     for (std::size_t m = 0; m < systems.size(); ++m)
