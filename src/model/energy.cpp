@@ -1,24 +1,42 @@
 #include "model/energy.hpp"
 
+#include <cmath>
+
 namespace roifem::model {
 
 EnergyLedger::EnergyLedger(const SecondOrderSystem& system, const State& initial)
-    : system_(system), previous_(initial), f_previous_(system.load.at(initial.t)) {
-  kinetic_ = kinetic_energy(system, initial);
-  strain_ = strain_energy(system, initial);
+    : system_(system),
+      alpha_(mass_proportional_damping(system)),
+      previous_(initial),
+      f_previous_(system.load.at(initial.t)),
+      Mv_previous_(initial.v.size()),
+      Mv_next_(initial.v.size()),
+      Ku_(initial.u.size()) {
+  system_.apply_mass(initial.v, Mv_previous_);
+  system_.apply_stiffness(initial.u, Ku_);
+  kinetic_ = 0.5 * initial.v.dot(Mv_previous_);
+  strain_ = 0.5 * initial.u.dot(Ku_);
   initial_total_ = total();
 }
 
 void EnergyLedger::record(const State& next) {
+  // One product with M and one with K per state (the split forms, where a reduced model keeps
+  // dense blocks): M v_mid = (M v_n + M v_{n+1}) / 2 reuses the previous state's M v.
   const Vector f_next = system_.load.at(next.t);
   const double dt = next.t - previous_.t;
   const Vector v_mid = 0.5 * (previous_.v + next.v);
   work_ += 0.5 * (next.u - previous_.u).dot(f_previous_ + f_next);
-  dissipated_ += dt * v_mid.dot(system_.C * v_mid);
-  kinetic_ = kinetic_energy(system_, next);
-  strain_ = strain_energy(system_, next);
+  system_.apply_mass(next.v, Mv_next_);
+  if (std::isfinite(alpha_))  // C = alpha M
+    dissipated_ += dt * alpha_ * 0.5 * v_mid.dot(Mv_previous_ + Mv_next_);
+  else
+    dissipated_ += dt * v_mid.dot(system_.C * v_mid);
+  system_.apply_stiffness(next.u, Ku_);
+  kinetic_ = 0.5 * next.v.dot(Mv_next_);
+  strain_ = 0.5 * next.u.dot(Ku_);
   previous_ = next;
   f_previous_ = f_next;
+  Mv_previous_.swap(Mv_next_);
 }
 
 }  // namespace roifem::model

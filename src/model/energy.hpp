@@ -24,8 +24,10 @@ class EnergyLedger {
 
  private:
   const SecondOrderSystem& system_;
+  double alpha_;  ///< C = alpha M, or NaN
   State previous_;
   Vector f_previous_;
+  Vector Mv_previous_, Mv_next_, Ku_;
   double kinetic_ = 0, strain_ = 0, dissipated_ = 0, work_ = 0, initial_total_ = 0;
 };
 

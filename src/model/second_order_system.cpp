@@ -45,7 +45,16 @@ double mass_proportional_damping(const SecondOrderSystem& system, double toleran
   return (system.C - alpha * system.M).norm() <= tolerance * system.C.norm() ? alpha : NAN;
 }
 
-double kinetic_energy(const SecondOrderSystem& sys, const State& s) { return 0.5 * s.v.dot(sys.M * s.v); }
-double strain_energy(const SecondOrderSystem& sys, const State& s) { return 0.5 * s.u.dot(sys.K * s.u); }
+double kinetic_energy(const SecondOrderSystem& sys, const State& s) {
+  Vector Mv(s.v.size());
+  sys.apply_mass(s.v, Mv);
+  return 0.5 * s.v.dot(Mv);
+}
+
+double strain_energy(const SecondOrderSystem& sys, const State& s) {
+  Vector Ku(s.u.size());
+  sys.apply_stiffness(s.u, Ku);
+  return 0.5 * s.u.dot(Ku);
+}
 
 }  // namespace roifem::model

@@ -47,7 +47,8 @@ double mass_proportional_damping(const SecondOrderSystem& system, double toleran
 /// A diagonal as a sparse matrix.
 SparseMatrix diagonal_matrix(const Vector& d);
 
-/// Energies of a state: kinetic v^T M v / 2 and strain u^T K u / 2 (J).
+/// Energies of a state: kinetic v^T M v / 2 and strain u^T K u / 2 (J), through the split M and K
+/// where the system has them.
 double kinetic_energy(const SecondOrderSystem& sys, const State& s);
 double strain_energy(const SecondOrderSystem& sys, const State& s);
 
