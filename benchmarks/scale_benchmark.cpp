@@ -18,6 +18,7 @@
 #include "io/csv.hpp"
 #include "io/plots.hpp"
 #include "scale/child_process.hpp"
+#include "scale/rate_search.hpp"
 #include "scale/scale_model.hpp"
 
 namespace roifem::bench {
@@ -104,20 +105,36 @@ int run(const Options& o) {
                 o.haptic_rate_hz, 1e3 / o.haptic_rate_hz);
     for (long n : o.haptic) {
       const auto mesh_file = brain_mesh_file(n);
-      const ChildResult child = run_in_child(
-          [&] { return largest_roi_at_rate(mesh_file, 1.0 / o.haptic_rate_hz, o.timing).serialize(); }, o.model_timeout_s);
-      if (!child.ok) {
-        std::printf("%8ld  failed: %s\n", n, child.output.c_str());
+      // Each probe is a model of its own, in its own child with its own time limit: at 300k nodes
+      // a probe factors for about 5 minutes and a search makes six or seven.
+      const ChildResult counted = run_in_child([&] { return std::to_string(free_nodes(mesh_file)); }, o.model_timeout_s);
+      if (!counted.ok) {
+        std::printf("%8ld  failed: %s\n", n, counted.output.c_str());
         continue;
       }
-      const RateSearch r = RateSearch::parse(child.output);
+      const RoiProbe probe = [&](long count) {
+        const ChildResult child = run_in_child(
+            [&] { return measure_model(mesh_file, {"roi-" + std::to_string(count), count}, o.timing).serialize(); },
+            o.model_timeout_s);
+        if (!child.ok) {
+          std::printf("         %ld nodes, ROI %ld: failed: %s\n", n, count, child.output.c_str());
+          return ProbeResult{std::nullopt, child.output};
+        }
+        const ScaleMeasurement m = ScaleMeasurement::parse(child.output);
+        std::printf("         %ld nodes, ROI %ld: step %.3f ms\n", m.nodes, count, m.step_median_s * 1e3);
+        std::fflush(stdout);
+        return ProbeResult{m, ""};
+      };
+      const RateSearch r = largest_roi_at_rate(probe, 1.0 / o.haptic_rate_hz, std::stol(counted.output));
       std::string probes;
-      for (const auto& [count, s] : r.probes) probes += io::format("%ld:%.3fms ", count, s * 1e3);
-      std::printf("%8ld nodes: ROI %ld nodes (%ld dofs, %ld on the interface), step %.3f ms   probes %s\n", r.nodes,
-                  r.roi_nodes, r.system_dofs, r.interface_dofs, r.step_median_s * 1e3, probes.c_str());
+      for (const auto& [count, result] : r.probes)
+        probes += result.measurement ? io::format("%ld:%.3fms ", count, result.measurement->step_median_s * 1e3)
+                                     : io::format("%ld:failed ", count);
+      std::printf("%8ld nodes: ROI %ld nodes (%ld dofs, %ld on the interface), step %.3f ms   probes %s\n", r.nodes, r.roi_nodes,
+                  r.system_dofs, r.interface_dofs, r.step_median_s * 1e3, probes.c_str());
       std::fflush(stdout);
-      haptic.row(io::format("%ld,%.6g,%ld,%ld,%ld,%.6g,%s", r.nodes, o.haptic_rate_hz, r.roi_nodes, r.system_dofs,
-                            r.interface_dofs, r.step_median_s * 1e3, probes.c_str()));
+      haptic.row(io::format("%ld,%.6g,%ld,%ld,%ld,%.6g,%s", r.nodes, o.haptic_rate_hz, r.roi_nodes, r.system_dofs, r.interface_dofs,
+                            r.step_median_s * 1e3, probes.c_str()));
     }
     haptic.close();
   }

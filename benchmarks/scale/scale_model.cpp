@@ -194,74 +194,8 @@ ScaleMeasurement measure_model(const std::filesystem::path& mesh_file, const Mod
   return m;
 }
 
-std::string RateSearch::serialize() const {
-  std::ostringstream out;
-  out.precision(17);
-  out << "nodes=" << nodes << "\nroi_nodes=" << roi_nodes << "\nsystem_dofs=" << system_dofs
-      << "\ninterface_dofs=" << interface_dofs << "\nstep_median_s=" << step_median_s << "\nprobes=";
-  for (const auto& [count, s] : probes) out << count << ":" << s << ",";
-  out << "\n";
-  return out.str();
-}
-
-RateSearch RateSearch::parse(const std::string& text) {
-  auto f = parse_fields(text);
-  RateSearch r;
-  r.nodes = std::stol(f.at("nodes"));
-  r.roi_nodes = std::stol(f.at("roi_nodes"));
-  r.system_dofs = std::stol(f.at("system_dofs"));
-  r.interface_dofs = std::stol(f.at("interface_dofs"));
-  r.step_median_s = std::stod(f.at("step_median_s"));
-  std::istringstream probes(f.at("probes"));
-  for (std::string item; std::getline(probes, item, ',');)
-    if (const auto colon = item.find(':'); colon != std::string::npos)
-      r.probes.emplace_back(std::stol(item.substr(0, colon)), std::stod(item.substr(colon + 1)));
-  return r;
-}
-
-RateSearch largest_roi_at_rate(const std::filesystem::path& mesh_file, double max_step_s, const TimingOptions& timing,
-                               double resolution) {
-  const auto brain = build_brain(mesh_file);
-  RateSearch r;
-  r.nodes = static_cast<long>(brain->mesh.num_nodes());
-  const long free_nodes = static_cast<long>(brain->model.system.size() / 3);  // an upper bound on ROI sizes worth probing
-  auto probe = [&](long count) {
-    const Condensed c = condense(*brain, count);
-    integrators::Trapezoid trapezoid(dt);
-    long steps = 0;
-    const double median = time_steps(c.condensation->system(), trapezoid, timing, steps).first;
-    r.probes.emplace_back(count, median);
-    if (median <= max_step_s && count > r.roi_nodes) {
-      r.roi_nodes = count;
-      r.system_dofs = static_cast<long>(c.condensation->system().size());
-      r.interface_dofs = c.interface_dofs;
-      r.step_median_s = median;
-    }
-    return median <= max_step_s;
-  };
-  long lo = 0, hi = 0;  // largest count known to hold, smallest known to fail
-  for (long count = 1000;; count *= 2) {
-    count = std::min(count, free_nodes);
-    if (!probe(count)) {
-      hi = count;
-      break;
-    }
-    lo = count;
-    if (count == free_nodes) return r;
-  }
-  if (lo == 0)  // 1000 already fails: halve down
-    for (long count = hi / 2; count >= 10; count /= 2) {
-      if (probe(count)) {
-        lo = count;
-        break;
-      }
-      hi = count;
-    }
-  while (lo > 0 && static_cast<double>(hi - lo) > resolution * static_cast<double>(lo)) {
-    const long mid = (lo + hi) / 2;
-    (probe(mid) ? lo : hi) = mid;
-  }
-  return r;
+long free_nodes(const std::filesystem::path& mesh_file) {
+  return static_cast<long>(build_brain(mesh_file)->model.system.size() / 3);  // an upper bound on ROI sizes worth probing
 }
 
 }  // namespace roifem::bench

@@ -48,18 +48,7 @@ struct ScaleMeasurement {
 
 ScaleMeasurement measure_model(const std::filesystem::path& mesh_file, const ModelSpec& spec, const TimingOptions& timing);
 
-/// The largest ROI (nodes nearest the target) whose condensed step holds `max_step_s` (median),
-/// found by doubling and bisection to within `resolution` (relative); the model is built once.
-struct RateSearch {
-  long nodes = 0;
-  long roi_nodes = 0, system_dofs = 0, interface_dofs = 0;  ///< of the largest ROI that holds
-  double step_median_s = 0;
-  std::vector<std::pair<long, double>> probes;  ///< (ROI nodes, step median s), in probing order
-  std::string serialize() const;
-  static RateSearch parse(const std::string& text);
-};
-
-RateSearch largest_roi_at_rate(const std::filesystem::path& mesh_file, double max_step_s, const TimingOptions& timing,
-                               double resolution = 0.05);
+/// The free nodes of a generated brain (the base fixed): the largest ROI there is.
+long free_nodes(const std::filesystem::path& mesh_file);
 
 }  // namespace roifem::bench

@@ -1,0 +1,32 @@
+#pragma once
+/// The scale benchmark's haptic question: the largest ROI whose condensed step holds a rate.
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "scale/scale_model.hpp"
+
+namespace roifem::bench {
+
+/// The largest ROI (nodes nearest the target) whose condensed step holds `max_step_s` (median),
+/// found by doubling from 1,000 nodes and then bisection to within `resolution` (relative).
+/// `probe(count)` measures the condensed model of a `count`-node ROI, or gives the reason it could
+/// not (a failed probe counts as one that does not hold).
+struct ProbeResult {
+  std::optional<ScaleMeasurement> measurement;
+  std::string failure;
+};
+using RoiProbe = std::function<ProbeResult(long count)>;
+
+struct RateSearch {
+  long nodes = 0;  ///< of the brain (from the probes)
+  long roi_nodes = 0, system_dofs = 0, interface_dofs = 0;  ///< of the largest ROI that holds
+  double step_median_s = 0;
+  std::vector<std::pair<long, ProbeResult>> probes;  ///< in probing order
+};
+
+RateSearch largest_roi_at_rate(const RoiProbe& probe, double max_step_s, long free_nodes, double resolution = 0.05);
+
+}  // namespace roifem::bench
