@@ -24,7 +24,7 @@ void Trapezoid::reset(const model::SecondOrderSystem& system, const model::State
     if (cg_)
       cg_->compute(std::move(K_eff));  // no second copy of K_eff
     else
-      K_eff_.compute(K_eff);
+      K_eff_.compute(K_eff, system.dense_block_dofs());
   } catch (const solvers::NotPositiveDefinite& e) {
     throw SolverError(std::string(name()) + ": K + 2/dt C + 4/dt^2 M is not positive definite: " + e.what());
   }

@@ -1,5 +1,6 @@
 #include "model/second_order_system.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace roifem::model {
@@ -37,6 +38,14 @@ void SecondOrderSystem::apply_mass(const Eigen::Ref<const Vector>& x, Eigen::Ref
     y.noalias() = M.transpose() * x;
   else
     M_split.apply(x, y);
+}
+
+std::vector<Index> SecondOrderSystem::dense_block_dofs() const {
+  std::vector<Index> dofs = K_split.index;
+  dofs.insert(dofs.end(), M_split.index.begin(), M_split.index.end());
+  std::sort(dofs.begin(), dofs.end());
+  dofs.erase(std::unique(dofs.begin(), dofs.end()), dofs.end());
+  return dofs;
 }
 
 double mass_proportional_damping(const SecondOrderSystem& system, double tolerance) {

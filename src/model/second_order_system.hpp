@@ -33,6 +33,9 @@ struct SecondOrderSystem {
   void apply_stiffness(const Eigen::Ref<const Vector>& x, Eigen::Ref<Vector> y) const;
   /// y = M x, through M_split when there is one.
   void apply_mass(const Eigen::Ref<const Vector>& x, Eigen::Ref<Vector> y) const;
+  /// The dofs of K_split's and M_split's dense blocks, ascending: what a factorization of
+  /// K + c M orders last, so that they form one dense supernode.
+  std::vector<Index> dense_block_dofs() const;
 };
 
 /// Displacement and velocity at time t.

@@ -78,6 +78,30 @@ void Cholesky::analyze(const SparseMatrix& A) {
   impl_->check(impl_->factor != nullptr, "analysis");
 }
 
+void Cholesky::analyze(const SparseMatrix& A, const std::vector<Index>& last) {
+  if (last.empty()) return analyze(A);
+  if (A.rows() != A.cols()) throw Error("internal: Cholesky of a non-square matrix");
+  if (!A.isCompressed()) throw Error("internal: Cholesky needs a compressed matrix");
+  const std::size_t n = static_cast<std::size_t>(A.rows());
+  std::vector<int> member(n, 0), perm(n);
+  for (Index i : last) {
+    if (i < 0 || static_cast<std::size_t>(i) >= n) throw Error("internal: Cholesky: index " + std::to_string(i) + " to order last is out of range");
+    member[static_cast<std::size_t>(i)] = 1;
+  }
+  cholmod_sparse a = symmetric_view(A);
+  auto& common = impl_->common;
+  impl_->check(cholmod_camd(&a, nullptr, 0, member.data(), perm.data(), &common), "constrained ordering");
+  impl_->free_workspace();
+  if (impl_->factor) cholmod_free_factor(&impl_->factor, &common);
+  const int methods = common.nmethods, ordering = common.method[0].ordering;
+  common.nmethods = 1;
+  common.method[0].ordering = CHOLMOD_GIVEN;
+  impl_->factor = cholmod_analyze_p(&a, perm.data(), nullptr, 0, &common);
+  common.nmethods = methods;
+  common.method[0].ordering = ordering;
+  impl_->check(impl_->factor != nullptr, "analysis");
+}
+
 void Cholesky::factorize(const SparseMatrix& A) {
   if (!impl_->factor || static_cast<Index>(impl_->factor->n) != A.rows()) analyze(A);
   cholmod_sparse a = symmetric_view(A);
@@ -124,6 +148,12 @@ DenseMatrix Cholesky::solve_matrix(const Eigen::Ref<const DenseMatrix>& B) const
 }
 
 Index Cholesky::size() const { return impl_->factor ? static_cast<Index>(impl_->factor->n) : 0; }
+
+std::vector<Index> Cholesky::ordering() const {
+  if (!impl_->factor) throw Error("internal: Cholesky::ordering before analyze");
+  const auto* perm = static_cast<const int*>(impl_->factor->Perm);
+  return std::vector<Index>(perm, perm + impl_->factor->n);
+}
 
 double Cholesky::factor_nonzeros() const { return impl_->common.lnz; }
 

@@ -5,6 +5,7 @@
 /// change; solves reuse CHOLMOD's workspace (cholmod_solve2), so a time step allocates nothing.
 /// A reads as symmetric from its lower triangle; full symmetric storage is fine.
 #include <memory>
+#include <vector>
 
 #include "common/types.hpp"
 
@@ -22,11 +23,19 @@ class Cholesky {
 
   /// Symbolic analysis: ordering and the factor's pattern.
   void analyze(const SparseMatrix& A);
+  /// The same with the indices `last` ordered after all others (CHOLMOD's constrained AMD, CAMD):
+  /// for a matrix with a dense block (a condensed K_eff's interface), whose dofs then form one
+  /// trailing dense supernode instead of pieces an unconstrained ordering may scatter.
+  void analyze(const SparseMatrix& A, const std::vector<Index>& last);
   /// Numeric factorization (analyze first, or it is done here). Throws NotPositiveDefinite.
   void factorize(const SparseMatrix& A);
   /// analyze + factorize.
   void compute(const SparseMatrix& A) {
     analyze(A);
+    factorize(A);
+  }
+  void compute(const SparseMatrix& A, const std::vector<Index>& last) {
+    analyze(A, last);
     factorize(A);
   }
 
@@ -36,6 +45,8 @@ class Cholesky {
   DenseMatrix solve_matrix(const Eigen::Ref<const DenseMatrix>& B) const;
 
   Index size() const;
+  /// The fill-reducing ordering: the k-th column of L is column ordering()[k] of A.
+  std::vector<Index> ordering() const;
   /// Non-zeros in L.
   double factor_nonzeros() const;
   /// CHOLMOD's reciprocal condition estimate (min/max of diag(L))^2.
