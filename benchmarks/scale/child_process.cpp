@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <exception>
 
@@ -26,6 +27,7 @@ void write_all(int fd, const std::string& text) {
 ChildResult run_in_child(const std::function<std::string()>& work, double timeout_s) {
   int fds[2];
   if (::pipe(fds) != 0) return {false, std::string("pipe: ") + std::strerror(errno)};
+  std::fflush(nullptr);  // a child that flushes stdio (Gmsh does) would print the parent's buffered text again
   const pid_t pid = ::fork();
   if (pid < 0) return {false, std::string("fork: ") + std::strerror(errno)};
   if (pid == 0) {
