@@ -68,37 +68,34 @@ Cholesky::Cholesky(Cholesky&&) noexcept = default;
 Cholesky& Cholesky::operator=(Cholesky&&) noexcept = default;
 Cholesky::~Cholesky() = default;
 
-void Cholesky::analyze(const SparseMatrix& A) {
-  if (A.rows() != A.cols()) throw Error("internal: Cholesky of a non-square matrix");
-  if (!A.isCompressed()) throw Error("internal: Cholesky needs a compressed matrix");
-  cholmod_sparse a = symmetric_view(A);
-  impl_->free_workspace();
-  if (impl_->factor) cholmod_free_factor(&impl_->factor, &impl_->common);
-  impl_->factor = cholmod_analyze(&a, &impl_->common);
-  impl_->check(impl_->factor != nullptr, "analysis");
-}
+void Cholesky::analyze(const SparseMatrix& A) { analyze(A, {}); }
 
 void Cholesky::analyze(const SparseMatrix& A, const std::vector<Index>& last) {
-  if (last.empty()) return analyze(A);
   if (A.rows() != A.cols()) throw Error("internal: Cholesky of a non-square matrix");
   if (!A.isCompressed()) throw Error("internal: Cholesky needs a compressed matrix");
   const std::size_t n = static_cast<std::size_t>(A.rows());
-  std::vector<int> member(n, 0), perm(n);
+  std::vector<int> member(last.empty() ? 0 : n, 0);  // CAMD's constraint sets: 1 = ordered last
   for (Index i : last) {
-    if (i < 0 || static_cast<std::size_t>(i) >= n) throw Error("internal: Cholesky: index " + std::to_string(i) + " to order last is out of range");
+    if (i < 0 || static_cast<std::size_t>(i) >= n)
+      throw Error("internal: Cholesky: index " + std::to_string(i) + " to order last is out of range");
     member[static_cast<std::size_t>(i)] = 1;
   }
   cholmod_sparse a = symmetric_view(A);
   auto& common = impl_->common;
-  impl_->check(cholmod_camd(&a, nullptr, 0, member.data(), perm.data(), &common), "constrained ordering");
   impl_->free_workspace();
   if (impl_->factor) cholmod_free_factor(&impl_->factor, &common);
-  const int methods = common.nmethods, ordering = common.method[0].ordering;
-  common.nmethods = 1;
-  common.method[0].ordering = CHOLMOD_GIVEN;
-  impl_->factor = cholmod_analyze_p(&a, perm.data(), nullptr, 0, &common);
-  common.nmethods = methods;
-  common.method[0].ordering = ordering;
+  if (last.empty()) {
+    impl_->factor = cholmod_analyze(&a, &common);  // CHOLMOD's choice among AMD and METIS
+  } else {
+    std::vector<int> perm(n);
+    impl_->check(cholmod_camd(&a, nullptr, 0, member.data(), perm.data(), &common), "constrained ordering");
+    const int methods = common.nmethods, ordering = common.method[0].ordering;
+    common.nmethods = 1;
+    common.method[0].ordering = CHOLMOD_GIVEN;
+    impl_->factor = cholmod_analyze_p(&a, perm.data(), nullptr, 0, &common);
+    common.nmethods = methods;
+    common.method[0].ordering = ordering;
+  }
   impl_->check(impl_->factor != nullptr, "analysis");
 }
 
