@@ -118,6 +118,7 @@ int run(const Options& o) {
             o.model_timeout_s);
         if (!child.ok) {
           std::printf("         %ld nodes, ROI %ld: failed: %s\n", n, count, child.output.c_str());
+          std::fflush(stdout);
           return ProbeResult{std::nullopt, child.output};
         }
         const ScaleMeasurement m = ScaleMeasurement::parse(child.output);
@@ -125,7 +126,8 @@ int run(const Options& o) {
         std::fflush(stdout);
         return ProbeResult{m, ""};
       };
-      const RateSearch r = largest_roi_at_rate(probe, 1.0 / o.haptic_rate_hz, std::stol(counted.output));
+      RateSearch r = largest_roi_at_rate(probe, 1.0 / o.haptic_rate_hz, std::stol(counted.output));
+      if (r.nodes == 0) r.nodes = n;  // every probe failed: the mesh's own count is unknown here
       std::string probes;
       for (const auto& [count, result] : r.probes)
         probes += result.measurement ? io::format("%ld:%.3fms ", count, result.measurement->step_median_s * 1e3)
