@@ -10,14 +10,12 @@
 
 namespace roifem::bench {
 
-/// The largest ROI (nodes nearest the target) whose condensed step holds `max_step_s` (median),
-/// found by doubling from 1,000 nodes and then bisection to within `resolution` (relative).
-/// `probe(count)` measures the condensed model of a `count`-node ROI, or gives the reason it could
-/// not (a failed probe counts as one that does not hold).
+/// One probe's answer: the condensed model of a ROI measured, or the reason it could not be.
 struct ProbeResult {
   std::optional<ScaleMeasurement> measurement;
   std::string failure;
 };
+/// Measures the condensed model of a `count`-node ROI.
 using RoiProbe = std::function<ProbeResult(long count)>;
 
 struct RateSearch {
@@ -27,6 +25,9 @@ struct RateSearch {
   std::vector<std::pair<long, ProbeResult>> probes;  ///< in probing order
 };
 
+/// The largest ROI (nodes nearest the target) whose condensed step holds `max_step_s` (median),
+/// found by doubling from 1,000 nodes (at most `free_nodes`) and then bisection to within
+/// `resolution` (relative). A failed probe counts as one that does not hold.
 RateSearch largest_roi_at_rate(const RoiProbe& probe, double max_step_s, long free_nodes, double resolution = 0.05);
 
 }  // namespace roifem::bench
