@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solvers/dense_blas.hpp"
+
 namespace roifem::model {
 
 SparseMatrix diagonal_matrix(const Vector& d) {
@@ -21,8 +23,9 @@ void SplitMatrix::apply(const Eigen::Ref<const Vector>& x, Eigen::Ref<Vector> y)
   if (m == 0) return;
   thread_local Vector gathered, product;
   gathered.resize(m);
+  product.resize(m);
   for (Index a = 0; a < m; ++a) gathered[a] = x[index[static_cast<std::size_t>(a)]];
-  product.noalias() = block.selfadjointView<Eigen::Lower>() * gathered;  // reads half the block
+  solvers::multiply_symmetric(block, gathered, 0.0, product);  // reads half the block
   for (Index a = 0; a < m; ++a) y[index[static_cast<std::size_t>(a)]] += product[a];
 }
 
