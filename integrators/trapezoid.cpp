@@ -18,19 +18,23 @@ void Trapezoid::reset(const model::SecondOrderSystem& system, const model::State
   system_ = &system;
   const Index n = system.size();
   if (initial.u.size() != n || initial.v.size() != n) throw Error("internal: trapezoid: state size mismatch");
-  SparseMatrix K_eff = system.K + (2.0 / dt_) * system.C + (4.0 / (dt_ * dt_)) * system.M;
-  const Stopwatch clock;
-  try {
-    if (cg_)
-      cg_->compute(std::move(K_eff));  // no second copy of K_eff
-    else
-      K_eff_.compute(K_eff, system.dense_block_dofs());
-  } catch (const solvers::NotPositiveDefinite& e) {
-    throw SolverError(std::string(name()) + ": K + 2/dt C + 4/dt^2 M is not positive definite: " + e.what());
-  }
   // With mass-proportional damping C = alpha M (every model here) the right-hand side needs one
   // product with M instead of one with M and one with C: it matters when M has dense blocks.
   alpha_ = model::mass_proportional_damping(system);
+  const Stopwatch clock;
+  modal_.reset();
+  try {
+    if (!cg_ && std::isfinite(alpha_)) modal_ = ModalElimination::build(system, 4.0 / (dt_ * dt_) + 2.0 * alpha_ / dt_);
+    if (!modal_) {
+      SparseMatrix K_eff = system.K + (2.0 / dt_) * system.C + (4.0 / (dt_ * dt_)) * system.M;
+      if (cg_)
+        cg_->compute(std::move(K_eff));  // no second copy of K_eff
+      else
+        K_eff_.compute(K_eff, system.dense_block_dofs());
+    }
+  } catch (const solvers::NotPositiveDefinite& e) {
+    throw SolverError(std::string(name()) + ": K + 2/dt C + 4/dt^2 M is not positive definite: " + e.what());
+  }
   t0_ = initial.t;
   k_ = 0;
   // Consistent initial acceleration: M a_0 = f(t_0) - C v_0 - K u_0.
@@ -52,27 +56,30 @@ void Trapezoid::step(model::State& s) {
   ++k_;
   s.t = t0_ + static_cast<double>(k_) * dt_;
   system_->load.evaluate(s.t, f_);
-  // rhs = f + M (c_u u + c_v v + a) + C (2/dt u + v)
-  if (std::isfinite(alpha_)) {
+  // rhs = f + M (c_u u + c_v v + a) + C (2/dt u + v); with C = alpha M one product with M.
+  if (std::isfinite(alpha_))
     work_ = (c_u + alpha_ * 2.0 / dt_) * s.u + (c_v + alpha_) * s.v + a_;
-    system_->apply_mass(work_, rhs_);
-    rhs_ += f_;
-  } else {
+  else
     work_ = c_u * s.u + c_v * s.v + a_;
+  if (modal_) {
+    modal_->solve(f_, work_, u_next_);  // rhs and solve in one, q eliminated
+  } else {
     system_->apply_mass(work_, rhs_);
     rhs_ += f_;
-    work_ = (2.0 / dt_) * s.u + s.v;
-    rhs_.noalias() += system_->C * work_;
-  }
-  if (cg_) {
-    u_next_ = s.u + dt_ * s.v + (0.5 * dt_ * dt_) * a_;  // the guess: constant acceleration
-    try {
-      stats_.lin_iterations += cg_->solve(rhs_, u_next_);
-    } catch (const SolverError& e) {
-      throw SolverError(std::string("trapezoid-cg: step ") + std::to_string(k_) + ", t = " + number_text(s.t) + " s: " + e.what());
+    if (!std::isfinite(alpha_)) {
+      work_ = (2.0 / dt_) * s.u + s.v;
+      rhs_.noalias() += system_->C * work_;
     }
-  } else {
-    K_eff_.solve(rhs_, u_next_);
+    if (cg_) {
+      u_next_ = s.u + dt_ * s.v + (0.5 * dt_ * dt_) * a_;  // the guess: constant acceleration
+      try {
+        stats_.lin_iterations += cg_->solve(rhs_, u_next_);
+      } catch (const SolverError& e) {
+        throw SolverError(std::string("trapezoid-cg: step ") + std::to_string(k_) + ", t = " + number_text(s.t) + " s: " + e.what());
+      }
+    } else {
+      K_eff_.solve(rhs_, u_next_);
+    }
   }
   // a_{n+1} = c_u (u_{n+1} - u_n) - c_v v_n - a_n, then v and u.
   work_ = c_u * (u_next_ - s.u) - c_v * s.v - a_;

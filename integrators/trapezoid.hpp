@@ -7,13 +7,15 @@
 ///   a_{n+1} = 4/dt^2 (u_{n+1} - u_n) - 4/dt v_n - a_n,   v_{n+1} = v_n + dt/2 (a_n + a_{n+1}).
 /// Time levels are t_k = t_0 + k dt (never accumulated by t += dt).
 ///
-/// K_eff is solved by CHOLMOD ("trapezoid"), or, where its factor does not fit in memory, by
+/// K_eff is solved by CHOLMOD ("trapezoid"; for a system with modal coordinates, with them
+/// eliminated in closed form first: modal_elimination.hpp), or, where its factor does not fit in memory, by
 /// Jacobi-preconditioned conjugate gradients to a relative residual of 1e-10 ("trapezoid-cg",
 /// started from the predictor u_n + dt v_n + dt^2/2 a_n). Both give the same answer to ~1e-9
 /// relative over hundreds of steps; the direct solve is ~20x faster where it fits.
 #include <optional>
 
 #include "integrators/integrator.hpp"
+#include "integrators/modal_elimination.hpp"
 #include "solvers/cholesky.hpp"
 #include "solvers/jacobi_cg.hpp"
 
@@ -32,12 +34,15 @@ class Trapezoid final : public Integrator {
   /// One step from the current state (the hot path a simulator calls each tick).
   void step(model::State& state);
   double dt() const { return dt_; }
+  /// Whether the last reset found modal coordinates to eliminate (modal_elimination.hpp).
+  bool eliminates_modal_coordinates() const { return modal_.has_value(); }
 
  private:
   double dt_;
   const model::SecondOrderSystem* system_ = nullptr;
   solvers::Cholesky K_eff_;
   std::optional<solvers::JacobiCg> cg_;  // set: K_eff is solved iteratively instead
+  std::optional<ModalElimination> modal_;  // set: K_eff is solved with the modal coordinates eliminated
   double alpha_ = 0;  // C = alpha M, or NaN when C is not mass-proportional
   double t0_ = 0;
   long k_ = 0;

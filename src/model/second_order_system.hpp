@@ -28,6 +28,10 @@ struct SecondOrderSystem {
   LoadHistory load;
   SplitMatrix K_split;       ///< optional: the same K, split, for products
   SplitMatrix M_split;       ///< optional: the same M, split (Guyan, Craig-Bampton)
+  /// The last dofs are this many modal coordinates q (Craig-Bampton, POD): M_qq = I exactly,
+  /// K_qq diagonal, K_dq = 0, and M couples q to the rest only through M_split's block. An
+  /// integrator may eliminate them in closed form (integrators/modal_elimination.hpp).
+  Index modal_coordinates = 0;
   Index size() const { return K.rows(); }
   /// y = K x, through K_split when there is one.
   void apply_stiffness(const Eigen::Ref<const Vector>& x, Eigen::Ref<Vector> y) const;

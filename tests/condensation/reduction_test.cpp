@@ -234,6 +234,52 @@ TEST(Reduction, EveryIntegratorFamilyIntegratesAFullMassAgainstTheModalSolution)
 }
 
 
+TEST(Reduction, TheTrapezoidalRuleEliminatesModalCoordinatesAndStepsAsTheWholeSolveDoes) {
+  // Craig-Bampton and POD systems declare their modal coordinates; the trapezoidal rule eliminates
+  // them in closed form (the factor is plain condensation's size) and must step exactly as it does
+  // when it factors K_eff whole (the same system with the declaration removed).
+  const Beam beam;
+  for (const Reduction& reduction : {Reduction{.kind = ReductionKind::craig_bampton, .modes = 5},
+                                     Reduction{.kind = ReductionKind::pod, .modes = 4}.trained_on(0.01, 60)}) {
+    const StaticCondensation r(beam.model.system, beam.partition(), *beam.model.dofs, reduction);
+    const auto& eliminated = r.system();
+    ASSERT_EQ(eliminated.modal_coordinates, r.num_modes()) << reduction.label();
+    model::SecondOrderSystem whole = eliminated;
+    whole.modal_coordinates = 0;
+    model::SecondOrderSystem perturbed = eliminated;  // M_qq no longer exactly I: not eliminated
+    perturbed.M_split.block(perturbed.M_split.block.rows() - 1, perturbed.M_split.block.cols() - 1) *= 1 + 1e-15;
+    integrators::Trapezoid a(0.01), b(0.01), c(0.01);
+    model::State sa{0, Vector::Zero(eliminated.size()), Vector::Zero(eliminated.size())}, sb = sa, sc = sa;
+    a.reset(eliminated, sa);
+    b.reset(whole, sb);
+    c.reset(perturbed, sc);
+    EXPECT_TRUE(a.eliminates_modal_coordinates()) << reduction.label();
+    EXPECT_FALSE(b.eliminates_modal_coordinates()) << reduction.label();
+    EXPECT_FALSE(c.eliminates_modal_coordinates()) << reduction.label();
+    double worst_u = 0, worst_v = 0, worst_perturbed = 0, peak_u = 0, peak_v = 0, modal_share = 0;
+    for (int k = 0; k < 100; ++k) {
+      a.step(sa);
+      b.step(sb);
+      c.step(sc);
+      peak_u = std::max(peak_u, sb.u.norm());
+      peak_v = std::max(peak_v, sb.v.norm());
+      worst_u = std::max(worst_u, (sa.u - sb.u).norm());
+      worst_v = std::max(worst_v, (sa.v - sb.v).norm());
+      worst_perturbed = std::max(worst_perturbed, (sc.u - sb.u).norm());
+      Vector without_modes = sb.u;  // the modes' share of the full displacement field
+      without_modes.tail(r.num_modes()).setZero();
+      const Vector u = r.expand(sb.u, sb.t);
+      modal_share = std::max(modal_share, (u - r.expand(without_modes, sb.t)).norm() / u.norm());
+    }
+    std::printf("%s beam, 100 steps: eliminated vs whole |du| / |u| <= %.1e, |dv| / |v| <= %.1e (modes' share of u up to %.2f)\n",
+                reduction.label().c_str(), worst_u / peak_u, worst_v / peak_v, modal_share);
+    EXPECT_GT(modal_share, 0.02) << reduction.label() << ": the modes must take part";
+    EXPECT_LT(worst_u / peak_u, 1e-12) << reduction.label();
+    EXPECT_LT(worst_v / peak_v, 1e-12) << reduction.label();
+    EXPECT_LT(worst_perturbed / peak_u, 1e-12) << reduction.label();
+  }
+}
+
 TEST(Reduction, TheEnergyLedgerOfAReducedModelReadsItsSplitMatricesRight) {
   // The ledger takes its products through the split M and K (dense blocks read as blocks); the
   // assembled matrices give the same energies, and the trapezoidal rule's discrete balance
