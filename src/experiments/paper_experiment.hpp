@@ -36,6 +36,7 @@ struct PaperOptions {
       {}, {.kind = condensation::ReductionKind::guyan}, {.kind = condensation::ReductionKind::craig_bampton, .modes = 5},
       {.kind = condensation::ReductionKind::craig_bampton, .modes = 10},
       {.kind = condensation::ReductionKind::craig_bampton, .modes = 20},
+      {.kind = condensation::ReductionKind::craig_bampton, .modes = 200},
       {.kind = condensation::ReductionKind::pod, .modes = 40}};
 };
 

@@ -38,6 +38,10 @@ class PaperExperiment : public ::testing::Test {
   }
   static test::TempDir* dir;
   static PaperResults* results;
+  static ReductionRow row(const std::string& setup, const std::string& reduction) {
+    return *std::find_if(results->reductions.begin(), results->reductions.end(),
+                         [&](const ReductionRow& x) { return x.setup == setup && x.reduction == reduction; });
+  }
 };
 test::TempDir* PaperExperiment::dir = nullptr;
 PaperResults* PaperExperiment::results = nullptr;
@@ -53,7 +57,7 @@ TEST_F(PaperExperiment, HasTwoSetupsTimesThreeRampsOf200Steps) {
 TEST_F(PaperExperiment, KeepingTheStaticPartsInertiaLowersThePeakError) {
   // Guyan and Craig-Bampton carry the static part's mass, which plain condensation drops: their
   // max-error peak at the fastest ramp lies below plain condensation's on both setups.
-  ASSERT_EQ(results->reductions.size(), 12u);  // 2 setups x (static, guyan, craig-bampton 5, 10, 20, pod-40)
+  ASSERT_EQ(results->reductions.size(), 14u);  // 2 setups x (static, guyan, craig-bampton 5, 10, 20, 200, pod-40)
   for (const auto& row : results->reductions) {
     const auto& plain = *std::find_if(results->reductions.begin(), results->reductions.end(),
                                       [&](const ReductionRow& x) { return x.setup == row.setup && x.reduction == "static"; });
@@ -63,14 +67,18 @@ TEST_F(PaperExperiment, KeepingTheStaticPartsInertiaLowersThePeakError) {
   }
 }
 
-TEST_F(PaperExperiment, FortyPodVectorsLowerThePeakErrorTenfoldOnSetup1) {
+TEST_F(PaperExperiment, TwoHundredCraigBamptonModesLowerThePeakErrorTenfoldOnSetup1) {
   // The target on the paper case (ramp 0.5 s, setup 1), against the full model: a 10x
-  // lower max-error peak than plain condensation (measured 12.5x; Craig-Bampton needs 150-200
-  // modes for that). The basis is learnt from step responses, not from this ramp.
-  auto row = [&](const std::string& setup, const std::string& reduction) {
-    return *std::find_if(results->reductions.begin(), results->reductions.end(),
-                         [&](const ReductionRow& x) { return x.setup == setup && x.reduction == reduction; });
-  };
+  // lower max-error peak than plain condensation with Craig-Bampton (measured 17.2x; 20 modes
+  // give 2x: the error lives in many weakly driven local modes near the interface).
+  EXPECT_LT(row("setup1", "craig-bampton-200").peak_max_mm, 0.1 * row("setup1", "static").peak_max_mm);
+  EXPECT_LT(row("setup1", "craig-bampton-200").peak_max_mm, 0.5 * row("setup1", "craig-bampton-20").peak_max_mm);
+  EXPECT_EQ(row("setup1", "craig-bampton-200").extra_dofs, 200);
+}
+
+TEST_F(PaperExperiment, FortyPodVectorsLowerThePeakErrorTenfoldOnSetup1) {
+  // The same target with 40 POD vectors (measured 12.5x). The basis is learnt from step
+  // responses, not from this ramp.
   EXPECT_LT(row("setup1", "pod-40").peak_max_mm, 0.1 * row("setup1", "static").peak_max_mm);
   EXPECT_LT(row("setup2", "pod-40").peak_max_mm, 0.15 * row("setup2", "static").peak_max_mm);
   EXPECT_EQ(row("setup1", "pod-40").extra_dofs, 40);
@@ -106,7 +114,7 @@ TEST_F(PaperExperiment, WritesCompleteCsvAndReadableHdf5) {
   EXPECT_EQ(header, "setup,reduction,ramp_s,step,time_s,mean_mm,max_mm");
   int rows = 0;
   for (std::string line; std::getline(errors, line);) ++rows;
-  EXPECT_EQ(rows, 6 * 6 * 200);  // 6 reductions x 2 setups x 3 ramps
+  EXPECT_EQ(rows, 7 * 6 * 200);  // 7 reductions x 2 setups x 3 ramps
   std::ifstream timing(dir->path() / "timing.csv");
   std::getline(timing, header);
   EXPECT_EQ(header, "model,nodes,dofs,step_s_median,frame_rate_hz");
