@@ -42,7 +42,7 @@ class ModalElimination {
   DenseMatrix B_;                // #interface x k
   Vector D_inverse_;             // (Lambda + c I)^-1
   solvers::Cholesky factor_;     // K_eff,dd - c^2 B D^-1 B^T, interface last
-  Vector r_d_, x_d_, w_i_, x_i_, product_i_, r_q_, y_q_;
+  Vector r_d_, w_i_, x_i_, product_i_, r_q_, y_q_;
 };
 
 }  // namespace roifem::integrators

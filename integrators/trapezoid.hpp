@@ -7,10 +7,10 @@
 ///   a_{n+1} = 4/dt^2 (u_{n+1} - u_n) - 4/dt v_n - a_n,   v_{n+1} = v_n + dt/2 (a_n + a_{n+1}).
 /// Time levels are t_k = t_0 + k dt (never accumulated by t += dt).
 ///
-/// K_eff is solved by CHOLMOD ("trapezoid"; for a system with modal coordinates, with them
-/// eliminated in closed form first: modal_elimination.hpp), or, where its factor does not fit in memory, by
-/// Jacobi-preconditioned conjugate gradients to a relative residual of 1e-10 ("trapezoid-cg",
-/// started from the predictor u_n + dt v_n + dt^2/2 a_n). Both give the same answer to ~1e-9
+/// K_eff is solved by CHOLMOD ("trapezoid"; a system's modal coordinates eliminated in closed form
+/// first: modal_elimination.hpp), or, where its factor does not fit in memory, by Jacobi-
+/// preconditioned conjugate gradients to a relative residual of 1e-10 ("trapezoid-cg", started
+/// from the predictor u_n + dt v_n + dt^2/2 a_n). Both give the same answer to ~1e-9
 /// relative over hundreds of steps; the direct solve is ~20x faster where it fits.
 #include <optional>
 
