@@ -143,7 +143,7 @@ StaticCondensation::StaticCondensation(const model::SecondOrderSystem& full, con
 
   // M_r and C_r: T^T D T for the diagonal D = M, C of the full model, a dense block on the interface
   // and the modal coordinates, [[X^T D_s X, -X^T D_s Phi], [sym, Phi^T D_s Phi]] (or D_dd alone).
-  auto reduce_diagonal = [&](const SparseMatrix& D_full, const Vector& D_s, bool is_mass) {
+  auto reduce_diagonal = [&](const SparseMatrix& D_full, const Vector& D_s) {
     model::SplitMatrix D;
     D.sparse = padded(roi::submatrix(D_full, d, d), n_r);
     if (!with_mass) return D;
@@ -156,18 +156,17 @@ StaticCondensation::StaticCondensation(const model::SecondOrderSystem& full, con
     if (k > 0) {
       D.block.topRightCorner(n_i, k) = -DX.transpose() * Phi_;  // -P^T X^T D_s Phi
       D.block.bottomLeftCorner(k, n_i) = D.block.topRightCorner(n_i, k).transpose();
-      if (is_mass) {  // Phi is M_ss-orthonormal: Phi^T M_ss Phi = I (computed, it is I to ~1e-13)
-        D.block.bottomRightCorner(k, k).setIdentity();
-      } else {
-        const DenseMatrix PtDP = Phi_.transpose() * D_s.asDiagonal() * Phi_;
-        D.block.bottomRightCorner(k, k) = 0.5 * (PtDP + PtDP.transpose());
-      }
+      const DenseMatrix PtDP = Phi_.transpose() * D_s.asDiagonal() * Phi_;
+      D.block.bottomRightCorner(k, k) = 0.5 * (PtDP + PtDP.transpose());
     }
     return D;
   };
-  reduced_.M_split = reduce_diagonal(full.M, M_s, true);
+  reduced_.M_split = reduce_diagonal(full.M, M_s);
+  // Phi is M_ss-orthonormal, so its block of M is I (as computed, I to ~1e-13): set exactly, as
+  // SecondOrderSystem::modal_coordinates promises.
+  if (k > 0) reduced_.M_split.block.bottomRightCorner(k, k).setIdentity();
   reduced_.M = assembled(reduced_.M_split);
-  reduced_.C = assembled(reduce_diagonal(full.C, C_s, false));
+  reduced_.C = assembled(reduce_diagonal(full.C, C_s));
   reduced_.modal_coordinates = k;
   if (!with_mass) reduced_.M_split = {};  // diagonal: the plain product is the fast one
 
