@@ -89,9 +89,6 @@ void Arkode::reset(const model::SecondOrderSystem& system, const model::State& i
   const Index n = system.size();
   mass_inverse_.reset();
   if (!method_.mass_matrix) mass_inverse_ = std::make_unique<model::MassInverse>(system.M);
-  if (method_.implicit && !method_.mass_matrix && !method_.schur && !mass_inverse_->is_diagonal())
-    throw InputError(method_.name + ": KLU on I - gamma J needs a lumped M (J holds M^-1 K, dense for a full M); "
-                     "use the -schur or -mass variant");
   force_.resize(n);
   work_.resize(n);
   cached_u_.resize(0);
@@ -155,8 +152,9 @@ void Arkode::reset(const model::SecondOrderSystem& system, const model::State& i
       // The Schur solver reads only gamma from the Newton matrix (its top-right block, -gamma I).
       jacobian_ = assemble_blocks({n, n}, {{0, 1, &I}});
     } else {
-      const SparseMatrix Minv = model::diagonal_matrix(mass_inverse_->inverse_diagonal());  // diagonal: checked above
-      const SparseMatrix MinvK = Minv * system.K, MinvC = Minv * system.C;
+      // Sparse for a lumped M, and for a reduced model's block-diagonal one too (dense only in the
+      // interface and modal rows; see MassInverse::apply).
+      const SparseMatrix MinvK = mass_inverse_->apply(system.K), MinvC = mass_inverse_->apply(system.C);
       jacobian_ = assemble_blocks({n, n}, {{0, 1, &I}, {1, 0, &MinvK, -1.0}, {1, 1, &MinvC, -1.0}});
     }
     J_ = sundials::make_sparse(jacobian_, context_.get());

@@ -1,5 +1,8 @@
 #include "model/mass_inverse.hpp"
 
+#include <algorithm>
+#include <vector>
+
 #include "common/errors.hpp"
 
 namespace roifem::model {
@@ -35,6 +38,25 @@ void MassInverse::apply(const Eigen::Ref<const Vector>& b, Eigen::Ref<Vector> x)
 
 DenseMatrix MassInverse::apply(const DenseMatrix& B) const {
   return factor_ ? factor_->solve_matrix(B) : DenseMatrix(inverse_diagonal_.asDiagonal() * B);
+}
+
+SparseMatrix MassInverse::apply(const SparseMatrix& B) const {
+  if (!factor_) return inverse_diagonal_.asDiagonal() * B;
+  // Columns in chunks, each solved dense: memory stays at n x 256 whatever B's width. The factor of
+  // a block-diagonal M is block diagonal, so the solve leaves exact zeros outside each column's
+  // reach, and dropping them gives M^-1 B's own pattern.
+  constexpr Index chunk = 256;
+  std::vector<Eigen::Triplet<double>> entries;
+  for (Index first = 0; first < B.cols(); first += chunk) {
+    const Index width = std::min(chunk, B.cols() - first);
+    const DenseMatrix X = factor_->solve_matrix(DenseMatrix(B.middleCols(first, width)));
+    for (Index j = 0; j < width; ++j)
+      for (Index i = 0; i < X.rows(); ++i)
+        if (X(i, j) != 0) entries.emplace_back(i, first + j, X(i, j));
+  }
+  SparseMatrix result(B.rows(), B.cols());
+  result.setFromTriplets(entries.begin(), entries.end());
+  return result;
 }
 
 }  // namespace roifem::model

@@ -18,6 +18,11 @@ class MassInverse {
   void apply(const Eigen::Ref<const Vector>& b, Eigen::Ref<Vector> x) const;
   /// M^-1 B for a dense block of right-hand sides.
   DenseMatrix apply(const DenseMatrix& B) const;
+  /// M^-1 B as a sparse matrix, with the pattern M^-1 B truly has: a reduced model's M is diagonal
+  /// but for a dense block on the interface and the modal coordinates (block diagonal), so M^-1 B
+  /// is B's rows scaled outside the block and dense only in the block's rows (an implicit
+  /// method's Jacobian -M^-1 K stays sparse). Exact zeros of the solve are left out.
+  SparseMatrix apply(const SparseMatrix& B) const;
 
  private:
   Vector inverse_diagonal_;
