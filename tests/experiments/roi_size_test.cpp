@@ -42,6 +42,34 @@ TEST(RoiSize, ALooseBudgetNeedsOneNodeAndAnExactOneEveryNode) {
   EXPECT_LT(exact.rows[0].peak_max_mm, 1e-9);
 }
 
+TEST(RoiSize, ThePaperErrorScaleScenarioScalesTheErrorByItsForceToThePapersSixMillimetres) {
+  // The model is linear: 15.71 times the force gives 15.71 times every error, and plain
+  // condensation's peak on setup 1 (0.5 s ramp) is then the paper's 6 mm.
+  const test::TempDir dir;
+  auto peak_at_306 = [&](const std::string& file) {
+    std::ifstream in(std::string(ROIFEM_SCENARIO_DIR) + "/" + file);
+    std::stringstream text;
+    text << in.rdbuf();
+    std::string s = text.str();
+    s.replace(s.find("\"../meshes/brain-800.msh\""), 25, "\"" + std::string(ROIFEM_MESH_DIR) + "/brain-800.msh\"");
+    RoiSizeOptions o;
+    o.scenario = test::write_file(dir / file, s);
+    o.timing_steps = 5;
+    o.reductions = {{}};
+    o.max_error_mm = 1e3;  // the first ROI tried holds: its peak is the answer's
+    o.start_nodes = 306;
+    std::ostringstream log;
+    const auto result = run_roi_size(o, log);
+    EXPECT_EQ(result.rows.at(0).nodes, 306);
+    return result.rows.at(0).peak_max_mm;
+  };
+  const double base = peak_at_306("paper-setup1.toml"), paper_scale = peak_at_306("paper-setup1-paper-errors.toml");
+  std::printf("setup 1, plain condensation, 0.5 s ramp: peak max error %.4f mm, at the paper's scale %.3f mm\n", base,
+              paper_scale);
+  EXPECT_NEAR(paper_scale / base, 0.2515 / 0.01601, 1e-9 * paper_scale / base);
+  EXPECT_NEAR(paper_scale, 6.0, 0.1);
+}
+
 TEST(RoiSize, ScenarioWithoutATargetOrABadBudgetIsAnInputError) {
   const test::TempDir dir;
   RoiSizeOptions o;
