@@ -6,8 +6,8 @@
 /// Implicit (DIRK/ESDIRK) methods solve with the constant Jacobian J = [[0, I], [-M^-1 K, -M^-1 C]]
 /// held as a SUNSparseMatrix (sparse for a reduced model too: its M is block diagonal, and M^-1 K is
 /// dense only in the block's rows), factored by KLU with AMD ordering (KLU's default COLAMD is
-/// slower on 3D meshes), the problem declared linear so that at a
-/// fixed step one factorization serves every step. With `mass_matrix`, M is handed to ARKODE as its
+/// slower on 3D meshes), the problem declared linear so that at a fixed step one factorization
+/// serves every step. With `mass_matrix`, M is handed to ARKODE as its
 /// mass matrix instead (J = [[0, I], [-K, -C]], a second KLU for [[I, 0], [0, M]]), for comparison.
 /// The trapezoidal rule is available as a user Butcher table: c = [0, 1], A = [[0, 0], [1/2, 1/2]],
 /// b = [1/2, 1/2] (an ESDIRK; equals the hand-written Newmark average-acceleration rule).
