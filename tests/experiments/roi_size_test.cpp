@@ -13,12 +13,18 @@
 namespace roifem::experiments {
 namespace {
 
-std::filesystem::path short_paper_scenario(const test::TempDir& dir) {
-  std::ifstream in(std::string(ROIFEM_SCENARIO_DIR) + "/paper-setup1.toml");
+/// A shipped scenario's text, its mesh path made absolute (so that a copy elsewhere reads it).
+std::string shipped_scenario(const std::string& file) {
+  std::ifstream in(std::string(ROIFEM_SCENARIO_DIR) + "/" + file);
   std::stringstream text;
   text << in.rdbuf();
   std::string s = text.str();
   s.replace(s.find("\"../meshes/brain-800.msh\""), 25, "\"" + std::string(ROIFEM_MESH_DIR) + "/brain-800.msh\"");
+  return s;
+}
+
+std::filesystem::path short_paper_scenario(const test::TempDir& dir) {
+  std::string s = shipped_scenario("paper-setup1.toml");
   s.replace(s.find("steps = 200"), 11, "steps = 20");
   return test::write_file(dir / "short.toml", s);
 }
@@ -47,13 +53,8 @@ TEST(RoiSize, ThePaperErrorScaleScenarioScalesTheErrorByItsForceToThePapersSixMi
   // condensation's peak on setup 1 (0.5 s ramp) is then the paper's 6 mm.
   const test::TempDir dir;
   auto peak_at_306 = [&](const std::string& file) {
-    std::ifstream in(std::string(ROIFEM_SCENARIO_DIR) + "/" + file);
-    std::stringstream text;
-    text << in.rdbuf();
-    std::string s = text.str();
-    s.replace(s.find("\"../meshes/brain-800.msh\""), 25, "\"" + std::string(ROIFEM_MESH_DIR) + "/brain-800.msh\"");
     RoiSizeOptions o;
-    o.scenario = test::write_file(dir / file, s);
+    o.scenario = test::write_file(dir / file, shipped_scenario(file));
     o.timing_steps = 5;
     o.reductions = {{}};
     o.max_error_mm = 1e3;  // the first ROI tried holds: its peak is the answer's
