@@ -1,8 +1,9 @@
 // Scale: the full brain model and condensed ROI models at realistic resolutions, each measured in
 // its own child process (setup split into assembly, factorization and condensation; per-step
 // median and p99; memory peak; frame rate), with ratios to the full model of the same brain taken
-// in the same run; then the largest ROI that holds a haptic rate. Prints a table, writes
-// DIR/scale.csv (and DIR/haptic.csv) and DIR/scale.png.
+// in the same run; then the largest ROI that holds a haptic rate. Prints the machine's bounds (its
+// DGEMM rate and streaming read bandwidth, scale/machine_bounds.hpp) and a table, writes
+// DIR/machine.csv, DIR/scale.csv (and DIR/haptic.csv) and DIR/scale.png.
 //   compile with: cmake --build --preset release --target roifem_scale_benchmark
 //   sample run:   build/release/benchmarks/roifem_scale_benchmark --nodes 800 5000 20000 100000 300000
 //                   --rois 300 1000 3% --haptic 20000 100000 300000 --full-cg 100000 300000 --out results/scale
@@ -18,6 +19,7 @@
 #include "io/csv.hpp"
 #include "io/plots.hpp"
 #include "scale/child_process.hpp"
+#include "scale/machine_bounds.hpp"
 #include "scale/rate_search.hpp"
 #include "scale/scale_model.hpp"
 
@@ -61,8 +63,26 @@ std::string row_text(long nodes, const std::string& label, const std::optional<S
                     m->peak_rss_mb, full ? io::format("%.3gx", vs_full).c_str() : "-", note.c_str());
 }
 
+/// The machine's DGEMM rate and read bandwidth, measured in a child (as the models are) and
+/// printed before the table: the VM behind one name differs between sessions by 2-3x in both.
+void report_machine_bounds(const std::filesystem::path& out) {
+  const ChildResult child = run_in_child([] { return measure_machine_bounds().serialize(); }, 300);
+  if (!child.ok) {
+    std::printf("Machine bounds: not measured (%s)\n", child.output.c_str());
+    return;
+  }
+  const MachineBounds b = MachineBounds::parse(child.output);
+  std::printf("Machine: %d threads, DGEMM %.1f GFLOP/s (a factorization's ceiling), streaming read %.1f GB/s (a direct "
+              "solve's)\n",
+              b.threads, b.dgemm_gflops, b.read_gb_per_s);
+  io::CsvWriter csv(out / "machine.csv", "threads,dgemm_gflops,read_gb_per_s");
+  csv.row(io::format("%d,%.6g,%.6g", b.threads, b.dgemm_gflops, b.read_gb_per_s));
+  csv.close();
+}
+
 int run(const Options& o) {
   std::filesystem::create_directories(o.out);
+  report_machine_bounds(o.out);
   io::CsvWriter csv(o.out / "scale.csv",
                     "nodes,model,roi_nodes,system_dofs,interface_dofs,read_s,assembly_s,factorization_s,condensation_s,"
                     "integrator_setup_s,setup_s,step_median_ms,step_p99_ms,frame_rate_hz,steps_timed,peak_rss_mb,"
