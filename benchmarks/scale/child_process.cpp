@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <sstream>
 
 namespace roifem::bench {
 
@@ -69,6 +70,14 @@ ChildResult run_in_child(const std::function<std::string()>& work, double timeou
   if (received.rfind("ok\n", 0) == 0) return {true, received.substr(3)};
   if (received.rfind("error\n", 0) == 0) return {false, received.substr(6)};
   return {false, "the child exited without an answer"};
+}
+
+std::map<std::string, std::string> parse_key_values(const std::string& text) {
+  std::map<std::string, std::string> fields;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);)
+    if (const auto eq = line.find('='); eq != std::string::npos) fields[line.substr(0, eq)] = line.substr(eq + 1);
+  return fields;
 }
 
 }  // namespace roifem::bench

@@ -3,6 +3,7 @@
 /// clean heap and reports its own memory peak, and a model too large for the machine (killed by
 /// the OOM killer, or past its time limit) costs one row of the table instead of the whole run.
 #include <functional>
+#include <map>
 #include <string>
 
 namespace roifem::bench {
@@ -15,5 +16,8 @@ struct ChildResult {
 /// `work` runs in the child; its return value comes back through a pipe. An exception in the
 /// child, a signal, or `timeout_s` passing gives ok = false with the reason.
 ChildResult run_in_child(const std::function<std::string()>& work, double timeout_s);
+
+/// What the children here return: "key=value" lines, read back into a map.
+std::map<std::string, std::string> parse_key_values(const std::string& text);
 
 }  // namespace roifem::bench

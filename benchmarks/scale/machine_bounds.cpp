@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/timer.hpp"
+#include "scale/child_process.hpp"
 #include "simulation/run_loop.hpp"
 
 namespace roifem::bench {
@@ -68,17 +69,8 @@ std::string MachineBounds::serialize() const {
 }
 
 MachineBounds MachineBounds::parse(const std::string& text) {
-  MachineBounds b;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) {
-    const auto eq = line.find('=');
-    if (eq == std::string::npos) continue;
-    const std::string key = line.substr(0, eq), value = line.substr(eq + 1);
-    if (key == "threads") b.threads = std::stoi(value);
-    if (key == "dgemm_gflops") b.dgemm_gflops = std::stod(value);
-    if (key == "read_gb_per_s") b.read_gb_per_s = std::stod(value);
-  }
-  return b;
+  const auto f = parse_key_values(text);
+  return {std::stoi(f.at("threads")), std::stod(f.at("dgemm_gflops")), std::stod(f.at("read_gb_per_s"))};
 }
 
 }  // namespace roifem::bench

@@ -3,7 +3,6 @@
 #include <sys/resource.h>
 
 #include <algorithm>
-#include <map>
 #include <memory>
 #include <sstream>
 
@@ -14,6 +13,7 @@
 #include "mesh/gmsh_reader.hpp"
 #include "mesh/mesh_checks.hpp"
 #include "model/fem_model.hpp"
+#include "scale/child_process.hpp"
 #include "simulation/run_loop.hpp"
 
 namespace roifem::bench {
@@ -113,15 +113,6 @@ Condensed condense(const Brain& brain, Index roi_nodes) {
   return c;
 }
 
-/// key=value lines.
-std::map<std::string, std::string> parse_fields(const std::string& text) {
-  std::map<std::string, std::string> fields;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);)
-    if (const auto eq = line.find('='); eq != std::string::npos) fields[line.substr(0, eq)] = line.substr(eq + 1);
-  return fields;
-}
-
 }  // namespace
 
 std::string ScaleMeasurement::serialize() const {
@@ -138,7 +129,7 @@ std::string ScaleMeasurement::serialize() const {
 }
 
 ScaleMeasurement ScaleMeasurement::parse(const std::string& text) {
-  auto f = parse_fields(text);
+  auto f = parse_key_values(text);
   ScaleMeasurement m;
   m.nodes = std::stol(f.at("nodes"));
   m.dofs = std::stol(f.at("dofs"));
