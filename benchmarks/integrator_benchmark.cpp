@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 
+#include "integrators/arkode.hpp"
 #include "integrators/factory.hpp"
 #include "solvers/cholesky.hpp"
 #include "scenario/scenario.hpp"

@@ -10,13 +10,10 @@
 #include "common/errors.hpp"
 #include "common/number_text.hpp"
 #include "integrators/block_matrix.hpp"
-#include "model/mass_inverse.hpp"
+#include "integrators/callback_guard.hpp"
+#include "integrators/integrator_table.hpp"
 
 namespace roifem::integrators {
-
-namespace {
-
-}  // namespace
 
 Arkode::Arkode(ArkodeMethod method, StepControl control)
     : method_(std::move(method)), control_(control), context_(sundials::make_context()) {
@@ -26,45 +23,30 @@ Arkode::Arkode(ArkodeMethod method, StepControl control)
     throw InputError(method_.name + ": tolerances rtol and atol must be positive");
 }
 
-Arkode::~Arkode() {
-  if (memory_) ARKStepFree(&memory_);
+ArkodeMethod arkode_method(const IntegratorInfo& info) {
+  if (info.family != Family::arkode) throw InputError("integrator '" + info.name + "' is not an ARKODE method");
+  const bool mass = info.linear_solver == LinearSolver::klu_mass || info.linear_solver == LinearSolver::schur_mass;
+  const bool schur = info.linear_solver == LinearSolver::schur || info.linear_solver == LinearSolver::schur_mass;
+  return {.name = info.name, .implicit = !info.is_explicit, .table = info.method_id,
+          .trapezoid = !info.is_explicit && info.method_id < 0, .mass_matrix = mass, .schur = schur,
+          .order = info.order, .klu_ordering = sundials::KluOrdering::amd};
 }
 
-void Arkode::check(int flag, const char* call, double t) const {
+ArkodeMethod arkode_method(const std::string& name) { return arkode_method(integrator_info(name)); }
+
+std::unique_ptr<Integrator> make_arkode(const IntegratorInfo& info, const StepControl& control) {
+  return std::make_unique<Arkode>(arkode_method(info), control);
+}
+
+void Arkode::check(int flag, const char* call) const {
   if (flag < 0)
-    throw SolverError(method_.name + ": " + call + " failed at t = " + number_text(t) + " s: " +
+    throw SolverError(method_.name + ": " + call + " failed at t = " + number_text(t0_) + " s: " +
                       sundials::flag_name(ARKStepGetReturnFlagName(flag)));
-}
-
-void Arkode::evaluate_rhs(double t, const double* y, double* ydot) {
-  const Index n = system_->size();
-  const Eigen::Map<const Vector> u(y, n), v(y + n, n);
-  Eigen::Map<Vector> du(ydot, n), dv(ydot + n, n);
-  system_->load.evaluate(t, force_);
-  // K u is the costly part; a stage often evaluates f at the u of the previous evaluation (the
-  // Newton residual at the trivial predictor, see reset), so K u is kept keyed by u's exact values.
-  if (!(cached_u_.size() == n && std::memcmp(cached_u_.data(), y, sizeof(double) * static_cast<std::size_t>(n)) == 0)) {
-    cached_u_ = u;
-    system_->apply_stiffness(u, cached_Ku_);
-  }
-  work_ = force_ - cached_Ku_;
-  work_.noalias() -= system_->C * v;
-  du = v;
-  if (method_.mass_matrix)
-    dv = work_;
-  else
-    mass_inverse_->apply(work_, dv);
 }
 
 int Arkode::rhs(double t, N_Vector y, N_Vector ydot, void* self) {
   auto* me = static_cast<Arkode*>(self);
-  try {
-    me->evaluate_rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
-    return 0;
-  } catch (...) {
-    me->pending_ = std::current_exception();
-    return -1;
-  }
+  return guarded_callback(me->pending_, -1, [&] { me->form_->evaluate(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot)); });
 }
 
 int Arkode::unit_weights(N_Vector, N_Vector ewt, void*) {
@@ -86,110 +68,120 @@ int Arkode::mass(double, SUNMatrix M, void* self, N_Vector, N_Vector, N_Vector) 
 
 void Arkode::reset(const model::SecondOrderSystem& system, const model::State& initial) {
   system_ = &system;
-  const Index n = system.size();
-  mass_inverse_.reset();
-  if (!method_.mass_matrix) mass_inverse_ = std::make_unique<model::MassInverse>(system.M);
-  force_.resize(n);
-  work_.resize(n);
-  cached_u_.resize(0);
-  cached_Ku_.resize(n);
-  if (memory_) ARKStepFree(&memory_);
+  t0_ = initial.t;
+  memory_.reset();  // before the solvers and vectors it refers to
   solver_.reset();
   mass_solver_.reset();
   schur_.reset();
   J_.reset();
   M_.reset();
   pending_ = nullptr;
+  form_ = std::make_unique<FirstOrderForm>(
+      system, method_.mass_matrix ? FirstOrderForm::Mass::kept : FirstOrderForm::Mass::inverted);
+  create_memory(initial);
+  set_steps();
+  set_butcher_table();
+  if (method_.implicit) attach_linear_solvers();
+}
 
+void Arkode::create_memory(const model::State& initial) {
+  const Index n = system_->size();
   y_ = sundials::make_vector(2 * n, context_.get());
   auto y = sundials::view(y_.get());
   y.head(n) = initial.u;
   y.tail(n) = initial.v;
-  memory_ = method_.implicit ? ARKStepCreate(nullptr, rhs, initial.t, y_.get(), context_.get())
-                             : ARKStepCreate(rhs, nullptr, initial.t, y_.get(), context_.get());
+  memory_.reset(method_.implicit ? ARKStepCreate(nullptr, rhs, initial.t, y_.get(), context_.get())
+                                 : ARKStepCreate(rhs, nullptr, initial.t, y_.get(), context_.get()));
   if (!memory_) throw SolverError(method_.name + ": ARKStepCreate failed");
-  check(ARKStepSetUserData(memory_, this), "ARKStepSetUserData", initial.t);
-  check(ARKStepSetErrHandlerFn(memory_, sundials::LastError::handler, &last_error_), "ARKStepSetErrHandlerFn", initial.t);
-  check(ARKStepSetMaxNumSteps(memory_, 1000000), "ARKStepSetMaxNumSteps", initial.t);
+  check(ARKStepSetUserData(memory_.get(), this), "ARKStepSetUserData");
+  check(ARKStepSetErrHandlerFn(memory_.get(), sundials::LastError::handler, &last_error_), "ARKStepSetErrHandlerFn");
+  check(ARKStepSetMaxNumSteps(memory_.get(), 1000000), "ARKStepSetMaxNumSteps");
+}
+
+void Arkode::set_steps() {
   if (control_.adaptive) {
-    check(ARKStepSStolerances(memory_, control_.rtol, control_.atol), "ARKStepSStolerances", initial.t);
-    check(ARKStepSetInitStep(memory_, control_.dt), "ARKStepSetInitStep", initial.t);
+    check(ARKStepSStolerances(memory_.get(), control_.rtol, control_.atol), "ARKStepSStolerances");
+    check(ARKStepSetInitStep(memory_.get(), control_.dt), "ARKStepSetInitStep");
   } else {
-    check(ARKStepSetFixedStep(memory_, control_.dt), "ARKStepSetFixedStep", initial.t);
+    check(ARKStepSetFixedStep(memory_.get(), control_.dt), "ARKStepSetFixedStep");
     // At a fixed step the error weights steer nothing (no error test, and a linear problem's one
     // Newton iteration skips the convergence test): unit weights, set in one pass instead of the
     // five of ARKODE's tolerance-based weights at every step.
-    check(ARKStepWFtolerances(memory_, unit_weights), "ARKStepWFtolerances", initial.t);
+    check(ARKStepWFtolerances(memory_.get(), unit_weights), "ARKStepWFtolerances");
   }
   // Lagrange interpolation keeps past solutions only; Hermite would also keep f at every step.
-  check(ARKStepSetInterpolantType(memory_, ARK_INTERP_LAGRANGE), "ARKStepSetInterpolantType", initial.t);
+  check(ARKStepSetInterpolantType(memory_.get(), ARK_INTERP_LAGRANGE), "ARKStepSetInterpolantType");
+}
 
+void Arkode::set_butcher_table() {
   if (method_.trapezoid) {
     double c[2] = {0.0, 1.0}, A[4] = {0.0, 0.0, 0.5, 0.5}, b[2] = {0.5, 0.5};
     ARKodeButcherTable table = ARKodeButcherTable_Create(2, 2, 0, c, A, b, nullptr);
-    const int flag = ARKStepSetTables(memory_, 2, 0, table, nullptr);
+    const int flag = ARKStepSetTables(memory_.get(), 2, 0, table, nullptr);
     ARKodeButcherTable_Free(table);
-    check(flag, "ARKStepSetTables", initial.t);
+    check(flag, "ARKStepSetTables");
   } else if (method_.implicit) {
-    check(ARKStepSetTableNum(memory_, static_cast<ARKODE_DIRKTableID>(method_.table), ARKODE_ERK_NONE),
-          "ARKStepSetTableNum", initial.t);
+    check(ARKStepSetTableNum(memory_.get(), static_cast<ARKODE_DIRKTableID>(method_.table), ARKODE_ERK_NONE),
+          "ARKStepSetTableNum");
   } else {
-    check(ARKStepSetTableNum(memory_, ARKODE_DIRK_NONE, static_cast<ARKODE_ERKTableID>(method_.table)),
-          "ARKStepSetTableNum", initial.t);
+    check(ARKStepSetTableNum(memory_.get(), ARKODE_DIRK_NONE, static_cast<ARKODE_ERKTableID>(method_.table)),
+          "ARKStepSetTableNum");
   }
+}
 
-  if (method_.implicit) {
-    const SparseMatrix I = model::diagonal_matrix(Vector::Ones(n));
-    if (method_.mass_matrix) {
-      jacobian_ = assemble_blocks({n, n}, {{0, 1, &I}, {1, 0, &system.K, -1.0}, {1, 1, &system.C, -1.0}});
-      mass_matrix_ = assemble_blocks({n, n}, {{0, 0, &I}, {1, 1, &system.M}});
-      M_ = sundials::make_sparse(mass_matrix_, context_.get());
-      mass_solver_ = std::make_unique<sundials::KluSolver>(y_.get(), M_.get(), context_.get(), method_.klu_ordering);
-      check(ARKStepSetMassLinearSolver(memory_, mass_solver_->get(), M_.get(), SUNFALSE), "ARKStepSetMassLinearSolver",
-            initial.t);
-      check(ARKStepSetMassFn(memory_, mass), "ARKStepSetMassFn", initial.t);
-    } else if (method_.schur) {
-      // The Schur solver reads only gamma from the Newton matrix (its top-right block, -gamma I).
-      jacobian_ = assemble_blocks({n, n}, {{0, 1, &I}});
-    } else {
-      // Sparse for a lumped M, and for a reduced model's block-diagonal one too (dense only in the
-      // interface and modal rows; see MassInverse::apply).
-      const SparseMatrix MinvK = mass_inverse_->apply(system.K), MinvC = mass_inverse_->apply(system.C);
-      jacobian_ = assemble_blocks({n, n}, {{0, 1, &I}, {1, 0, &MinvK, -1.0}, {1, 1, &MinvC, -1.0}});
-    }
-    J_ = sundials::make_sparse(jacobian_, context_.get());
-    SUNLinearSolver linear_solver = nullptr;
-    if (method_.schur) {
-      schur_ = std::make_unique<sundials::SchurSolver>(context_.get(), system, method_.mass_matrix);
-      linear_solver = schur_->get();
-    } else {
-      solver_ = std::make_unique<sundials::KluSolver>(y_.get(), J_.get(), context_.get(), method_.klu_ordering);
-      linear_solver = solver_->get();
-    }
-    check(ARKStepSetLinearSolver(memory_, linear_solver, J_.get()), "ARKStepSetLinearSolver", initial.t);
-    check(ARKStepSetJacFn(memory_, jacobian), "ARKStepSetJacFn", initial.t);
-    check(ARKStepSetLinear(memory_, 0), "ARKStepSetLinear", initial.t);  // linear, constant Jacobian
-    // f_i at each stage follows from the stage solution (z - predictor) / (h a_ii): saves one
-    // right-hand side (a K product) per implicit stage.
-    check(ARKStepSetDeduceImplicitRhs(memory_, SUNTRUE), "ARKStepSetDeduceImplicitRhs", initial.t);
-    // The one Newton iteration of a linear problem is exact from any initial guess, so the guess
-    // may as well be the trivial predictor z = y_n: its residual needs f(t_stage, y_n), whose K u_n
-    // the cache above already holds from the stage before.
-    check(ARKStepSetPredictorMethod(memory_, 0), "ARKStepSetPredictorMethod", initial.t);
-    // Refactor only when gamma = h a_ii changes (never at a fixed step of an SDIRK/ESDIRK table).
-    check(ARKStepSetLSetupFrequency(memory_, INT_MAX / 2), "ARKStepSetLSetupFrequency", initial.t);
-    if (!control_.adaptive) check(ARKStepSetDeltaGammaMax(memory_, 1e-8), "ARKStepSetDeltaGammaMax", initial.t);
+void Arkode::attach_linear_solvers() {
+  const model::SecondOrderSystem& system = *system_;
+  const Index n = system.size();
+  void* memory = memory_.get();
+  const SparseMatrix I = model::diagonal_matrix(Vector::Ones(n));
+  if (method_.mass_matrix) {
+    jacobian_ = assemble_blocks({n, n}, {{0, 1, &I}, {1, 0, &system.K, -1.0}, {1, 1, &system.C, -1.0}});
+    mass_matrix_ = assemble_blocks({n, n}, {{0, 0, &I}, {1, 1, &system.M}});
+    M_ = sundials::make_sparse(mass_matrix_, context_.get());
+    mass_solver_ = std::make_unique<sundials::KluSolver>(y_.get(), M_.get(), context_.get(), method_.klu_ordering);
+    check(ARKStepSetMassLinearSolver(memory, mass_solver_->get(), M_.get(), SUNFALSE), "ARKStepSetMassLinearSolver");
+    check(ARKStepSetMassFn(memory, mass), "ARKStepSetMassFn");
+  } else if (method_.schur) {
+    // The Schur solver reads only gamma from the Newton matrix (its top-right block, -gamma I).
+    jacobian_ = assemble_blocks({n, n}, {{0, 1, &I}});
+  } else {
+    // Sparse for a lumped M, and for a reduced model's block-diagonal one too (dense only in the
+    // interface and modal rows; see MassInverse::apply).
+    const SparseMatrix minus_MinvK = form_->lower_left(), minus_MinvC = form_->lower_right();
+    jacobian_ = assemble_blocks({n, n}, {{0, 1, &I}, {1, 0, &minus_MinvK}, {1, 1, &minus_MinvC}});
   }
+  J_ = sundials::make_sparse(jacobian_, context_.get());
+  SUNLinearSolver linear_solver = nullptr;
+  if (method_.schur) {
+    schur_ = std::make_unique<sundials::SchurSolver>(context_.get(), system, method_.mass_matrix);
+    linear_solver = schur_->get();
+  } else {
+    solver_ = std::make_unique<sundials::KluSolver>(y_.get(), J_.get(), context_.get(), method_.klu_ordering);
+    linear_solver = solver_->get();
+  }
+  check(ARKStepSetLinearSolver(memory, linear_solver, J_.get()), "ARKStepSetLinearSolver");
+  check(ARKStepSetJacFn(memory, jacobian), "ARKStepSetJacFn");
+  check(ARKStepSetLinear(memory, 0), "ARKStepSetLinear");  // linear, constant Jacobian
+  // f_i at each stage follows from the stage solution (z - predictor) / (h a_ii): saves one
+  // right-hand side (a K product) per implicit stage.
+  check(ARKStepSetDeduceImplicitRhs(memory, SUNTRUE), "ARKStepSetDeduceImplicitRhs");
+  // The one Newton iteration of a linear problem is exact from any initial guess, so the guess
+  // may as well be the trivial predictor z = y_n: its residual needs f(t_stage, y_n), whose K u_n
+  // the first-order form's cache already holds from the stage before.
+  check(ARKStepSetPredictorMethod(memory, 0), "ARKStepSetPredictorMethod");
+  // Refactor only when gamma = h a_ii changes (never at a fixed step of an SDIRK/ESDIRK table).
+  check(ARKStepSetLSetupFrequency(memory, INT_MAX / 2), "ARKStepSetLSetupFrequency");
+  if (!control_.adaptive) check(ARKStepSetDeltaGammaMax(memory, 1e-8), "ARKStepSetDeltaGammaMax");
 }
 
 void Arkode::advance_to(double t_out, model::State& state) {
   if (!memory_) throw Error("internal: " + method_.name + ": advance_to before reset");
-  check(ARKStepSetStopTime(memory_, t_out), "ARKStepSetStopTime", state.t);
+  check(ARKStepSetStopTime(memory_.get(), t_out), "ARKStepSetStopTime");
   double t_reached = state.t;
-  const int flag = ARKStepEvolve(memory_, t_out, y_.get(), &t_reached, ARK_NORMAL);
+  const int flag = ARKStepEvolve(memory_.get(), t_out, y_.get(), &t_reached, ARK_NORMAL);
   if (pending_) std::rethrow_exception(std::exchange(pending_, nullptr));
   long steps = 0;
-  ARKStepGetNumSteps(memory_, &steps);
+  ARKStepGetNumSteps(memory_.get(), &steps);
   // At a fixed step the error weights are 1 (see reset), so ARKODE's "too much accuracy" test
   // (eps ||y|| > 1) is what a diverging solution trips first: report it as the divergence it is.
   if (flag == ARK_TOO_MUCH_ACC && !control_.adaptive)
@@ -212,15 +204,15 @@ Stats Arkode::stats() const {
   Stats s;
   if (!memory_) return s;
   long nfe = 0, nfi = 0, attempts = 0, value = 0;
-  ARKStepGetNumSteps(memory_, &s.steps);
-  ARKStepGetNumRhsEvals(memory_, &nfe, &nfi);
+  ARKStepGetNumSteps(memory_.get(), &s.steps);
+  ARKStepGetNumRhsEvals(memory_.get(), &nfe, &nfi);
   s.rhs_evals = nfe + nfi;
-  ARKStepGetNumStepAttempts(memory_, &attempts);
+  ARKStepGetNumStepAttempts(memory_.get(), &attempts);
   s.failed_steps = attempts - s.steps;
   if (method_.implicit) {
-    ARKStepGetNumJacEvals(memory_, &s.jac_evals);
-    ARKStepGetNumLinSolvSetups(memory_, &s.lin_setups);
-    ARKStepGetNumNonlinSolvIters(memory_, &value);  // one linear solve per Newton iteration
+    ARKStepGetNumJacEvals(memory_.get(), &s.jac_evals);
+    ARKStepGetNumLinSolvSetups(memory_.get(), &s.lin_setups);
+    ARKStepGetNumNonlinSolvIters(memory_.get(), &value);  // one linear solve per Newton iteration
     s.lin_solves = value;
   }
   if (solver_) s.factorization_s += solver_->setup_seconds();

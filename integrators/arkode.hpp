@@ -17,22 +17,17 @@
 #include <memory>
 #include <string>
 
+#include "integrators/first_order_form.hpp"
 #include "integrators/integrator.hpp"
+#include "integrators/step_control.hpp"
 #include "integrators/sundials/handles.hpp"
 #include "integrators/sundials/klu_solver.hpp"
 #include "integrators/sundials/schur_solver.hpp"
-#include "model/mass_inverse.hpp"
 
 namespace roifem::integrators {
 
-struct StepControl {
-  double dt = 0.05;       ///< fixed step, or the first step / output interval when adaptive
-  bool adaptive = false;  ///< error-controlled steps with rtol / atol
-  double rtol = 1e-6, atol = 1e-9;
-};
-
 struct ArkodeMethod {
-  std::string name;        ///< e.g. "arkode-dirk-sdirk2"
+  std::string name;        ///< e.g. "arkode-sdirk2-mass"
   bool implicit = false;
   int table = -1;          ///< ARKODE_ERKTableID or ARKODE_DIRKTableID; -1 with `trapezoid`
   bool trapezoid = false;  ///< the user table above
@@ -42,10 +37,17 @@ struct ArkodeMethod {
   sundials::KluOrdering klu_ordering = sundials::KluOrdering::amd;
 };
 
+struct IntegratorInfo;
+/// The ARKODE method of a row of the integrator table (integrator_table.hpp).
+ArkodeMethod arkode_method(const IntegratorInfo& info);
+/// The same by name (to vary one setting, e.g. the KLU ordering).
+ArkodeMethod arkode_method(const std::string& name);
+/// The factory's maker for the table's ARKODE rows.
+std::unique_ptr<Integrator> make_arkode(const IntegratorInfo& info, const StepControl& control);
+
 class Arkode final : public Integrator {
  public:
   Arkode(ArkodeMethod method, StepControl control);
-  ~Arkode() override;
   std::string_view name() const override { return method_.name; }
   void reset(const model::SecondOrderSystem& system, const model::State& initial) override;
   void advance_to(double t_out, model::State& state) override;
@@ -56,8 +58,11 @@ class Arkode final : public Integrator {
   static int jacobian(double t, N_Vector y, N_Vector fy, SUNMatrix J, void* self, N_Vector, N_Vector, N_Vector);
   static int unit_weights(N_Vector y, N_Vector ewt, void* self);
   static int mass(double t, SUNMatrix M, void* self, N_Vector, N_Vector, N_Vector);
-  void evaluate_rhs(double t, const double* y, double* ydot);
-  void check(int flag, const char* call, double t) const;
+  void check(int flag, const char* call) const;
+  void create_memory(const model::State& initial);
+  void set_steps();
+  void set_butcher_table();
+  void attach_linear_solvers();
 
   ArkodeMethod method_;
   StepControl control_;
@@ -66,11 +71,10 @@ class Arkode final : public Integrator {
   sundials::Matrix J_, M_;
   std::unique_ptr<sundials::KluSolver> solver_, mass_solver_;
   std::unique_ptr<sundials::SchurSolver> schur_;
-  void* memory_ = nullptr;
+  sundials::ArkodeMemory memory_;
   const model::SecondOrderSystem* system_ = nullptr;
-  std::unique_ptr<model::MassInverse> mass_inverse_;  // lumped, or full (Guyan, Craig-Bampton)
-  Vector force_, work_;
-  Vector cached_u_, cached_Ku_;  // the last K u product and its u
+  std::unique_ptr<FirstOrderForm> form_;
+  double t0_ = 0;  // of the last reset, for messages
   SparseMatrix jacobian_, mass_matrix_;
   std::exception_ptr pending_;  // an exception from a callback, rethrown after the C call
   sundials::LastError last_error_;

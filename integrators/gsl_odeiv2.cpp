@@ -8,6 +8,8 @@
 
 #include "common/errors.hpp"
 #include "common/number_text.hpp"
+#include "integrators/callback_guard.hpp"
+#include "integrators/integrator_table.hpp"
 
 namespace roifem::integrators {
 
@@ -18,27 +20,16 @@ GslOdeiv2::GslOdeiv2(std::string name, const gsl_odeiv2_step_type* stepper, Step
     throw InputError(name_ + ": time step dt = " + std::to_string(control_.dt) + " s must be positive");
 }
 
-GslOdeiv2::~GslOdeiv2() {
-  if (driver_) gsl_odeiv2_driver_free(driver_);
+std::unique_ptr<Integrator> make_gsl(const IntegratorInfo& info, const gsl_odeiv2_step_type* stepper,
+                                     const StepControl& control) {
+  return std::make_unique<GslOdeiv2>(info.name, stepper, control);
 }
 
 int GslOdeiv2::rhs(double t, const double y[], double dydt[], void* self) {
   auto* me = static_cast<GslOdeiv2*>(self);
-  try {
-    const Index n = me->system_->size();
-    const Eigen::Map<const Vector> u(y, n), v(y + n, n);
-    me->system_->load.evaluate(t, me->force_);
-    me->system_->apply_stiffness(u, me->work_);
-    me->work_ = me->force_ - me->work_;
-    me->work_.noalias() -= me->system_->C * v;
-    Eigen::Map<Vector>(dydt, n) = v;
-    me->mass_inverse_->apply(me->work_, Eigen::Map<Vector>(dydt + n, n));
-    ++me->stats_.rhs_evals;
-    return GSL_SUCCESS;
-  } catch (...) {
-    me->pending_ = std::current_exception();
-    return GSL_EBADFUNC;
-  }
+  const int status = guarded_callback(me->pending_, GSL_EBADFUNC, [&] { me->form_->evaluate(t, y, dydt); });
+  if (status == GSL_SUCCESS) ++me->stats_.rhs_evals;
+  return status;
 }
 
 int GslOdeiv2::jacobian(double, const double*, double* dfdy, double dfdt[], void* self) {
@@ -56,13 +47,8 @@ void GslOdeiv2::reset(const model::SecondOrderSystem& system, const model::State
     throw InputError(name_ + ": GSL's dense Jacobian is limited to " + std::to_string(max_gsl_dofs) +
                      " dofs; this system has " + std::to_string(n) + " (use an ARKODE or IDA method)");
   system_ = &system;
-  mass_inverse_ = std::make_unique<model::MassInverse>(system.M);
-  force_.resize(n);
-  work_.resize(n);
-  jacobian_.setZero(2 * n, 2 * n);
-  jacobian_.topRightCorner(n, n).setIdentity();
-  jacobian_.bottomLeftCorner(n, n) = -mass_inverse_->apply(DenseMatrix(system.K));
-  jacobian_.bottomRightCorner(n, n) = -mass_inverse_->apply(DenseMatrix(system.C));
+  form_ = std::make_unique<FirstOrderForm>(system, FirstOrderForm::Mass::inverted);
+  jacobian_ = form_->dense_jacobian();
   y_.resize(2 * n);
   y_.head(n) = initial.u;
   y_.tail(n) = initial.v;
@@ -70,27 +56,26 @@ void GslOdeiv2::reset(const model::SecondOrderSystem& system, const model::State
   stats_ = {};
   pending_ = nullptr;
   system_gsl_ = {rhs, jacobian, static_cast<std::size_t>(2 * n), this};
-  if (driver_) gsl_odeiv2_driver_free(driver_);
   // At a fixed step GSL still consults its error control and returns GSL_FAILURE when the estimate
   // would shrink the step: give the control tolerances it can never exceed.
-  driver_ = control_.adaptive
-                ? gsl_odeiv2_driver_alloc_y_new(&system_gsl_, stepper_, control_.dt, control_.atol, control_.rtol)
-                : gsl_odeiv2_driver_alloc_y_new(&system_gsl_, stepper_, control_.dt, 1e300, 1e300);
+  driver_.reset(control_.adaptive
+                    ? gsl_odeiv2_driver_alloc_y_new(&system_gsl_, stepper_, control_.dt, control_.atol, control_.rtol)
+                    : gsl_odeiv2_driver_alloc_y_new(&system_gsl_, stepper_, control_.dt, 1e300, 1e300));
   if (!driver_) throw SolverError(name_ + ": cannot allocate the GSL driver");
-  gsl_odeiv2_driver_set_nmax(driver_, 10000000);
+  gsl_odeiv2_driver_set_nmax(driver_.get(), 10000000);
 }
 
 void GslOdeiv2::advance_to(double t_out, model::State& state) {
   if (!driver_) throw Error("internal: " + name_ + ": advance_to before reset");
   int status = GSL_SUCCESS;
   if (control_.adaptive) {
-    status = gsl_odeiv2_driver_apply(driver_, &t_, t_out, y_.data());
+    status = gsl_odeiv2_driver_apply(driver_.get(), &t_, t_out, y_.data());
   } else {
     const double steps = (t_out - t_) / control_.dt;
     const auto n = static_cast<unsigned long>(std::lround(steps));
     if (std::abs(steps - static_cast<double>(n)) > 1e-9 * std::max(1.0, steps))
       throw InputError(name_ + ": t_out = " + number_text(t_out) + " s is not on the grid of dt");
-    if (n > 0) status = gsl_odeiv2_driver_apply_fixed_step(driver_, &t_, control_.dt, n, y_.data());
+    if (n > 0) status = gsl_odeiv2_driver_apply_fixed_step(driver_.get(), &t_, control_.dt, n, y_.data());
   }
   if (pending_) std::rethrow_exception(std::exchange(pending_, nullptr));
   if (status != GSL_SUCCESS)

@@ -2,24 +2,33 @@
 /// GSL odeiv2 on the first-order form y = [u; v], y' = [v; M^-1 (f - C v - K u)], with the dense
 /// Jacobian [[0, I], [-M^-1 K, -M^-1 C]] that GSL's implicit steppers need. Dense: the factory
 /// refuses systems above max_gsl_dofs. Steppers: rk4 (fixed step), rk8pd, rk4imp, bsimp, msadams,
-/// msbdf (adaptive with rtol/atol; a fixed-step request runs every stepper at dt).
+/// msbdf. Which of them take a fixed step, and which only adapt theirs, is the integrator
+/// table's word (integrator_table.cpp): rk4 and rk4imp do both, the others adapt only.
 #include <gsl/gsl_odeiv2.h>
 
 #include <exception>
 #include <memory>
 
-#include "integrators/arkode.hpp"  // StepControl
+#include "integrators/first_order_form.hpp"
 #include "integrators/integrator.hpp"
-#include "model/mass_inverse.hpp"
+#include "integrators/step_control.hpp"
 
 namespace roifem::integrators {
 
 inline constexpr Index max_gsl_dofs = 2000;  ///< of the second-order system (the first-order one is twice that)
 
+struct IntegratorInfo;
+/// The factory's maker for the table's GSL rows.
+std::unique_ptr<Integrator> make_gsl(const IntegratorInfo& info, const gsl_odeiv2_step_type* stepper,
+                                     const StepControl& control);
+
+struct GslDriverDeleter {
+  void operator()(gsl_odeiv2_driver* driver) const { gsl_odeiv2_driver_free(driver); }
+};
+
 class GslOdeiv2 final : public Integrator {
  public:
   GslOdeiv2(std::string name, const gsl_odeiv2_step_type* stepper, StepControl control);
-  ~GslOdeiv2() override;
   std::string_view name() const override { return name_; }
   void reset(const model::SecondOrderSystem& system, const model::State& initial) override;
   void advance_to(double t_out, model::State& state) override;
@@ -33,10 +42,10 @@ class GslOdeiv2 final : public Integrator {
   const gsl_odeiv2_step_type* stepper_;
   StepControl control_;
   gsl_odeiv2_system system_gsl_{};
-  gsl_odeiv2_driver* driver_ = nullptr;
+  std::unique_ptr<gsl_odeiv2_driver, GslDriverDeleter> driver_;
   const model::SecondOrderSystem* system_ = nullptr;
-  std::unique_ptr<model::MassInverse> mass_inverse_;  // lumped, or full (Guyan, Craig-Bampton)
-  Vector force_, work_, y_;
+  std::unique_ptr<FirstOrderForm> form_;
+  Vector y_;
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> jacobian_;
   double t_ = 0;
   Stats stats_;

@@ -7,17 +7,20 @@
 #include <exception>
 #include <memory>
 
-#include "integrators/arkode.hpp"  // StepControl
 #include "integrators/integrator.hpp"
+#include "integrators/step_control.hpp"
 #include "integrators/sundials/handles.hpp"
 #include "integrators/sundials/klu_solver.hpp"
 
 namespace roifem::integrators {
 
+struct IntegratorInfo;
+/// The factory's maker for the table's IDA rows (method_id: the maximum BDF order).
+std::unique_ptr<Integrator> make_ida(const IntegratorInfo& info, const StepControl& control);
+
 class Ida final : public Integrator {
  public:
   Ida(std::string name, int max_order, StepControl control);
-  ~Ida() override;
   std::string_view name() const override { return name_; }
   void reset(const model::SecondOrderSystem& system, const model::State& initial) override;
   void advance_to(double t_out, model::State& state) override;
@@ -35,7 +38,7 @@ class Ida final : public Integrator {
   sundials::Vector y_, yp_;
   sundials::Matrix J_;
   std::unique_ptr<sundials::KluSolver> solver_;
-  void* memory_ = nullptr;
+  sundials::IdaMemory memory_;
   const model::SecondOrderSystem* system_ = nullptr;
   SparseMatrix dF_dy_, dF_dyp_;  ///< same pattern (union), so J = dF_dy + c_j dF_dyp keeps it
   Vector force_;

@@ -6,6 +6,7 @@
 
 #include "common/errors.hpp"
 #include "common/number_text.hpp"
+#include "integrators/callback_guard.hpp"
 #include "integrators/block_matrix.hpp"
 #include "integrators/sundials/ida_support.hpp"
 
@@ -38,13 +39,9 @@ IdaRoiDae::IdaRoiDae(const model::SecondOrderSystem& full, const roi::Partition&
   f_s_.resize(ns);
 }
 
-IdaRoiDae::~IdaRoiDae() {
-  if (memory_) IDAFree(&memory_);
-}
-
 int IdaRoiDae::residual(double t, N_Vector y, N_Vector yp, N_Vector r, void* self) {
   auto* me = static_cast<IdaRoiDae*>(self);
-  try {
+  return guarded_callback(me->pending_, -1, [&] {
     const Index nd = me->K_dd_.rows(), ns = me->K_ss_.rows();
     const auto Y = sundials::view(y), YP = sundials::view(yp);
     auto R = sundials::view(r);
@@ -56,28 +53,20 @@ int IdaRoiDae::residual(double t, N_Vector y, N_Vector yp, N_Vector r, void* sel
     R.segment(nd, nd) -= me->f_d_;
     R.tail(ns).noalias() = me->K_sd_ * u_d + me->K_ss_ * u_s;
     R.tail(ns) -= me->f_s_;
-    return 0;
-  } catch (...) {
-    me->pending_ = std::current_exception();
-    return -1;
-  }
+  });
 }
 
 int IdaRoiDae::jacobian(double, double c_j, N_Vector, N_Vector, N_Vector, SUNMatrix J, void* self, N_Vector, N_Vector,
                         N_Vector) {
   auto* me = static_cast<IdaRoiDae*>(self);
-  try {
+  return guarded_callback(me->pending_, -1, [&] {
     sundials::write_newton_matrix(me->dF_dy_, me->dF_dyp_, c_j, J);
-    return 0;
-  } catch (...) {
-    me->pending_ = std::current_exception();
-    return -1;
-  }
+  });
 }
 
 void IdaRoiDae::reset(double t0) {
   const Index nd = K_dd_.rows(), ns = K_ss_.rows(), n = 2 * nd + ns;
-  if (memory_) IDAFree(&memory_);
+  memory_.reset();  // before the solver and vectors it refers to
   solver_.reset();
   J_.reset();
   pending_ = nullptr;
@@ -93,27 +82,27 @@ void IdaRoiDae::reset(double t0) {
   auto check = [&](int flag, const char* call) {
     if (flag < 0) throw SolverError(std::string("IDA ROI DAE: ") + call + " failed: " + sundials::flag_name(IDAGetReturnFlagName(flag)));
   };
-  memory_ = IDACreate(context_.get());
+  memory_.reset(IDACreate(context_.get()));
   if (!memory_) throw SolverError("IDA ROI DAE: IDACreate failed");
-  check(IDAInit(memory_, residual, t0, y_.get(), yp_.get()), "IDAInit");
-  check(IDASetUserData(memory_, this), "IDASetUserData");
-  check(IDASetErrHandlerFn(memory_, sundials::LastError::handler, &last_error_), "IDASetErrHandlerFn");
-  check(IDASStolerances(memory_, control_.rtol, control_.atol), "IDASStolerances");
-  check(IDASetMaxOrd(memory_, max_order_), "IDASetMaxOrd");
-  check(IDASetMaxNumSteps(memory_, 1000000), "IDASetMaxNumSteps");
-  check(IDASetId(memory_, id_.get()), "IDASetId");
+  check(IDAInit(memory_.get(), residual, t0, y_.get(), yp_.get()), "IDAInit");
+  check(IDASetUserData(memory_.get(), this), "IDASetUserData");
+  check(IDASetErrHandlerFn(memory_.get(), sundials::LastError::handler, &last_error_), "IDASetErrHandlerFn");
+  check(IDASStolerances(memory_.get(), control_.rtol, control_.atol), "IDASStolerances");
+  check(IDASetMaxOrd(memory_.get(), max_order_), "IDASetMaxOrd");
+  check(IDASetMaxNumSteps(memory_.get(), 1000000), "IDASetMaxNumSteps");
+  check(IDASetId(memory_.get(), id_.get()), "IDASetId");
   J_ = sundials::make_sparse(dF_dy_, context_.get());
   solver_ = std::make_unique<sundials::KluSolver>(y_.get(), J_.get(), context_.get());
-  check(IDASetLinearSolver(memory_, solver_->get(), J_.get()), "IDASetLinearSolver");
-  check(IDASetJacFn(memory_, jacobian), "IDASetJacFn");
-  check(IDACalcIC(memory_, IDA_YA_YDP_INIT, t0 + control_.dt), "IDACalcIC");
+  check(IDASetLinearSolver(memory_.get(), solver_->get(), J_.get()), "IDASetLinearSolver");
+  check(IDASetJacFn(memory_.get(), jacobian), "IDASetJacFn");
+  check(IDACalcIC(memory_.get(), IDA_YA_YDP_INIT, t0 + control_.dt), "IDACalcIC");
   if (pending_) std::rethrow_exception(std::exchange(pending_, nullptr));
 }
 
 void IdaRoiDae::advance_to(double t_out, Vector& u_d, Vector& u_s) {
   if (!memory_) throw Error("internal: IDA ROI DAE: advance_to before reset");
-  IDASetStopTime(memory_, t_out);
-  const int flag = IDASolve(memory_, t_out, &t_, y_.get(), yp_.get(), IDA_NORMAL);
+  IDASetStopTime(memory_.get(), t_out);
+  const int flag = IDASolve(memory_.get(), t_out, &t_, y_.get(), yp_.get(), IDA_NORMAL);
   if (pending_) std::rethrow_exception(std::exchange(pending_, nullptr));
   if (flag < 0)
     throw SolverError("IDA ROI DAE: failed at t = " + number_text(t_) + " s: " + sundials::flag_name(IDAGetReturnFlagName(flag)) + last_error_.detail());
@@ -124,7 +113,7 @@ void IdaRoiDae::advance_to(double t_out, Vector& u_d, Vector& u_s) {
 }
 
 Stats IdaRoiDae::stats() const {
-  Stats s = sundials::ida_stats(memory_);
+  Stats s = sundials::ida_stats(memory_.get());
   if (solver_) s.factorization_s = solver_->setup_seconds();
   return s;
 }

@@ -10,8 +10,8 @@
 #include <exception>
 #include <memory>
 
-#include "integrators/arkode.hpp"  // StepControl
 #include "integrators/integrator.hpp"
+#include "integrators/step_control.hpp"
 #include "integrators/sundials/handles.hpp"
 #include "integrators/sundials/klu_solver.hpp"
 #include "roi/roi.hpp"
@@ -23,7 +23,6 @@ class IdaRoiDae {
   /// `full`: the whole model over all free dofs; `partition`: its ROI split.
   IdaRoiDae(const model::SecondOrderSystem& full, const roi::Partition& partition, StepControl control,
             int max_order = 5);
-  ~IdaRoiDae();
   IdaRoiDae(const IdaRoiDae&) = delete;
   IdaRoiDae& operator=(const IdaRoiDae&) = delete;
 
@@ -50,7 +49,7 @@ class IdaRoiDae {
   sundials::Vector y_, yp_, id_;
   sundials::Matrix J_;
   std::unique_ptr<sundials::KluSolver> solver_;
-  void* memory_ = nullptr;
+  sundials::IdaMemory memory_;
   double t_ = 0;
   std::exception_ptr pending_;
   sundials::LastError last_error_;

@@ -5,8 +5,14 @@
 #include "common/errors.hpp"
 #include "common/number_text.hpp"
 #include "common/timer.hpp"
+#include "integrators/integrator_table.hpp"
 
 namespace roifem::integrators {
+
+std::unique_ptr<Integrator> make_trapezoid(const IntegratorInfo& info, const StepControl& control) {
+  if (info.linear_solver == LinearSolver::jacobi_cg) return std::make_unique<Trapezoid>(control.dt, solvers::CgSettings{});
+  return std::make_unique<Trapezoid>(control.dt);
+}
 
 Trapezoid::Trapezoid(double dt) : dt_(dt) {
   if (!(dt > 0) || !std::isfinite(dt)) throw InputError("trapezoid: time step dt = " + number_text(dt) + " s must be positive");

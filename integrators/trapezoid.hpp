@@ -12,14 +12,20 @@
 /// preconditioned conjugate gradients to a relative residual of 1e-10 ("trapezoid-cg", started
 /// from the predictor u_n + dt v_n + dt^2/2 a_n). Both give the same answer to ~1e-9
 /// relative over hundreds of steps; the direct solve is ~20x faster where it fits.
+#include <memory>
 #include <optional>
 
 #include "integrators/integrator.hpp"
 #include "integrators/modal_elimination.hpp"
+#include "integrators/step_control.hpp"
 #include "solvers/cholesky.hpp"
 #include "solvers/jacobi_cg.hpp"
 
 namespace roifem::integrators {
+
+struct IntegratorInfo;
+/// The factory's maker for the table's trapezoid rows (CG where the row's linear solver says so).
+std::unique_ptr<Integrator> make_trapezoid(const IntegratorInfo& info, const StepControl& control);
 
 class Trapezoid final : public Integrator {
  public:

@@ -1,8 +1,14 @@
 #include "integrators/sundials/handles.hpp"
 
+#include <arkode/arkode_arkstep.h>
+#include <ida/ida.h>
+
 #include <algorithm>
 
 namespace roifem::integrators::sundials {
+
+void ArkodeMemoryDeleter::operator()(void* memory) const { ARKStepFree(&memory); }
+void IdaMemoryDeleter::operator()(void* memory) const { IDAFree(&memory); }
 
 Matrix make_sparse(const SparseMatrix& A, SUNContext ctx) {
   SUNMatrix m = SUNSparseMatrix(static_cast<sunindextype>(A.rows()), static_cast<sunindextype>(A.cols()),

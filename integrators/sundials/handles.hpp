@@ -30,10 +30,20 @@ struct LinearSolverDeleter {
   void operator()(SUNLinearSolver s) const { SUNLinSolFree(s); }
 };
 
+/// The integrator memory of ARKStep (ARKStepFree) and of IDA (IDAFree).
+struct ArkodeMemoryDeleter {
+  void operator()(void* memory) const;
+};
+struct IdaMemoryDeleter {
+  void operator()(void* memory) const;
+};
+
 using Context = std::unique_ptr<std::remove_pointer_t<SUNContext>, ContextDeleter>;
 using Vector = std::unique_ptr<std::remove_pointer_t<N_Vector>, VectorDeleter>;
 using Matrix = std::unique_ptr<std::remove_pointer_t<SUNMatrix>, MatrixDeleter>;
 using LinearSolver = std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, LinearSolverDeleter>;
+using ArkodeMemory = std::unique_ptr<void, ArkodeMemoryDeleter>;
+using IdaMemory = std::unique_ptr<void, IdaMemoryDeleter>;
 
 /// SUNDIALS prints its error messages to stderr; the integrators keep the last one instead
 /// (ARKStepSetErrHandlerFn / IDASetErrHandlerFn) and put it into the exception they throw.

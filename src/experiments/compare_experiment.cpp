@@ -24,16 +24,6 @@ namespace {
 
 using io::format;
 
-bool is_explicit(const std::string& name) {
-  return name.rfind("arkode-erk", 0) == 0 || name == "gsl-rk4" || name == "gsl-rk8pd" || name == "gsl-msadams";
-}
-bool has_fixed_mode(const std::string& name) {
-  return name.rfind("trapezoid", 0) == 0 || name.rfind("arkode-", 0) == 0 || name == "gsl-rk4" || name == "gsl-rk4imp";
-}
-bool has_adaptive_mode(const std::string& name) {
-  return name.rfind("trapezoid", 0) != 0 && name.rfind("arkode-trapezoid", 0) != 0;
-}
-
 /// The exact solution on the output grid, and what a run is measured against.
 struct Reference {
   std::vector<Vector> u;  ///< at t_k = k * interval, k = 1..K
@@ -111,7 +101,7 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
   const long outputs = std::lround(t_end / sc.dt);
   if (outputs < 1) throw InputError("compare: --t-end must cover at least one output step of " + number_text(sc.dt) + " s");
   std::vector<std::string> names = o.integrators.empty() ? integrators::integrator_names() : o.integrators;
-  for (const auto& name : names) (void)integrators::integrator_order(name);  // unknown names fail before any work
+  for (const auto& name : names) (void)integrators::integrator_info(name);  // unknown names fail before any work
 
   // The exact reference.
   Stopwatch clock;
@@ -171,10 +161,9 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
   };
 
   for (const auto& name : names) {
-    const double limit = is_explicit(name)
-                             ? integrators::predicted_stability_limit(name, modal.frequencies(), modal.alpha())
-                             : std::numeric_limits<double>::infinity();
-    if (has_fixed_mode(name)) {
+    const integrators::IntegratorInfo& info = integrators::integrator_info(name);
+    const double limit = integrators::predicted_stability_limit(info, modal.frequencies(), modal.alpha());
+    if (info.fixed_step) {
       std::vector<double> dts;
       if (std::isfinite(limit)) {
         for (double f : {1.05, 0.9, 0.45, 0.225}) dts.push_back(grid_step(sc.dt, f * limit));
@@ -190,7 +179,7 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
         if (!record(name, "fixed", dt, integrators::make_integrator(name, dt))) break;  // smaller dt: longer still
       }
     }
-    if (has_adaptive_mode(name))
+    if (info.adaptive)
       for (double tol : o.tolerances) {
         const integrators::StepControl control{.dt = std::min(sc.dt, std::isfinite(limit) ? 0.5 * limit : sc.dt),
                                                .adaptive = true, .rtol = tol, .atol = tol * peak};

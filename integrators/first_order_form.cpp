@@ -1,0 +1,42 @@
+#include "integrators/first_order_form.hpp"
+
+#include <cstring>
+
+namespace roifem::integrators {
+
+FirstOrderForm::FirstOrderForm(const model::SecondOrderSystem& system, Mass mass)
+    : system_(system), mass_(mass), force_(system.size()), work_(system.size()), cached_Ku_(system.size()) {
+  if (mass_ == Mass::inverted) mass_inverse_ = std::make_unique<model::MassInverse>(system.M);
+}
+
+void FirstOrderForm::evaluate(double t, const double* y, double* ydot) {
+  const Index n = system_.size();
+  const Eigen::Map<const Vector> u(y, n), v(y + n, n);
+  Eigen::Map<Vector> du(ydot, n), dv(ydot + n, n);
+  system_.load.evaluate(t, force_);
+  if (!(cached_u_.size() == n && std::memcmp(cached_u_.data(), y, sizeof(double) * static_cast<std::size_t>(n)) == 0)) {
+    cached_u_ = u;
+    system_.apply_stiffness(u, cached_Ku_);
+  }
+  work_ = force_ - cached_Ku_;
+  work_.noalias() -= system_.C * v;
+  du = v;
+  if (mass_ == Mass::kept)
+    dv = work_;
+  else
+    mass_inverse_->apply(work_, dv);
+}
+
+SparseMatrix FirstOrderForm::lower_left() const { return -mass_inverse_->apply(system_.K); }
+SparseMatrix FirstOrderForm::lower_right() const { return -mass_inverse_->apply(system_.C); }
+
+Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> FirstOrderForm::dense_jacobian() const {
+  const Index n = system_.size();
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> J = decltype(J)::Zero(2 * n, 2 * n);
+  J.topRightCorner(n, n).setIdentity();
+  J.bottomLeftCorner(n, n) = -mass_inverse_->apply(DenseMatrix(system_.K));
+  J.bottomRightCorner(n, n) = -mass_inverse_->apply(DenseMatrix(system_.C));
+  return J;
+}
+
+}  // namespace roifem::integrators

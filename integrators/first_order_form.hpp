@@ -1,0 +1,36 @@
+#pragma once
+/// The first-order form y = [u; v] of M u'' + C u' + K u = f(t) that ARKODE and GSL integrate:
+///   u' = v,   v' = M^-1 (f(t) - C v - K u)          (or, with M kept as a mass matrix,
+///   u' = v,   M v' = f(t) - C v - K u),
+/// with its constant Jacobian J = [[0, I], [-M^-1 K, -M^-1 C]]. M^-1 is a product for a lumped M
+/// and a Cholesky solve for the full M of a Guyan, Craig-Bampton or POD model (MassInverse).
+#include <memory>
+
+#include "model/mass_inverse.hpp"
+#include "model/second_order_system.hpp"
+
+namespace roifem::integrators {
+
+class FirstOrderForm {
+ public:
+  enum class Mass { inverted, kept };  ///< v' = M^-1 (...), or M v' = (...) for a mass-matrix solver
+  /// The system must outlive the form.
+  FirstOrderForm(const model::SecondOrderSystem& system, Mass mass);
+  Index size() const { return 2 * system_.size(); }
+  /// ydot = y'(t, y). K u, the costly part, is kept keyed by u's exact values: a stage often
+  /// evaluates at the u of the evaluation before.
+  void evaluate(double t, const double* y, double* ydot);
+  /// -M^-1 K and -M^-1 C, the Jacobian's lower blocks (sparse: see MassInverse::apply).
+  SparseMatrix lower_left() const;
+  SparseMatrix lower_right() const;
+  /// The whole Jacobian, dense (row-major), for GSL.
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> dense_jacobian() const;
+
+ private:
+  const model::SecondOrderSystem& system_;
+  Mass mass_;
+  std::unique_ptr<model::MassInverse> mass_inverse_;  // with Mass::inverted
+  Vector force_, work_, cached_u_, cached_Ku_;
+};
+
+}  // namespace roifem::integrators

@@ -1,0 +1,65 @@
+#pragma once
+/// The one list of integrators: a row per name with its traits. The factory (make_integrator),
+/// the stability search, `roifem compare`, `--help` and the README's list all read it, so that
+/// adding an integrator touches its own files and one row of integrator_table.cpp.
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "common/types.hpp"
+#include "integrators/integrator.hpp"
+#include "integrators/step_control.hpp"
+
+namespace roifem::integrators {
+
+enum class Family { trapezoid, arkode, ida, gsl };
+
+/// What solves the method's linear systems.
+enum class LinearSolver {
+  none,              ///< explicit: no linear system (a lumped M is inverted by a product)
+  cholmod,           ///< K_eff = K + 2/dt C + 4/dt^2 M by a sparse Cholesky factor (CHOLMOD)
+  jacobi_cg,         ///< K_eff by Jacobi-preconditioned conjugate gradients (no factor)
+  klu,               ///< the sparse Newton matrix of the first-order form by KLU
+  klu_mass,          ///< the same with M given to the library as a mass matrix (a second KLU)
+  schur,             ///< the Newton matrix's Schur complement by one SPD Cholesky solve of size n
+  schur_mass,        ///< the same with M as a mass matrix
+  dense,             ///< GSL's dense LU of the 2n x 2n Jacobian
+};
+
+/// A Runge-Kutta method's Butcher tableau.
+struct ButcherTableau {
+  DenseMatrix A;
+  Vector b;
+};
+
+struct IntegratorInfo;
+using IntegratorMaker = std::unique_ptr<Integrator> (*)(const IntegratorInfo&, const StepControl&);
+
+struct IntegratorInfo {
+  std::string name;
+  Family family = Family::trapezoid;
+  int order = 0;              ///< theoretical order of accuracy (GSL's msadams / msbdf: their highest)
+  bool is_explicit = false;
+  bool fixed_step = false;    ///< takes a fixed dt on request; a method without one runs error-controlled
+                              ///< at rtol 1e-8, atol 1e-12 when asked for a fixed step
+  bool adaptive = false;      ///< has an error estimate and takes rtol / atol
+  LinearSolver linear_solver = LinearSolver::none;
+  int method_id = -1;         ///< the family's own choice: an ARKODE table ID, IDA's maximum BDF order, an index of GSL's steppers
+  ButcherTableau (*tableau)() = nullptr;  ///< explicit Runge-Kutta methods: the tableau the stability search reads
+  IntegratorMaker make = nullptr;
+  std::string summary;        ///< one line for --help and the README
+};
+
+/// Every integrator, in the order `compare` runs them and `--help` lists them.
+std::span<const IntegratorInfo> integrator_table();
+/// The row of `name`; InputError listing the valid names for an unknown one.
+const IntegratorInfo& integrator_info(std::string_view name);
+std::vector<std::string> integrator_names();
+/// "trapezoid, trapezoid-cg, ...": for messages and --help.
+std::string integrator_name_list();
+std::string_view family_name(Family family);
+std::string_view linear_solver_name(LinearSolver solver);
+
+}  // namespace roifem::integrators

@@ -1,0 +1,13 @@
+#pragma once
+/// How an integrator chooses its steps: a fixed dt, or error-controlled steps with rtol / atol.
+/// Its own header, so that a client of the factory includes no library's headers.
+
+namespace roifem::integrators {
+
+struct StepControl {
+  double dt = 0.05;       ///< fixed step, or the first step / output interval when adaptive
+  bool adaptive = false;  ///< error-controlled steps with rtol / atol
+  double rtol = 1e-6, atol = 1e-9;
+};
+
+}  // namespace roifem::integrators
