@@ -1,45 +1,20 @@
 #include "integrators/modal_elimination.hpp"
 
+#include "common/errors.hpp"
 #include "solvers/dense_blas.hpp"
 
 namespace roifem::integrators {
 
-namespace {
-
-/// Whether `system` has the structure modal_elimination.hpp describes (its caller has checked
-/// modal_coordinates against the size).
-bool has_modal_structure(const model::SecondOrderSystem& system, Index n_d) {
-  const Index n = system.size(), k = n - n_d;
-  const auto& M = system.M_split;
-  const Index m = static_cast<Index>(M.index.size());
-  if (m < k) return false;
-  const Index n_i = m - k;
-  for (Index a = 0; a < m; ++a) {
-    const Index dof = M.index[static_cast<std::size_t>(a)];
-    if (a < n_i ? dof >= n_d : dof != n_d + a - n_i) return false;  // the interface, then q in order
-  }
-  if (M.block.bottomRightCorner(k, k) != DenseMatrix::Identity(k, k)) return false;
-  for (Index j = 0; j < M.sparse.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(M.sparse, j); it; ++it)
-      if ((it.row() >= n_d || j >= n_d) && it.value() != 0) return false;
-  for (Index j = n_d; j < n; ++j)  // K: q's columns (and, K being symmetric, rows) hold their diagonal alone
-    for (SparseMatrix::InnerIterator it(system.K, j); it; ++it)
-      if (it.row() != j && it.value() != 0) return false;
-  for (Index dof : system.K_split.index)
-    if (dof >= n_d) return false;
-  return true;
-}
-
-}  // namespace
-
-std::optional<ModalElimination> ModalElimination::build(const model::SecondOrderSystem& system, double c) {
-  const Index n = system.size(), k = system.modal_coordinates;
-  if (k <= 0 || k >= n || !has_modal_structure(system, n - k)) return std::nullopt;
-  ModalElimination e;
+ModalElimination::ModalElimination(const model::SecondOrderSystem& system, double dt) {
+  if (!system.modal || !system.damping.is_mass_proportional())
+    throw Error("internal: modal elimination needs declared modal coordinates and C = alpha M");
+  const double c = 4.0 / (dt * dt) + 2.0 * system.damping.alpha / dt;
+  const Index n = system.size(), k = system.modal->count;
+  auto& e = *this;
   e.n_d_ = n - k;
   e.c_ = c;
   const auto& M = system.M_split;
-  const Index n_i = static_cast<Index>(M.index.size()) - k;
+  const Index n_i = system.modal->interface_dofs;
   e.interface_.assign(M.index.begin(), M.index.begin() + n_i);
   e.B_ = M.block.topRightCorner(n_i, k);
   e.M_dd_ = M.sparse.topLeftCorner(e.n_d_, e.n_d_);
@@ -69,7 +44,6 @@ std::optional<ModalElimination> ModalElimination::build(const model::SecondOrder
   e.product_i_.resize(n_i);
   e.r_q_.resize(k);
   e.y_q_.resize(k);
-  return e;
 }
 
 void ModalElimination::solve(const Vector& f, const Vector& w, Vector& x) {

@@ -2,7 +2,7 @@
 /// The trapezoidal rule's linear solve for a reduced system with modal coordinates (Craig-Bampton,
 /// POD), with the modal coordinates eliminated in closed form.
 ///
-/// The system's last k dofs q are modal coordinates (SecondOrderSystem::modal_coordinates): their
+/// The system's last k dofs q are modal coordinates (SecondOrderSystem::modal, ModalBlock): their
 /// mass is the identity, their stiffness the diagonal Lambda, and they couple to the ROI dofs d
 /// through the mass alone, by a dense block B on the interface rows (C = alpha M):
 ///   M = [[M_dd, B], [B^T, I]],   K = [[K_dd, 0], [0, Lambda]].
@@ -13,27 +13,26 @@
 /// the factor is as large as plain condensation's, where factoring K_eff whole adds a dense modal
 /// block (on the paper's setup 1 with 200 modes: 1.5x the solve time). Each step reads B twice
 /// and one dense interface block, G - c B D^-1 B^T (G: M_dd's interface block), once.
-#include <optional>
 #include <vector>
 
+#include "integrators/effective_stiffness.hpp"
 #include "model/second_order_system.hpp"
 #include "solvers/cholesky.hpp"
 
 namespace roifem::integrators {
 
-class ModalElimination {
+class ModalElimination final : public EffectiveStiffnessSolver {
  public:
-  /// The elimination of `system`'s modal coordinates from K_eff = K + c M, or nothing when the
-  /// system has none, or not the structure above (then K_eff is solved whole). Throws
-  /// solvers::NotPositiveDefinite as a factorization does.
-  static std::optional<ModalElimination> build(const model::SecondOrderSystem& system, double c);
+  /// The elimination of `system`'s declared modal coordinates (system.modal; C = alpha M) from
+  /// K_eff = K + c M with c = 4/dt^2 + 2 alpha/dt. Throws solvers::NotPositiveDefinite as a
+  /// factorization does.
+  ModalElimination(const model::SecondOrderSystem& system, double dt);
 
   /// x = K_eff^-1 (f + M w): the trapezoidal rule's step with w = (4/dt^2 + 2 alpha/dt) u +
   /// (4/dt + alpha) v + a. x must not alias f or w.
-  void solve(const Vector& f, const Vector& w, Vector& x);
+  void solve(const Vector& f, const Vector& w, Vector& x) override;
 
  private:
-  ModalElimination() = default;
   Index n_d_ = 0;                // ROI dofs, first
   double c_ = 0;
   SparseMatrix M_dd_;            // the split M's sparse part over d (diagonal for a lumped M)

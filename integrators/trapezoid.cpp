@@ -6,6 +6,7 @@
 #include "common/number_text.hpp"
 #include "common/timer.hpp"
 #include "integrators/integrator_table.hpp"
+#include "integrators/modal_elimination.hpp"
 
 namespace roifem::integrators {
 
@@ -18,26 +19,22 @@ Trapezoid::Trapezoid(double dt) : dt_(dt) {
   if (!(dt > 0) || !std::isfinite(dt)) throw InputError("trapezoid: time step dt = " + number_text(dt) + " s must be positive");
 }
 
-Trapezoid::Trapezoid(double dt, solvers::CgSettings cg) : Trapezoid(dt) { cg_.emplace(cg); }
+Trapezoid::Trapezoid(double dt, solvers::CgSettings cg) : Trapezoid(dt) { cg_ = cg; }
 
 void Trapezoid::reset(const model::SecondOrderSystem& system, const model::State& initial) {
   system_ = &system;
   const Index n = system.size();
   if (initial.u.size() != n || initial.v.size() != n) throw Error("internal: trapezoid: state size mismatch");
-  // With mass-proportional damping C = alpha M (every model here) the right-hand side needs one
-  // product with M instead of one with M and one with C: it matters when M has dense blocks.
-  alpha_ = model::mass_proportional_damping(system);
   const Stopwatch clock;
-  modal_.reset();
+  K_eff_.reset();
+  eliminates_modal_ = !cg_ && system.modal && system.damping.is_mass_proportional();
   try {
-    if (!cg_ && std::isfinite(alpha_)) modal_ = ModalElimination::build(system, 4.0 / (dt_ * dt_) + 2.0 * alpha_ / dt_);
-    if (!modal_) {
-      SparseMatrix K_eff = system.K + (2.0 / dt_) * system.C + (4.0 / (dt_ * dt_)) * system.M;
-      if (cg_)
-        cg_->compute(std::move(K_eff));  // no second copy of K_eff
-      else
-        K_eff_.compute(K_eff, system.dense_block_dofs());
-    }
+    if (cg_)
+      K_eff_ = std::make_unique<ConjugateGradients>(system, dt_, *cg_);
+    else if (eliminates_modal_)
+      K_eff_ = std::make_unique<ModalElimination>(system, dt_);
+    else
+      K_eff_ = std::make_unique<DirectSolve>(system, dt_);
   } catch (const solvers::NotPositiveDefinite& e) {
     throw SolverError(std::string(name()) + ": K + 2/dt C + 4/dt^2 M is not positive definite: " + e.what());
   }
@@ -49,7 +46,6 @@ void Trapezoid::reset(const model::SecondOrderSystem& system, const model::State
   solvers::Cholesky mass;
   mass.compute(system.M);
   a_ = mass.solve(r);
-  rhs_.resize(n);
   u_next_.resize(n);
   work_.resize(n);
   stats_ = {};
@@ -62,31 +58,22 @@ void Trapezoid::step(model::State& s) {
   ++k_;
   s.t = t0_ + static_cast<double>(k_) * dt_;
   system_->load.evaluate(s.t, f_);
-  // rhs = f + M (c_u u + c_v v + a) + C (2/dt u + v); with C = alpha M one product with M.
-  if (std::isfinite(alpha_))
-    work_ = (c_u + alpha_ * 2.0 / dt_) * s.u + (c_v + alpha_) * s.v + a_;
-  else
-    work_ = c_u * s.u + c_v * s.v + a_;
-  if (modal_) {
-    modal_->solve(f_, work_, u_next_);  // rhs and solve in one, q eliminated
+  // K_eff u_{n+1} = f + M (c_u u + c_v v + a) + C (2/dt u + v); with C = alpha M one product with M.
+  const model::Damping& damping = system_->damping;
+  if (damping.is_mass_proportional()) {
+    work_ = (c_u + damping.alpha * 2.0 / dt_) * s.u + (c_v + damping.alpha) * s.v + a_;
   } else {
-    system_->apply_mass(work_, rhs_);
-    rhs_ += f_;
-    if (!std::isfinite(alpha_)) {
-      work_ = (2.0 / dt_) * s.u + s.v;
-      rhs_.noalias() += system_->C * work_;
-    }
-    if (cg_) {
-      u_next_ = s.u + dt_ * s.v + (0.5 * dt_ * dt_) * a_;  // the guess: constant acceleration
-      try {
-        stats_.lin_iterations += cg_->solve(rhs_, u_next_);
-      } catch (const SolverError& e) {
-        throw SolverError(std::string("trapezoid-cg: step ") + std::to_string(k_) + ", t = " + number_text(s.t) + " s: " + e.what());
-      }
-    } else {
-      K_eff_.solve(rhs_, u_next_);
-    }
+    work_ = (2.0 / dt_) * s.u + s.v;
+    f_.noalias() += system_->C * work_;
+    work_ = c_u * s.u + c_v * s.v + a_;
   }
+  if (K_eff_->uses_initial_guess()) u_next_ = s.u + dt_ * s.v + (0.5 * dt_ * dt_) * a_;  // constant acceleration
+  try {
+    K_eff_->solve(f_, work_, u_next_);
+  } catch (const SolverError& e) {
+    throw SolverError(std::string(name()) + ": step " + std::to_string(k_) + ", t = " + number_text(s.t) + " s: " + e.what());
+  }
+  stats_.lin_iterations = K_eff_->iterations();
   // a_{n+1} = c_u (u_{n+1} - u_n) - c_v v_n - a_n, then v and u.
   work_ = c_u * (u_next_ - s.u) - c_v * s.v - a_;
   s.v += 0.5 * dt_ * (a_ + work_);

@@ -7,18 +7,19 @@
 ///   a_{n+1} = 4/dt^2 (u_{n+1} - u_n) - 4/dt v_n - a_n,   v_{n+1} = v_n + dt/2 (a_n + a_{n+1}).
 /// Time levels are t_k = t_0 + k dt (never accumulated by t += dt).
 ///
-/// K_eff is solved by CHOLMOD ("trapezoid"; a system's modal coordinates eliminated in closed form
-/// first: modal_elimination.hpp), or, where its factor does not fit in memory, by Jacobi-
-/// preconditioned conjugate gradients to a relative residual of 1e-10 ("trapezoid-cg", started
-/// from the predictor u_n + dt v_n + dt^2/2 a_n). Both give the same answer to ~1e-9
-/// relative over hundreds of steps; the direct solve is ~20x faster where it fits.
+/// K_eff is solved by one of the strategies of effective_stiffness.hpp: CHOLMOD ("trapezoid"; a
+/// system's declared modal coordinates eliminated in closed form first: modal_elimination.hpp),
+/// or, where its factor does not fit in memory, Jacobi-preconditioned conjugate gradients to a
+/// relative residual of 1e-10 ("trapezoid-cg", started from the predictor u_n + dt v_n +
+/// dt^2/2 a_n). Both give the same answer to ~1e-9 relative over hundreds of steps; the direct
+/// solve is ~20x faster where it fits. With C = alpha M (SecondOrderSystem::damping) the history
+/// term folds C into M's product; a general C adds its own product to f.
 #include <memory>
 #include <optional>
 
 #include "integrators/integrator.hpp"
-#include "integrators/modal_elimination.hpp"
+#include "integrators/effective_stiffness.hpp"
 #include "integrators/step_control.hpp"
-#include "solvers/cholesky.hpp"
 #include "solvers/jacobi_cg.hpp"
 
 namespace roifem::integrators {
@@ -40,16 +41,15 @@ class Trapezoid final : public Integrator {
   /// One step from the current state (the hot path a simulator calls each tick).
   void step(model::State& state);
   double dt() const { return dt_; }
-  /// Whether the last reset found modal coordinates to eliminate (modal_elimination.hpp).
-  bool eliminates_modal_coordinates() const { return modal_.has_value(); }
+  /// Whether the last reset eliminates the system's modal coordinates (modal_elimination.hpp).
+  bool eliminates_modal_coordinates() const { return eliminates_modal_; }
 
  private:
   double dt_;
   const model::SecondOrderSystem* system_ = nullptr;
-  solvers::Cholesky K_eff_;
-  std::optional<solvers::JacobiCg> cg_;  // set: K_eff is solved iteratively instead
-  std::optional<ModalElimination> modal_;  // set: K_eff is solved with the modal coordinates eliminated
-  double alpha_ = 0;  // C = alpha M, or NaN when C is not mass-proportional
+  std::optional<solvers::CgSettings> cg_;  // set: K_eff is solved iteratively
+  std::unique_ptr<EffectiveStiffnessSolver> K_eff_;
+  bool eliminates_modal_ = false;
   double t0_ = 0;
   long k_ = 0;
   Vector a_, rhs_, f_, u_next_, work_;

@@ -167,7 +167,8 @@ StaticCondensation::StaticCondensation(const model::SecondOrderSystem& full, con
   if (k > 0) reduced_.M_split.block.bottomRightCorner(k, k).setIdentity();
   reduced_.M = assembled(reduced_.M_split);
   reduced_.C = assembled(reduce_diagonal(full.C, C_s));
-  reduced_.modal_coordinates = k;
+  reduced_.damping = full.damping;  // T^T (alpha M) T = alpha M_r
+  if (k > 0) reduced_.modal = model::ModalBlock{.count = k, .interface_dofs = n_i};
   if (!with_mass) reduced_.M_split = {};  // diagonal: the plain product is the fast one
 
   // f_r = [f_d - X^T f_s on the interface; Phi^T f_s] per load pattern; K_ss^-1 f_s kept for

@@ -23,6 +23,7 @@ FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::Material& materia
   const Vector m = fem::lumped_mass(mesh, dofs, material.rho);
   model.system.M = diagonal_matrix(m);
   model.system.C = diagonal_matrix(material.alpha * m);
+  model.system.damping = Damping::mass_proportional(material.alpha);
   model.system.load = LoadHistory(dofs.num_free());
   for (const auto& load : loads)
     model.system.load.add(dofs.restrict_to_free(load.gravity ? fem::gravity_force(mesh, material.rho, *load.gravity)

@@ -3,6 +3,7 @@
 ///   M u'' + C u' + K u = f(t)
 /// M symmetric positive definite (lumped: diagonal), C = alpha M, K symmetric positive definite.
 /// The full model and a condensed ROI model are both of this form.
+#include <optional>
 #include <vector>
 
 #include "common/types.hpp"
@@ -23,15 +24,32 @@ struct SplitMatrix {
   void apply(const Eigen::Ref<const Vector>& x, Eigen::Ref<Vector> y) const;
 };
 
+/// What C is: C = alpha M (Rayleigh mass-proportional damping: every FEM model here, and every
+/// reduction of one, since T^T (alpha M) T = alpha T^T M T), or a general matrix.
+struct Damping {
+  enum class Kind { general, mass_proportional };
+  Kind kind = Kind::general;
+  double alpha = 0;  ///< 1/s, with mass_proportional
+  static Damping mass_proportional(double alpha) { return {Kind::mass_proportional, alpha}; }
+  bool is_mass_proportional() const { return kind == Kind::mass_proportional; }
+};
+
+/// Modal coordinates declared by a reduction (Craig-Bampton, POD): the last `count` dofs q, with
+/// M_qq = I exactly, K_qq = diag(K) there, K_dq = 0, and M coupling q to the ROI dofs only
+/// through M_split's dense block, whose index lists `interface_dofs` and then q in order. An
+/// integrator may eliminate them in closed form (integrators/modal_elimination.hpp).
+struct ModalBlock {
+  Index count = 0;
+  Index interface_dofs = 0;  ///< the first entries of M_split.index
+};
+
 struct SecondOrderSystem {
   SparseMatrix M, C, K;      ///< in full, for factorizations
   LoadHistory load;
   SplitMatrix K_split;       ///< optional: the same K, split, for products
   SplitMatrix M_split;       ///< optional: the same M, split (Guyan, Craig-Bampton)
-  /// The last dofs are this many modal coordinates q (Craig-Bampton, POD): M_qq = I exactly,
-  /// K_qq diagonal, K_dq = 0, and M couples q to the rest only through M_split's block. An
-  /// integrator may eliminate them in closed form (integrators/modal_elimination.hpp).
-  Index modal_coordinates = 0;
+  Damping damping;           ///< what C is (general unless declared)
+  std::optional<ModalBlock> modal;  ///< set by reductions with modal coordinates
   Index size() const { return K.rows(); }
   /// y = K x, through K_split when there is one.
   void apply_stiffness(const Eigen::Ref<const Vector>& x, Eigen::Ref<Vector> y) const;

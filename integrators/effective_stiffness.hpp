@@ -1,0 +1,53 @@
+#pragma once
+/// The trapezoidal rule's one linear solve per step: x = K_eff^-1 (f + M w), with
+///   K_eff = K + 2/dt C + 4/dt^2 M     (C = alpha M: K + c M, c = 4/dt^2 + 2 alpha/dt),
+/// w the history term the rule builds from u, v and a (trapezoid.hpp). Three strategies:
+///   DirectSolve      CHOLMOD factor of K_eff, the dense blocks' dofs ordered last ("trapezoid")
+///   ConjugateGradients  Jacobi-preconditioned CG, no factor ("trapezoid-cg")
+///   ModalElimination a system's declared modal coordinates eliminated in closed form first
+///                    (modal_elimination.hpp), chosen by "trapezoid" when the system has them
+#include <memory>
+
+#include "model/second_order_system.hpp"
+#include "solvers/cholesky.hpp"
+#include "solvers/jacobi_cg.hpp"
+
+namespace roifem::integrators {
+
+class EffectiveStiffnessSolver {
+ public:
+  virtual ~EffectiveStiffnessSolver() = default;
+  /// x = K_eff^-1 (f + M w). x must not alias f or w; where uses_initial_guess(), x holds one on entry.
+  virtual void solve(const Vector& f, const Vector& w, Vector& x) = 0;
+  virtual bool uses_initial_guess() const { return false; }
+  /// Iterations of the last solves, summed (iterative strategies).
+  virtual long iterations() const { return 0; }
+};
+
+class DirectSolve final : public EffectiveStiffnessSolver {
+ public:
+  /// Throws solvers::NotPositiveDefinite.
+  DirectSolve(const model::SecondOrderSystem& system, double dt);
+  void solve(const Vector& f, const Vector& w, Vector& x) override;
+
+ private:
+  const model::SecondOrderSystem& system_;
+  solvers::Cholesky K_eff_;
+  Vector rhs_;
+};
+
+class ConjugateGradients final : public EffectiveStiffnessSolver {
+ public:
+  ConjugateGradients(const model::SecondOrderSystem& system, double dt, solvers::CgSettings settings);
+  void solve(const Vector& f, const Vector& w, Vector& x) override;
+  bool uses_initial_guess() const override { return true; }
+  long iterations() const override { return iterations_; }
+
+ private:
+  const model::SecondOrderSystem& system_;
+  solvers::JacobiCg cg_;
+  Vector rhs_;
+  long iterations_ = 0;
+};
+
+}  // namespace roifem::integrators
