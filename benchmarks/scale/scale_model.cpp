@@ -8,7 +8,7 @@
 
 #include "common/errors.hpp"
 #include "common/timer.hpp"
-#include "condensation/static_condensation.hpp"
+#include "condensation/reduced_model.hpp"
 #include "integrators/trapezoid.hpp"
 #include "mesh/gmsh_reader.hpp"
 #include "mesh/mesh_checks.hpp"
@@ -100,7 +100,7 @@ roi::RoiSpec nearest_target(Index count) {
 }
 
 struct Condensed {
-  std::unique_ptr<condensation::StaticCondensation> condensation;
+  std::unique_ptr<condensation::ReducedModel> condensation;
   long interface_dofs = 0;
 };
 
@@ -109,7 +109,7 @@ Condensed condense(const Brain& brain, Index roi_nodes) {
   const auto partition = roi::partition_dofs(brain.model.system.K, dofs, roi::select_roi_nodes(brain.mesh, dofs, nearest_target(roi_nodes)));
   Condensed c;
   c.interface_dofs = static_cast<long>(partition.interface.size());
-  c.condensation = std::make_unique<condensation::StaticCondensation>(brain.model.system, partition, dofs);
+  c.condensation = std::make_unique<condensation::ReducedModel>(brain.model.system, partition, dofs);
   return c;
 }
 

@@ -1,14 +1,34 @@
 #pragma once
-/// How the static part of an ROI model is reduced (see static_condensation.hpp for the maths).
-#include <cstdio>
+/// How the static part of an ROI model is reduced (see reduced_model.hpp for the maths). The kinds
+/// and their text forms (scenario key, CLI and plot labels, descriptions) live in one table,
+/// reduction_table(), that the scenario reader, the CLI, `roifem paper` and the README read.
+#include <span>
 #include <string>
+#include <string_view>
 
-#include "common/errors.hpp"
 #include "common/types.hpp"
 
 namespace roifem::condensation {
 
 enum class ReductionKind { static_condensation, guyan, craig_bampton, pod };
+
+/// Where a reduction's extra generalized coordinates of the static part come from.
+enum class StaticBasis { none, fixed_interface_modes, pod };
+
+struct ReductionInfo {
+  ReductionKind kind;
+  std::string_view key;     ///< scenario: [roi] reduction = "<key>"; CLI label: <key> or <key>-K
+  bool counted;             ///< the CLI label takes a count K (modes or vectors)
+  bool carries_mass;        ///< the static part's inertia moves with the ROI (needs a lumped M, C)
+  StaticBasis basis;
+  std::string_view description;
+};
+
+/// Every kind, the paper's first.
+std::span<const ReductionInfo> reduction_table();
+const ReductionInfo& reduction_info(ReductionKind kind);
+/// "static, guyan, craig-bampton, pod".
+std::string reduction_key_list();
 
 struct Reduction {
   ReductionKind kind = ReductionKind::static_condensation;
@@ -17,6 +37,8 @@ struct Reduction {
   double snapshot_dt_s = 0.05;  ///< POD: the full model's training run (step responses), step and length
   long snapshot_steps = 200;
 
+  const ReductionInfo& info() const { return reduction_info(kind); }
+  bool is_static_condensation() const { return kind == ReductionKind::static_condensation; }
   /// The same reduction with a POD basis trained on a run of `steps` steps of `dt` (the run it serves).
   Reduction trained_on(double dt, long steps) const {
     Reduction r = *this;
@@ -24,40 +46,12 @@ struct Reduction {
     r.snapshot_steps = steps;
     return r;
   }
-
   /// "static", "guyan", "craig-bampton-10", "craig-bampton-below-50rad/s" or "pod-40".
-  std::string label() const {
-    switch (kind) {
-      case ReductionKind::static_condensation: return "static";
-      case ReductionKind::guyan: return "guyan";
-      case ReductionKind::pod: return "pod-" + std::to_string(modes);
-      case ReductionKind::craig_bampton: break;
-    }
-    if (modes > 0) return "craig-bampton-" + std::to_string(modes);
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, "craig-bampton-below-%grad/s", cutoff_rad_s);
-    return buffer;
-  }
+  std::string label() const;
 };
 
-/// K from "PREFIXK" with K a positive integer, or 0.
-inline Index positive_count_after(const std::string& label, const std::string& prefix) {
-  if (label.rfind(prefix, 0) != 0 || label.size() == prefix.size() ||
-      label.find_first_not_of("0123456789", prefix.size()) != std::string::npos)
-    return 0;
-  return std::stol(label.substr(prefix.size()));
-}
-
 /// The inverse of label() for "static", "guyan", "craig-bampton-K" and "pod-K" (training at the
-/// default dt and steps); InputError otherwise.
-inline Reduction parse_reduction(const std::string& label) {
-  if (label == "static") return {};
-  if (label == "guyan") return {.kind = ReductionKind::guyan};
-  if (const Index modes = positive_count_after(label, "craig-bampton-"); modes > 0)
-    return {.kind = ReductionKind::craig_bampton, .modes = modes};
-  if (const Index vectors = positive_count_after(label, "pod-"); vectors > 0) return {.kind = ReductionKind::pod, .modes = vectors};
-  throw InputError("unknown reduction '" + label +
-                   "': use static, guyan, craig-bampton-K (K modes, K >= 1) or pod-K (K POD vectors, K >= 1)");
-}
+/// default dt and steps); InputError listing the forms otherwise.
+Reduction parse_reduction(const std::string& label);
 
 }  // namespace roifem::condensation

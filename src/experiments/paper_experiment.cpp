@@ -11,7 +11,7 @@
 #include "common/number_text.hpp"
 #include "common/timer.hpp"
 #include "fem/static_solve.hpp"
-#include "condensation/static_condensation.hpp"
+#include "condensation/reduced_model.hpp"
 #include "experiments/roi_error.hpp"
 #include "integrators/trapezoid.hpp"
 #include "io/csv.hpp"
@@ -46,7 +46,7 @@ std::vector<double> field_mm(const fem::DofMap& dofs, const Vector& u_free) {
 struct Setup {
   std::string name;
   std::string reduction;
-  std::unique_ptr<condensation::StaticCondensation> condensation;
+  std::unique_ptr<condensation::ReducedModel> condensation;
   RoiNodeDofs node_dofs;
   double setup_s = 0;
 };
@@ -193,7 +193,7 @@ PaperResults run_paper_experiment(const PaperOptions& o, std::ostream& log) {
       s.reduction = reduction.label();
       Stopwatch clock;
       // A POD basis learns from the paper's own step and length.
-      s.condensation = std::make_unique<condensation::StaticCondensation>(full.system, partition, dofs,
+      s.condensation = std::make_unique<condensation::ReducedModel>(full.system, partition, dofs,
                                                                           reduction.trained_on(o.dt, o.steps));
       s.setup_s = clock.seconds();
       s.node_dofs = roi_node_dofs(partition, dofs);

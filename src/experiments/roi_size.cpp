@@ -8,7 +8,7 @@
 #include "common/errors.hpp"
 #include "common/number_text.hpp"
 #include "common/timer.hpp"
-#include "condensation/static_condensation.hpp"
+#include "condensation/reduced_model.hpp"
 #include "experiments/roi_error.hpp"
 #include "integrators/factory.hpp"
 #include "io/csv.hpp"
@@ -52,12 +52,12 @@ class Search {
     return peak / mm;
   }
 
-  std::unique_ptr<condensation::StaticCondensation> reduce(Index n, const condensation::Reduction& reduction) const {
+  std::unique_ptr<condensation::ReducedModel> reduce(Index n, const condensation::Reduction& reduction) const {
     const roi::RoiSpec spec{.kind = roi::RoiSpec::Kind::nearest, .center = sc_.roi->center, .radius = 0, .count = n, .set = {}};
     const fem::DofMap& dofs = *full_.full.dofs;
     const auto partition = roi::partition_dofs(full_.system().K, dofs, roi::select_roi_nodes(full_.mesh, dofs, spec));
     // A POD basis learns from the scenario's own step and length.
-    return std::make_unique<condensation::StaticCondensation>(full_.system(), partition, dofs,
+    return std::make_unique<condensation::ReducedModel>(full_.system(), partition, dofs,
                                                               reduction.trained_on(sc_.dt, sc_.steps));
   }
 

@@ -1,5 +1,6 @@
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -173,17 +174,12 @@ condensation::Reduction read_reduction(StrictTable& t) {
   using condensation::ReductionKind;
   condensation::Reduction r;
   const std::string kind = t.string("reduction").value_or("static");
-  if (kind == "static") {
-    r.kind = ReductionKind::static_condensation;
-  } else if (kind == "guyan") {
-    r.kind = ReductionKind::guyan;
-  } else if (kind == "craig-bampton") {
-    r.kind = ReductionKind::craig_bampton;
-  } else if (kind == "pod") {
-    r.kind = ReductionKind::pod;
-  } else {
-    throw InputError(t.source() + ": key 'roi.reduction' must be one of static, guyan, craig-bampton, pod (got '" + kind + "')");
-  }
+  const auto table = condensation::reduction_table();
+  const auto row = std::find_if(table.begin(), table.end(), [&](const auto& info) { return info.key == kind; });
+  if (row == table.end())
+    throw InputError(t.source() + ": key 'roi.reduction' must be one of " + condensation::reduction_key_list() + " (got '" +
+                     kind + "')");
+  r.kind = row->kind;
   const auto modes = t.integer("modes");
   const double cutoff = t.number("cutoff_rad_s", 0.0);
   if (r.kind == ReductionKind::pod) {
@@ -360,18 +356,11 @@ std::string Scenario::resolved_toml() const {
         break;
       case roi::RoiSpec::Kind::set: o << "kind = \"set\"\nset = \"" << roi->set << "\"\n"; break;
     }
-    switch (reduction.kind) {
-      case condensation::ReductionKind::static_condensation: o << "reduction = \"static\"\n"; break;
-      case condensation::ReductionKind::guyan: o << "reduction = \"guyan\"\n"; break;
-      case condensation::ReductionKind::pod: o << "reduction = \"pod\"\nmodes = " << reduction.modes << "\n"; break;
-      case condensation::ReductionKind::craig_bampton:
-        o << "reduction = \"craig-bampton\"\n";
-        if (reduction.modes > 0)
-          o << "modes = " << reduction.modes << "\n";
-        else
-          o << "cutoff_rad_s = " << toml_number(reduction.cutoff_rad_s) << "\n";
-        break;
-    }
+    o << "reduction = \"" << reduction.info().key << "\"\n";
+    if (reduction.modes > 0)
+      o << "modes = " << reduction.modes << "\n";
+    else if (reduction.cutoff_rad_s > 0)
+      o << "cutoff_rad_s = " << toml_number(reduction.cutoff_rad_s) << "\n";
   }
   o << "\n[time]\nintegrator = \"" << integrator << "\"\ndt_s = " << toml_number(dt) << "\nsteps = " << steps
     << "\n\n[output]\nfield_every = " << field_every << "\n";

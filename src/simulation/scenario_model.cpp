@@ -15,7 +15,7 @@ std::unique_ptr<ScenarioModel> build_scenario_model(const scenario::Scenario& sc
   if (sc.roi) {
     m->roi_nodes = roi::select_roi_nodes(m->mesh, dofs, *sc.roi);
     try {
-      m->condensation = std::make_unique<condensation::StaticCondensation>(
+      m->condensation = std::make_unique<condensation::ReducedModel>(
           m->full.system, roi::partition_dofs(m->full.system.K, dofs, m->roi_nodes), dofs, sc.reduction);
     } catch (const ModelError& e) {  // a singular static part: name the mesh whose nodes it names
       throw ModelError(m->mesh.source + ": " + e.what());

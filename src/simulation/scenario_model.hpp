@@ -4,7 +4,7 @@
 #include <memory>
 #include <vector>
 
-#include "condensation/static_condensation.hpp"
+#include "condensation/reduced_model.hpp"
 #include "model/fem_model.hpp"
 #include "scenario/scenario.hpp"
 
@@ -13,7 +13,7 @@ namespace roifem::simulation {
 struct ScenarioModel {
   mesh::TetMesh mesh;
   model::FemModel full;
-  std::unique_ptr<condensation::StaticCondensation> condensation;
+  std::unique_ptr<condensation::ReducedModel> condensation;
   std::vector<int> roi_nodes;  ///< empty for the full model
 
   const model::SecondOrderSystem& system() const { return condensation ? condensation->system() : full.system; }

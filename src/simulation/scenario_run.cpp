@@ -5,7 +5,7 @@
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
 #include "common/timer.hpp"
-#include "condensation/static_condensation.hpp"
+#include "condensation/reduced_model.hpp"
 #include "integrators/factory.hpp"
 #include "io/csv.hpp"
 #include "io/hdf5_file.hpp"
@@ -25,7 +25,7 @@ using io::format;
 /// Maps the integrated system's vector to all nodes (mm), recovering the static part if condensed.
 class FieldMapper {
  public:
-  FieldMapper(const fem::DofMap& dofs, const condensation::StaticCondensation* condensation)
+  FieldMapper(const fem::DofMap& dofs, const condensation::ReducedModel* condensation)
       : dofs_(dofs), condensation_(condensation) {}
   Vector free_displacement(const model::State& s) const {
     return condensation_ ? condensation_->expand(s.u, s.t) : s.u;
@@ -37,7 +37,7 @@ class FieldMapper {
 
  private:
   const fem::DofMap& dofs_;
-  const condensation::StaticCondensation* condensation_;
+  const condensation::ReducedModel* condensation_;
 };
 
 }  // namespace

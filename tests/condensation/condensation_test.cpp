@@ -1,4 +1,4 @@
-#include "condensation/static_condensation.hpp"
+#include "condensation/reduced_model.hpp"
 
 #include <gtest/gtest.h>
 
@@ -26,12 +26,12 @@ roi::RoiSpec nearest(Index count) {
   return {.kind = roi::RoiSpec::Kind::nearest, .center = Vec3(0, 0, 0.040), .count = count, .set = {}};
 }
 
-TEST(StaticCondensation, CondensedStaticAnswerEqualsTheFullOneOnTheRoi) {
+TEST(ReducedModel, CondensedStaticAnswerEqualsTheFullOneOnTheRoi) {
   const PaperBrain brain;
   const auto p = brain.partition(nearest(306));
   ASSERT_EQ(p.roi_nodes.size(), 306u);
   ASSERT_FALSE(p.interface.empty());
-  const StaticCondensation condensed(brain.model.system, p, *brain.model.dofs);
+  const ReducedModel condensed(brain.model.system, p, *brain.model.dofs);
   const double t = 1.0;  // loads fully applied
   solvers::Cholesky full, reduced;
   full.compute(brain.model.system.K);
@@ -48,11 +48,11 @@ TEST(StaticCondensation, CondensedStaticAnswerEqualsTheFullOneOnTheRoi) {
               (condensed.recover_static(u_d, t) - u_s_full).norm() / u_s_full.norm());
 }
 
-TEST(StaticCondensation, RoiOfAllNodesReproducesTheFullDynamicModel) {
+TEST(ReducedModel, RoiOfAllNodesReproducesTheFullDynamicModel) {
   const PaperBrain brain;
   const auto p = brain.partition(roi::RoiSpec{});
   EXPECT_TRUE(p.s.empty());
-  const StaticCondensation condensed(brain.model.system, p, *brain.model.dofs);
+  const ReducedModel condensed(brain.model.system, p, *brain.model.dofs);
   const Index n = brain.model.system.size();
   model::State full{0, Vector::Zero(n), Vector::Zero(n)}, roi = full;
   integrators::Trapezoid a(0.05), b(0.05);
@@ -67,16 +67,16 @@ TEST(StaticCondensation, RoiOfAllNodesReproducesTheFullDynamicModel) {
   EXPECT_LT(worst, 1e-12);
 }
 
-TEST(StaticCondensation, CondensedStiffnessIsSymmetricPositiveDefinite) {
+TEST(ReducedModel, CondensedStiffnessIsSymmetricPositiveDefinite) {
   const PaperBrain brain;
-  const StaticCondensation condensed(brain.model.system, brain.partition(nearest(228)), *brain.model.dofs);
+  const ReducedModel condensed(brain.model.system, brain.partition(nearest(228)), *brain.model.dofs);
   const SparseMatrix& K = condensed.system().K;
   EXPECT_LT((K - SparseMatrix(K.transpose())).norm(), 1e-12 * K.norm());
   solvers::Cholesky cholesky;
   EXPECT_NO_THROW(cholesky.compute(K));
 }
 
-TEST(StaticCondensation, StaticPieceHeldByNothingIsAModelErrorNamingANodeOfIt) {
+TEST(ReducedModel, StaticPieceHeldByNothingIsAModelErrorNamingANodeOfIt) {
   // Two boxes that share no node: the first fixed on its face x0 and holding the ROI, the second
   // held by nothing, so all static and free to move as a rigid body: K_ss is singular.
   const mesh::TetMesh a = mesh::structured_box_mesh(2, 2, 2, 0.01, 0.01, 0.01);
@@ -92,7 +92,7 @@ TEST(StaticCondensation, StaticPieceHeldByNothingIsAModelErrorNamingANodeOfIt) {
   const roi::RoiSpec spec{.kind = roi::RoiSpec::Kind::nearest, .center = Vec3(0.01, 0.005, 0.005), .radius = 0, .count = 5, .set = {}};
   const auto p = roi::partition_dofs(model.system.K, *model.dofs, roi::select_roi_nodes(both, *model.dofs, spec));
   try {
-    const StaticCondensation condensed(model.system, p, *model.dofs);
+    const ReducedModel condensed(model.system, p, *model.dofs);
     FAIL() << "expected ModelError";
   } catch (const ModelError& e) {
     const std::string message = e.what();

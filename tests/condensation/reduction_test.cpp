@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "common/errors.hpp"
-#include "condensation/static_condensation.hpp"
+#include "condensation/reduced_model.hpp"
 #include "integrators/trapezoid.hpp"
 #include "mesh/box_mesh.hpp"
 #include "model/fem_model.hpp"
@@ -26,7 +26,7 @@ struct Beam {
 };
 
 /// T: the full free displacement of each reduced unit vector (at t = 0 the ramped loads are zero).
-DenseMatrix transformation(const StaticCondensation& r) {
+DenseMatrix transformation(const ReducedModel& r) {
   const Index n_r = r.system().size();
   DenseMatrix T(r.partition().d.size() + r.partition().s.size(), n_r);
   for (Index j = 0; j < n_r; ++j) T.col(j) = r.expand(Vector::Unit(n_r, j), 0.0);
@@ -35,7 +35,7 @@ DenseMatrix transformation(const StaticCondensation& r) {
 
 double relative(const DenseMatrix& a, const DenseMatrix& b) { return (a - b).norm() / b.norm(); }
 
-void expect_projection(const StaticCondensation& r, const model::SecondOrderSystem& full, bool mass_projected) {
+void expect_projection(const ReducedModel& r, const model::SecondOrderSystem& full, bool mass_projected) {
   const DenseMatrix T = transformation(r);
   const double dK = relative(DenseMatrix(r.system().K), T.transpose() * DenseMatrix(full.K) * T);
   const double dM = relative(DenseMatrix(r.system().M), T.transpose() * DenseMatrix(full.M) * T);
@@ -63,13 +63,13 @@ TEST(Reduction, EachReducedMatrixIsTheProjectionThroughItsTransformation) {
   const auto p = beam.partition();
   ASSERT_GT(p.s.size(), 20u);
   const auto& full = beam.model.system;
-  expect_projection(StaticCondensation(full, p, *beam.model.dofs), full, false);
-  expect_projection(StaticCondensation(full, p, *beam.model.dofs, {.kind = ReductionKind::guyan}), full, true);
-  const StaticCondensation cb(full, p, *beam.model.dofs, {.kind = ReductionKind::craig_bampton, .modes = 5});
+  expect_projection(ReducedModel(full, p, *beam.model.dofs), full, false);
+  expect_projection(ReducedModel(full, p, *beam.model.dofs, {.kind = ReductionKind::guyan}), full, true);
+  const ReducedModel cb(full, p, *beam.model.dofs, {.kind = ReductionKind::craig_bampton, .modes = 5});
   EXPECT_EQ(cb.num_modes(), 5);
   EXPECT_EQ(cb.system().size(), static_cast<Index>(p.d.size()) + 5);
   expect_projection(cb, full, true);
-  const StaticCondensation pod(full, p, *beam.model.dofs, {.kind = ReductionKind::pod, .modes = 5, .snapshot_dt_s = 0.01});
+  const ReducedModel pod(full, p, *beam.model.dofs, {.kind = ReductionKind::pod, .modes = 5, .snapshot_dt_s = 0.01});
   EXPECT_EQ(pod.num_modes(), 5);
   expect_projection(pod, full, true);
 }
@@ -83,7 +83,7 @@ TEST(Reduction, PodReproducesTheRunItLearntFromAndBeatsCraigBamptonOnAnotherLoad
   const auto p = beam.partition();
   const auto& full = beam.model.system;
   const double dt = 0.01;
-  auto error_against_full = [&](const StaticCondensation& r, const model::SecondOrderSystem& full_system, long steps) {
+  auto error_against_full = [&](const ReducedModel& r, const model::SecondOrderSystem& full_system, long steps) {
     model::State a{0, Vector::Zero(full_system.size()), Vector::Zero(full_system.size())};
     model::State b{0, Vector::Zero(r.system().size()), Vector::Zero(r.system().size())};
     integrators::Trapezoid ta(dt), tb(dt);
@@ -99,7 +99,7 @@ TEST(Reduction, PodReproducesTheRunItLearntFromAndBeatsCraigBamptonOnAnotherLoad
     return worst / peak;
   };
   const Reduction every{.kind = ReductionKind::pod, .modes = 30, .snapshot_dt_s = dt, .snapshot_steps = 30};
-  const StaticCondensation replay(full, p, *beam.model.dofs, every);
+  const ReducedModel replay(full, p, *beam.model.dofs, every);
   ASSERT_GT(replay.num_modes(), 5);
   const double replayed = error_against_full(replay, full, 30);
   std::printf("POD with %lld vectors, the training run replayed: %.2e (relative)\n",
@@ -110,9 +110,9 @@ TEST(Reduction, PodReproducesTheRunItLearntFromAndBeatsCraigBamptonOnAnotherLoad
   // 4 Craig-Bampton modes (the load history was never seen).
   model::SecondOrderSystem ramped = full;
   ramped.load = full.load.with_ramp(model::Ramp{0.1});
-  const StaticCondensation pod(ramped, p, *beam.model.dofs, {.kind = ReductionKind::pod, .modes = 4, .snapshot_dt_s = dt, .snapshot_steps = 30});
-  const StaticCondensation cb(ramped, p, *beam.model.dofs, {.kind = ReductionKind::craig_bampton, .modes = 4});
-  const StaticCondensation plain(ramped, p, *beam.model.dofs);
+  const ReducedModel pod(ramped, p, *beam.model.dofs, {.kind = ReductionKind::pod, .modes = 4, .snapshot_dt_s = dt, .snapshot_steps = 30});
+  const ReducedModel cb(ramped, p, *beam.model.dofs, {.kind = ReductionKind::craig_bampton, .modes = 4});
+  const ReducedModel plain(ramped, p, *beam.model.dofs);
   const double e_pod = error_against_full(pod, ramped, 60), e_cb = error_against_full(cb, ramped, 60),
                e_plain = error_against_full(plain, ramped, 60);
   std::printf("0.1 s ramp, 60 steps, max |u_r - u| / max |u|: static %.2e, craig-bampton-4 %.2e, pod-4 %.2e\n", e_plain, e_cb, e_pod);
@@ -123,10 +123,10 @@ TEST(Reduction, PodReproducesTheRunItLearntFromAndBeatsCraigBamptonOnAnotherLoad
 TEST(Reduction, PodNeedsVectorsAndALoad) {
   const Beam beam;
   const auto p = beam.partition();
-  EXPECT_THROW(StaticCondensation(beam.model.system, p, *beam.model.dofs, {.kind = ReductionKind::pod, .modes = 0}), InputError);
+  EXPECT_THROW(ReducedModel(beam.model.system, p, *beam.model.dofs, {.kind = ReductionKind::pod, .modes = 0}), InputError);
   model::SecondOrderSystem unloaded = beam.model.system;
   unloaded.load = model::LoadHistory(unloaded.size());
-  EXPECT_THROW(StaticCondensation(unloaded, p, *beam.model.dofs, {.kind = ReductionKind::pod, .modes = 3}), InputError);
+  EXPECT_THROW(ReducedModel(unloaded, p, *beam.model.dofs, {.kind = ReductionKind::pod, .modes = 3}), InputError);
   EXPECT_EQ(parse_reduction("pod-40").modes, 40);
   EXPECT_EQ(parse_reduction("pod-40").label(), "pod-40");
   EXPECT_THROW(parse_reduction("pod-"), InputError);
@@ -137,7 +137,7 @@ TEST(Reduction, CraigBamptonWithEveryModeReproducesTheFullModel) {
   const auto p = beam.partition();
   const auto& full = beam.model.system;
   const Index all = static_cast<Index>(p.s.size());
-  const StaticCondensation cb(full, p, *beam.model.dofs, {.kind = ReductionKind::craig_bampton, .modes = all});
+  const ReducedModel cb(full, p, *beam.model.dofs, {.kind = ReductionKind::craig_bampton, .modes = all});
   ASSERT_EQ(cb.num_modes(), all);
   model::State a{0, Vector::Zero(full.size()), Vector::Zero(full.size())};
   model::State b{0, Vector::Zero(cb.system().size()), Vector::Zero(cb.system().size())};
@@ -157,9 +157,9 @@ TEST(Reduction, CraigBamptonWithEveryModeReproducesTheFullModel) {
 TEST(Reduction, CutOffKeepsExactlyTheModesBelowIt) {
   const Beam beam;
   const auto p = beam.partition();
-  const StaticCondensation ten(beam.model.system, p, *beam.model.dofs, {.kind = ReductionKind::craig_bampton, .modes = 10});
+  const ReducedModel ten(beam.model.system, p, *beam.model.dofs, {.kind = ReductionKind::craig_bampton, .modes = 10});
   const double cutoff = 0.5 * (ten.mode_frequencies()[5] + ten.mode_frequencies()[6]);
-  const StaticCondensation cut(beam.model.system, p, *beam.model.dofs,
+  const ReducedModel cut(beam.model.system, p, *beam.model.dofs,
                                {.kind = ReductionKind::craig_bampton, .cutoff_rad_s = cutoff});
   EXPECT_EQ(cut.num_modes(), 6);
   EXPECT_LT((cut.mode_frequencies() - ten.mode_frequencies().head(6)).norm() / ten.mode_frequencies().head(6).norm(), 1e-9);
@@ -184,7 +184,7 @@ TEST(Reduction, LanczosModesEqualDenseOnes) {
 TEST(Reduction, CraigBamptonWithoutModesOrCutOffIsAnInputError) {
   const Beam beam;
   try {
-    StaticCondensation(beam.model.system, beam.partition(), *beam.model.dofs, {.kind = ReductionKind::craig_bampton});
+    ReducedModel(beam.model.system, beam.partition(), *beam.model.dofs, {.kind = ReductionKind::craig_bampton});
     FAIL() << "expected an InputError";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("Craig-Bampton"), std::string::npos) << e.what();
@@ -209,7 +209,7 @@ namespace {
 
 void expect_every_named_integrator_meets_the_modal_solution(const Reduction& reduction) {
   const Beam beam;
-  const StaticCondensation r(beam.model.system, beam.partition(), *beam.model.dofs, reduction);
+  const ReducedModel r(beam.model.system, beam.partition(), *beam.model.dofs, reduction);
   const auto& sys = r.system();
   ASSERT_FALSE(model::is_diagonal(sys.M)) << reduction.label();
   const model::State rest{0, Vector::Zero(sys.size()), Vector::Zero(sys.size())};
@@ -255,7 +255,7 @@ TEST(Reduction, TheTrapezoidalRuleEliminatesModalCoordinatesAndStepsAsTheWholeSo
   const Beam beam;
   for (const Reduction& reduction : {Reduction{.kind = ReductionKind::craig_bampton, .modes = 5},
                                      Reduction{.kind = ReductionKind::pod, .modes = 4}.trained_on(0.01, 60)}) {
-    const StaticCondensation r(beam.model.system, beam.partition(), *beam.model.dofs, reduction);
+    const ReducedModel r(beam.model.system, beam.partition(), *beam.model.dofs, reduction);
     const auto& eliminated = r.system();
     ASSERT_TRUE(eliminated.modal.has_value()) << reduction.label();
     ASSERT_EQ(eliminated.modal->count, r.num_modes()) << reduction.label();
@@ -300,7 +300,7 @@ TEST(Reduction, TheEnergyLedgerOfAReducedModelReadsItsSplitMatricesRight) {
   // assembled matrices give the same energies, and the trapezoidal rule's discrete balance
   // E_n + D_n - W_n = E_0 holds with the Craig-Bampton model's full, damped mass.
   const Beam beam;
-  const StaticCondensation cb(beam.model.system, beam.partition(), *beam.model.dofs,
+  const ReducedModel cb(beam.model.system, beam.partition(), *beam.model.dofs,
                               {.kind = ReductionKind::craig_bampton, .modes = 5});
   const auto& sys = cb.system();
   ASSERT_FALSE(sys.M_split.empty());

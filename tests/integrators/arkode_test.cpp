@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "common/errors.hpp"
-#include "condensation/static_condensation.hpp"
+#include "condensation/reduced_model.hpp"
 #include "integrators/factory.hpp"
 #include "integrators/gsl_odeiv2.hpp"
 #include "integrators/ida_roi_dae.hpp"
@@ -269,7 +269,7 @@ TEST(IdaRoiDae, TrajectoryEqualsTheCondensedModelToTheTolerance) {
                           .set = {}};
   const auto partition =
       roi::partition_dofs(model.system.K, *model.dofs, roi::select_roi_nodes(mesh, *model.dofs, spec));
-  const condensation::StaticCondensation condensed(model.system, partition, *model.dofs);
+  const condensation::ReducedModel condensed(model.system, partition, *model.dofs);
   const model::ModalReference exact(
       condensed.system(), {0, Vector::Zero(condensed.system().size()), Vector::Zero(condensed.system().size())});
 

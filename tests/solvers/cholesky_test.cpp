@@ -4,9 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include "common/errors.hpp"
+
 #include <algorithm>
 
-#include "condensation/static_condensation.hpp"
+#include "condensation/reduced_model.hpp"
 #include "mesh/gmsh_reader.hpp"
 #include "model/fem_model.hpp"
 
@@ -19,7 +21,7 @@ TEST(Cholesky, OrdersTheDenseBlockLastAndSolvesAsTheUnconstrainedFactorDoes) {
   const model::FemModel full = model::build_fem_model(mesh, fem::material_preset("paper"), {"base"}, {});
   const roi::RoiSpec spec{.kind = roi::RoiSpec::Kind::nearest, .center = Vec3(0, 0, 0.04), .count = 306, .set = {}};
   const auto partition = roi::partition_dofs(full.system.K, *full.dofs, roi::select_roi_nodes(mesh, *full.dofs, spec));
-  const condensation::StaticCondensation condensed(full.system, partition, *full.dofs);
+  const condensation::ReducedModel condensed(full.system, partition, *full.dofs);
   const auto& sys = condensed.system();
   const SparseMatrix K_eff = sys.K + 1600.0 * sys.M;
   const std::vector<Index> dense = sys.dense_block_dofs();

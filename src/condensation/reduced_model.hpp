@@ -1,9 +1,9 @@
 #pragma once
-/// Static condensation of the static part onto the ROI (Bro-Nielsen; Hansen & Larsen 1998):
+/// An ROI model with its static part reduced: static condensation (Bro-Nielsen; Hansen & Larsen 1998),
 ///   K~ = K_dd - K_ds K_ss^-1 K_sd,   f~(t) = f_d(t) - K_ds K_ss^-1 f_s(t),
 ///   u_s = K_ss^-1 (f_s - K_sd u_d)    (the static part follows the ROI instantly).
 /// One Cholesky factorization of K over the static dofs and the interface I, with I ordered last
-/// (solvers::PartialCholesky), gives both S = K_Is K_ss^-1 K_sI (dense, #I x #I) from the factor's
+/// (StaticPartFactor), gives both S = K_Is K_ss^-1 K_sI (dense, #I x #I) from the factor's
 /// trailing block, and solves with K_ss from its leading block: no solve per interface column and
 /// no dense #s x #I matrix X = K_ss^-1 K_sI (Guyan and Craig-Bampton form X, for their mass).
 /// K~ = K_dd - S on the interface block, f~ pattern = f_d - K_Is K_ss^-1 f_s, and
@@ -11,7 +11,10 @@
 /// pattern. The condensed system keeps K~ both assembled (for factorizations) and split as K_dd
 /// plus the dense block -S (for products).
 ///
-/// Four reductions share that machinery (T maps the reduced coordinates to all free dofs):
+/// Four reductions share that machinery (T maps the reduced coordinates to all free dofs; the
+/// kinds are described once in reduction.hpp's table). The construction runs in named steps: the
+/// static part's factor (static_part_factor.hpp), the static modes X where mass is carried, the
+/// basis of the kind (static_basis.hpp), and the reduction of K, M, C and f (reduced_operators.hpp):
 ///  - static condensation (the paper's): M and C of the ROI kept as they are; the static part
 ///    answers without inertia.
 ///  - Guyan: T = [I; -X P] (P picks the interface), M~ = T^T M T = M_dd + P^T X^T M_ss X P, and
@@ -24,57 +27,54 @@
 ///    M_ss-orthonormal Phi with Phi^T K_ss Phi = W^2 diagonal fits the formulas above.
 /// M and C of the full model must be diagonal (lumped) for Guyan and Craig-Bampton.
 #include <memory>
-#include <string>
 
 #include "condensation/reduction.hpp"
+#include "condensation/static_part_factor.hpp"
 #include "fem/dof_map.hpp"
 #include "model/second_order_system.hpp"
+#include "model/spectrum.hpp"
 #include "roi/roi.hpp"
-#include "solvers/partial_cholesky.hpp"
 
 namespace roifem::condensation {
 
 struct CondensationTimings {
   double factorization_s = 0;    ///< ordering and the factorization of K over s and I
-  double interface_solve_s = 0;  ///< S read off the factor (and X, for Guyan and Craig-Bampton)
+  double interface_solve_s = 0;  ///< S read off the factor (and X, where mass is carried)
   double modes_s = 0, assembly_s = 0;
 };
 
-
-
-class StaticCondensation {
+class ReducedModel {
  public:
   /// Throws ModelError when K_ss is singular (a static piece held by no fixed node), naming the node.
   /// InputError for a Craig-Bampton request without modes or a cut-off, or a non-diagonal M or C.
-  StaticCondensation(const model::SecondOrderSystem& full, const roi::Partition& partition, const fem::DofMap& dofs,
-                     const Reduction& reduction = {});
+  ReducedModel(const model::SecondOrderSystem& full, const roi::Partition& partition, const fem::DofMap& dofs,
+               const Reduction& reduction = {});
 
-  /// The reduced system: the ROI dofs d first, then the modal coordinates (Craig-Bampton).
+  /// The reduced system: the ROI dofs d first, then the basis coordinates eta.
   const model::SecondOrderSystem& system() const { return reduced_; }
   const roi::Partition& partition() const { return partition_; }
   const Reduction& reduction() const { return reduction_; }
-  /// Fixed-interface modes (Craig-Bampton) or vectors (POD) kept, and their (Ritz) frequencies (rad/s).
-  Index num_modes() const { return static_cast<Index>(omega_.size()); }
-  const Vector& mode_frequencies() const { return omega_; }
+  /// Static-part vectors kept (Craig-Bampton modes or POD vectors), and their (Ritz) frequencies (rad/s).
+  Index num_modes() const { return basis_.omega.size(); }
+  const Vector& mode_frequencies() const { return basis_.omega; }
   /// u over all free dofs from the reduced coordinates y = [u_d; eta] at time t (u_s recovered).
   Vector expand(const Vector& y, double t) const;
   /// u_s alone.
   Vector recover_static(const Vector& y, double t) const;
   /// K_ds K_ss^-1 K_sd: the interface block subtracted from K_dd.
-  const DenseMatrix& interface_schur() const { return schur_; }
+  const DenseMatrix& interface_schur() const { return factor_->interface_schur(); }
   const CondensationTimings& timings() const { return timings_; }
 
  private:
+  void validate(const model::SecondOrderSystem& full) const;
+  void assemble(const model::SecondOrderSystem& full, const DenseMatrix& X);
+
   roi::Partition partition_;
-  model::SecondOrderSystem reduced_;
-  std::shared_ptr<const solvers::PartialCholesky> K_ss_factor_;  ///< K over s and I, I last
-  SparseMatrix K_sI_;
-  DenseMatrix X_;       ///< K_ss^-1 K_sI (Guyan and Craig-Bampton only)
-  DenseMatrix schur_;   ///< K_sI^T X
   Reduction reduction_;
-  Vector omega_;        ///< Craig-Bampton mode frequencies
-  DenseMatrix Phi_;     ///< Craig-Bampton mode shapes (#s x k, M_ss-orthonormal)
-  model::LoadHistory static_response_;  ///< per load term: K_ss^-1 p_k,s, less its modal part (Craig-Bampton)
+  std::shared_ptr<const StaticPartFactor> factor_;
+  model::Modes basis_;                  ///< Phi (#s x k, M_ss-orthonormal) and W
+  model::SecondOrderSystem reduced_;
+  model::LoadHistory static_response_;  ///< per load term: K_ss^-1 p_s, less its modal part
   CondensationTimings timings_;
 };
 

@@ -1,0 +1,69 @@
+#include "condensation/reduction.hpp"
+
+#include <array>
+#include <cstdio>
+
+#include "common/errors.hpp"
+
+namespace roifem::condensation {
+
+namespace {
+
+constexpr std::array<ReductionInfo, 4> table{{
+    {ReductionKind::static_condensation, "static", false, false, StaticBasis::none,
+     "the paper's static condensation: K~ = K_dd - K_ds K_ss^-1 K_sd; the static part answers without inertia"},
+    {ReductionKind::guyan, "guyan", false, true, StaticBasis::none,
+     "the static part's mass carried into the ROI through the static modes, M~ = T^T M T"},
+    {ReductionKind::craig_bampton, "craig-bampton", true, true, StaticBasis::fixed_interface_modes,
+     "K fixed-interface modes of (K_ss, M_ss) as extra generalized coordinates"},
+    {ReductionKind::pod, "pod", true, true, StaticBasis::pod,
+     "K fixed-interface vectors learnt from the full model's step responses (mass-weighted POD)"},
+}};
+
+/// K from "PREFIX-K" with K a positive integer, or 0.
+Index positive_count_after(const std::string& label, std::string_view key) {
+  const std::string prefix = std::string(key) + "-";
+  if (label.rfind(prefix, 0) != 0 || label.size() == prefix.size() ||
+      label.find_first_not_of("0123456789", prefix.size()) != std::string::npos)
+    return 0;
+  return std::stol(label.substr(prefix.size()));
+}
+
+}  // namespace
+
+std::span<const ReductionInfo> reduction_table() { return table; }
+
+const ReductionInfo& reduction_info(ReductionKind kind) {
+  for (const auto& info : table)
+    if (info.kind == kind) return info;
+  throw Error("internal: a reduction kind without a table row");
+}
+
+std::string reduction_key_list() {
+  std::string list;
+  for (const auto& info : table) list += (list.empty() ? "" : ", ") + std::string(info.key);
+  return list;
+}
+
+std::string Reduction::label() const {
+  const std::string key(info().key);
+  if (!info().counted) return key;
+  if (modes > 0 || kind != ReductionKind::craig_bampton) return key + "-" + std::to_string(modes);
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "-below-%grad/s", cutoff_rad_s);
+  return key + buffer;
+}
+
+Reduction parse_reduction(const std::string& label) {
+  std::string forms;
+  for (const auto& info : table) {
+    if (!info.counted && label == info.key) return {.kind = info.kind};
+    if (info.counted) {
+      if (const Index count = positive_count_after(label, info.key); count > 0) return {.kind = info.kind, .modes = count};
+    }
+    forms += (forms.empty() ? "" : ", ") + std::string(info.key) + (info.counted ? "-K" : "");
+  }
+  throw InputError("unknown reduction '" + label + "': use " + forms + " (K modes or POD vectors, K >= 1)");
+}
+
+}  // namespace roifem::condensation
