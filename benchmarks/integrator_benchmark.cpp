@@ -28,7 +28,7 @@ void step(benchmark::State& st, const std::string& model_name, const std::string
   const auto& sys = paper_model(model_name).system();
   const double dt = 0.05;
   auto integrator = integrators::make_integrator(method, dt);
-  model::State state{0, Vector::Zero(sys.size()), Vector::Zero(sys.size())};
+  model::State state = model::State::at_rest(sys.size());
   integrator->reset(sys, state);
   long k = 0;
   for (auto _ : st) {
@@ -79,7 +79,7 @@ void setup(benchmark::State& st, const std::string& model_name, const std::strin
       description.klu_ordering = ordering;
       integrator = std::make_unique<integrators::Arkode>(description, integrators::StepControl{.dt = dt});
     }
-    model::State state{0, Vector::Zero(sys.size()), Vector::Zero(sys.size())};
+    model::State state = model::State::at_rest(sys.size());
     integrator->reset(sys, state);
     integrator->advance_to(dt, state);
     factor_s = integrator->stats().factorization_s;

@@ -52,7 +52,7 @@ std::unique_ptr<Brain> build_brain(const std::filesystem::path& mesh_file) {
 /// Median and p99 of the per-tick time: load, step, displacement out.
 std::pair<double, double> time_steps(const model::SecondOrderSystem& system, integrators::Trapezoid& trapezoid,
                                      const TimingOptions& timing, long& steps_timed) {
-  model::State state{0, Vector::Zero(system.size()), Vector::Zero(system.size())};
+  model::State state = model::State::at_rest(system.size());
   trapezoid.reset(system, state);
   Vector out(system.size());
   std::vector<double> seconds;
@@ -76,7 +76,7 @@ std::pair<double, double> time_steps(const model::SecondOrderSystem& system, int
 /// direct factor's memory is not counted in the measured peak).
 void check_against_direct(const model::SecondOrderSystem& system, long steps, ScaleMeasurement& m) {
   integrators::Trapezoid direct(dt), cg(dt, solvers::CgSettings{});
-  model::State a{0, Vector::Zero(system.size()), Vector::Zero(system.size())}, b = a;
+  model::State a = model::State::at_rest(system.size()), b = a;
   try {
     direct.reset(system, a);
   } catch (const std::exception& e) {

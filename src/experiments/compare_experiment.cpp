@@ -47,7 +47,7 @@ struct OverBudget {
 RunError measure(integrators::Integrator& integrator, const model::SecondOrderSystem& system, const Reference& ref,
                  double budget_s) {
   const Stopwatch clock;
-  model::State state{0, Vector::Zero(system.size()), Vector::Zero(system.size())};
+  model::State state = model::State::at_rest(system.size());
   integrator.reset(system, state);
   RunError e;
   double sum2 = 0;
@@ -78,7 +78,7 @@ double grid_step(double interval, double target) { return interval / std::ceil(i
 bool runs_stably(const std::string& name, double dt, const model::SecondOrderSystem& system, double t_end, double bound) {
   try {
     auto integrator = integrators::make_integrator(name, dt);
-    model::State state{0, Vector::Zero(system.size()), Vector::Zero(system.size())};
+    model::State state = model::State::at_rest(system.size());
     integrator->reset(system, state);
     const long steps = std::min<long>(4000, std::lround(t_end / dt));
     for (long k = 1; k <= steps; k += 50) {
@@ -105,7 +105,7 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
 
   // The exact reference.
   Stopwatch clock;
-  const model::State rest{0, Vector::Zero(system.size()), Vector::Zero(system.size())};
+  const model::State rest = model::State::at_rest(system.size());
   const model::ModalReference modal(system, rest);
   Reference ref;
   ref.interval = sc.dt;

@@ -15,6 +15,7 @@
 #include "experiments/roi_error.hpp"
 #include "integrators/trapezoid.hpp"
 #include "io/csv.hpp"
+#include "io/displacement_field.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/plots.hpp"
 #include "io/xdmf.hpp"
@@ -37,15 +38,10 @@ double mean_x(const mesh::TetMesh& mesh, const Vector& u_full, const std::string
   return sum / static_cast<double>(nodes.size());
 }
 
-/// Displacement of all nodes, (N x 3) row-major in mm, for HDF5.
-std::vector<double> field_mm(const fem::DofMap& dofs, const Vector& u_free) {
-  const Vector full = dofs.expand(u_free) / mm;
-  return std::vector<double>(full.data(), full.data() + full.size());
-}
-
 struct Setup {
   std::string name;
-  std::string reduction;
+  condensation::Reduction reduction;
+  std::string label;  ///< reduction.label()
   std::unique_ptr<condensation::ReducedModel> condensation;
   RoiNodeDofs node_dofs;
   double setup_s = 0;
@@ -65,7 +61,7 @@ std::vector<std::vector<double>> time_steps(const std::vector<const model::Secon
   for (std::size_t m = 0; m < systems.size(); ++m) {
     const auto& system = *systems[m];
     trapezoids.emplace_back(dt);
-    states.push_back({0, Vector::Zero(system.size()), Vector::Zero(system.size())});
+    states.push_back(model::State::at_rest(system.size()));
     trapezoids[m].reset(system, states[m]);
     for (int k = 0; k < 20; ++k) trapezoids[m].step(states[m]);
     seconds[m].reserve(static_cast<std::size_t>(steps));
@@ -95,7 +91,7 @@ void print_reductions(const PaperResults& r, std::ostream& log) {
                 "steady mean (mm)", "step (ms)", "vs static", "peak /");
   for (const auto& row : r.reductions) {
     const auto& plain = *std::find_if(r.reductions.begin(), r.reductions.end(),
-                                      [&](const ReductionRow& x) { return x.setup == row.setup && x.reduction == "static"; });
+                                      [&](const ReductionRow& x) { return x.setup == row.setup && x.kind == condensation::ReductionKind::static_condensation; });
     log << format("  %-7s %-18s %5lld %6lld %15.4f %17.5f %11.4f %8.2fx %8.1fx\n", row.setup.c_str(), row.reduction.c_str(),
                   static_cast<long long>(row.dofs), static_cast<long long>(row.extra_dofs), row.peak_max_mm, row.steady_mean_mm,
                   row.step_s_median * 1e3, row.step_s_median / plain.step_s_median, plain.peak_max_mm / row.peak_max_mm);
@@ -129,59 +125,68 @@ void print_findings(const PaperOptions& o, const PaperResults& r, std::ostream& 
   log << format("  [%s] the condensed models step faster than the full model\n", faster ? "yes" : "NO");
 }
 
+/// Hansen & Larsen's Table 2 figure for a model of ours, or 0 where the paper has none.
+double paper_step_s(const std::string& model) {
+  if (model == "full") return paper_full_step_s;
+  if (model == "setup1") return paper_setup1_step_s;
+  if (model == "setup2") return paper_setup2_step_s;
+  return 0.0;
+}
+
 void print_table2(const PaperResults& r, std::ostream& log) {
-  const double paper[] = {paper_full_step_s, paper_setup1_step_s, paper_setup2_step_s};
   log << "\nTable 2: time per step (trapezoidal rule, dt = 0.05 s; real time at 20 Hz needs < 50 ms)\n";
   log << format("  %-8s %6s %6s %12s %14s %11s %14s %10s\n", "model", "nodes", "dofs", "1998 (s)", "roifem (ms)",
                 "p99 (ms)", "frame rate", "vs full");
   for (std::size_t k = 0; k < r.timing.size(); ++k) {
     const auto& t = r.timing[k];
     log << format("  %-8s %6lld %6lld %12.3f %14.4f %11.4f %11.0f Hz %9.2fx\n", t.model.c_str(),
-                  static_cast<long long>(t.nodes), static_cast<long long>(t.dofs), k < 3 ? paper[k] : 0.0,
+                  static_cast<long long>(t.nodes), static_cast<long long>(t.dofs), paper_step_s(t.model),
                   t.step_s_median * 1e3, t.step_s_p99 * 1e3, 1.0 / t.step_s_median,
                   r.timing[0].step_s_median / t.step_s_median);
   }
   log << "  (1998: the paper's figures on its hardware; roifem: medians of per-step wall time on this machine)\n";
 }
 
-}  // namespace
 
-PaperResults run_paper_experiment(const PaperOptions& o, std::ostream& log) {
-  if (!(o.dt > 0)) throw InputError("paper: dt = " + number_text(o.dt) + " s must be positive");
-  if (o.steps <= 0) throw InputError("paper: steps must be positive");
-  if (o.timing_steps < 1) throw InputError("paper: timing steps must be positive");
-  if (!(o.opening_mm > 0)) throw InputError("paper: --opening-mm must be positive");
-  if (o.reductions.empty() || o.reductions.front().kind != condensation::ReductionKind::static_condensation)
-    throw InputError("paper: the first reduction must be static condensation (the paper's)");
-  check_output_directory(o.out);
-  PaperResults results;
+/// The full model with the opening's forces, scaled so that the static opening widens by opening_mm.
+struct PaperModel {
+  mesh::TetMesh mesh;
+  model::FemModel full;
+};
 
-  const mesh::TetMesh mesh = mesh::read_mesh(o.mesh);
-  mesh::check_mesh(mesh);
+std::unique_ptr<PaperModel> build_paper_model(const PaperOptions& o, PaperResults& results, std::ostream& log) {
+  auto m = std::make_unique<PaperModel>();
+  m->mesh = mesh::read_mesh(o.mesh);
+  mesh::check_mesh(m->mesh);
   // Unit forces (1 N per wall, opposite directions), scaled below to the requested opening.
-  model::FemModel full = model::build_fem_model(
-      mesh, fem::material_preset(o.material), {"base"},
+  m->full = model::build_fem_model(
+      m->mesh, fem::material_preset(o.material), {"base"},
       {{"opening_left", Vec3(-1, 0, 0), model::Ramp{0}}, {"opening_right", Vec3(1, 0, 0), model::Ramp{0}}});
-  const fem::DofMap& dofs = *full.dofs;
+  const fem::DofMap& dofs = *m->full.dofs;
   {
     solvers::Cholesky K;
-    fem::factorize_stiffness(K, full.system.K, dofs);
-    const Vector u = dofs.expand(K.solve(full.system.load.at(1.0)));
-    const double opening_per_newton = mean_x(mesh, u, "opening_right") - mean_x(mesh, u, "opening_left");
+    fem::factorize_stiffness(K, m->full.system.K, dofs);
+    const Vector u = dofs.expand(K.solve(m->full.system.load.at(1.0)));
+    const double opening_per_newton = mean_x(m->mesh, u, "opening_right") - mean_x(m->mesh, u, "opening_left");
     results.force_N = o.opening_mm * mm / opening_per_newton;
     results.opening_mm = o.opening_mm;
   }
-  full.system.load = full.system.load.mapped(dofs.num_free(), [&](const Vector& p) { return Vector(results.force_N * p); });
+  m->full.system.load = m->full.system.load.mapped(dofs.num_free(), [&](const Vector& p) { return Vector(results.force_N * p); });
   log << format("paper experiment: %s, %lld nodes (%lld free dofs), material '%s'\n", o.mesh.c_str(),
-                static_cast<long long>(mesh.num_nodes()), static_cast<long long>(dofs.num_free()), o.material.c_str());
+                static_cast<long long>(m->mesh.num_nodes()), static_cast<long long>(dofs.num_free()), o.material.c_str());
   log << format("  force %.4g mN on each wall of the opening (x: -left, +right) widens it statically by %.1f mm\n",
                 results.force_N * 1e3, o.opening_mm);
+  return m;
+}
 
-  std::vector<Setup> setups;  // setup-major: setup1 with each reduction, then setup2 ...
+/// Every setup reduced by every reduction, setup-major (setup1 with each reduction, then setup2 ...).
+std::vector<Setup> build_setups(const PaperOptions& o, const PaperModel& m, PaperResults& results, std::ostream& log) {
+  const fem::DofMap& dofs = *m.full.dofs;
+  std::vector<Setup> setups;
   for (std::size_t k = 0; k < o.setup_nodes.size(); ++k) {
     const roi::RoiSpec spec{.kind = roi::RoiSpec::Kind::nearest, .center = o.roi_target_mm * mm, .radius = 0,
                             .count = o.setup_nodes[k], .set = {}};
-    const auto partition = roi::partition_dofs(full.system.K, dofs, roi::select_roi_nodes(mesh, dofs, spec));
+    const auto partition = roi::partition_dofs(m.full.system.K, dofs, roi::select_roi_nodes(m.mesh, dofs, spec));
     std::set<int> interface_nodes;
     for (Index i : partition.interface) interface_nodes.insert(static_cast<int>(dofs.full_dof(partition.d[static_cast<std::size_t>(i)]) / 3));
     results.interface_nodes.push_back(static_cast<Index>(interface_nodes.size()));
@@ -190,14 +195,14 @@ PaperResults run_paper_experiment(const PaperOptions& o, std::ostream& log) {
     for (const auto& reduction : o.reductions) {
       Setup s;
       s.name = "setup" + std::to_string(k + 1);
-      s.reduction = reduction.label();
+      s.reduction = reduction;
+      s.label = reduction.label();
       Stopwatch clock;
       // A POD basis learns from the paper's own step and length.
-      s.condensation = std::make_unique<condensation::ReducedModel>(full.system, partition, dofs,
-                                                                          reduction.trained_on(o.dt, o.steps));
+      s.condensation = std::make_unique<condensation::ReducedModel>(m.full.system, partition, dofs, reduction.trained_on(o.dt, o.steps));
       s.setup_s = clock.seconds();
       s.node_dofs = roi_node_dofs(partition, dofs);
-      log << format("    %-18s %4lld dofs, reduced in %.3f s", s.reduction.c_str(), static_cast<long long>(s.condensation->system().size()),
+      log << format("    %-18s %4lld dofs, reduced in %.3f s", s.label.c_str(), static_cast<long long>(s.condensation->system().size()),
                     s.setup_s);
       if (s.condensation->num_modes() > 0)
         log << format(" (fixed-interface modes %.2f to %.2f rad/s)", s.condensation->mode_frequencies()[0],
@@ -206,80 +211,103 @@ PaperResults run_paper_experiment(const PaperOptions& o, std::ostream& log) {
       setups.push_back(std::move(s));
     }
   }
+  return setups;
+}
 
-  // Accuracy: each ramp, full model vs each setup, 200 steps.
-  io::XdmfSeries full_series{.h5_name = "results.h5", .nodes = mesh.num_nodes(), .tets = mesh.num_tets()};
-  io::XdmfSeries roi_series = full_series;
+/// Displacement fields for results.h5 and the XDMF series that play them (full, and setup 1 with
+/// the paper's reduction), every field_every steps of the first ramp.
+struct FieldRecord {
+  io::XdmfSeries full_series, roi_series;
   std::vector<std::pair<std::string, std::vector<double>>> fields;
+  void add(io::XdmfSeries& series, const std::string& name, const model::State& s, std::vector<double> field) {
+    fields.emplace_back(name, std::move(field));
+    series.times.push_back(s.t);
+    series.fields.push_back("/" + name);
+  }
+};
+
+/// The full model's trapezoidal run under one ramp: the reference displacements per step.
+std::vector<Vector> run_reference(const PaperOptions& o, const PaperModel& m, double ramp, FieldRecord& record) {
+  model::SecondOrderSystem system = m.full.system;
+  system.load = m.full.system.load.with_ramp(model::Ramp{ramp});
+  std::vector<Vector> reference;
+  integrators::Trapezoid trapezoid(o.dt);
+  model::State state = model::State::at_rest(system.size());
+  trapezoid.reset(system, state);
+  simulation::run(trapezoid, state, o.dt, o.steps, {[&](long k, const model::State& s, double) {
+                    reference.push_back(s.u);
+                    if (ramp == o.ramps_s.front() && k % o.field_every == 0)
+                      record.add(record.full_series, format("fields/full/displacement_mm_%04ld", k), s,
+                                 io::displacement_field_mm(*m.full.dofs, s.u));
+                  }}, format("full model, ramp %.1f s", ramp));
+  return reference;
+}
+
+/// One reduced setup under one ramp: its error against the reference per step.
+PaperCurve run_setup(const PaperOptions& o, const PaperModel& m, const Setup& setup, double ramp,
+                     const std::vector<Vector>& reference, bool record_fields, FieldRecord& record) {
+  model::SecondOrderSystem reduced = setup.condensation->system();
+  reduced.load = reduced.load.with_ramp(model::Ramp{ramp});
+  PaperCurve curve{.setup = setup.name, .kind = setup.reduction.kind, .reduction = setup.label, .ramp_s = ramp, .mean_mm = {}, .max_mm = {}};
+  integrators::Trapezoid trapezoid(o.dt);
+  model::State state = model::State::at_rest(reduced.size());
+  trapezoid.reset(reduced, state);
+  simulation::run(trapezoid, state, o.dt, o.steps, {[&](long k, const model::State& s, double) {
+                    const RoiError e = roi_error(setup.node_dofs, s.u, reference[static_cast<std::size_t>(k - 1)]);
+                    curve.mean_mm.push_back(e.mean / mm);
+                    curve.max_mm.push_back(e.max / mm);
+                    if (record_fields && k % o.field_every == 0)
+                      record.add(record.roi_series, format("fields/setup1/displacement_mm_%04ld", k), s,
+                                 io::displacement_field_mm(*m.full.dofs, setup.condensation->expand(s.u, s.t)));
+                  }}, format("%s %s, ramp %.1f s", setup.name.c_str(), setup.label.c_str(), ramp));
+  return curve;
+}
+
+/// Accuracy: each ramp, the full model against each setup.
+void measure_accuracy(const PaperOptions& o, const PaperModel& m, const std::vector<Setup>& setups, PaperResults& results,
+                      FieldRecord& record) {
   for (double ramp : o.ramps_s) {
-    model::SecondOrderSystem system = full.system;
-    system.load = full.system.load.with_ramp(model::Ramp{ramp});
-    std::vector<Vector> reference;
-    {
-      integrators::Trapezoid trapezoid(o.dt);
-      model::State state{0, Vector::Zero(system.size()), Vector::Zero(system.size())};
-      trapezoid.reset(system, state);
-      simulation::run(trapezoid, state, o.dt, o.steps, {[&](long k, const model::State& s, double) {
-                        reference.push_back(s.u);
-                        if (ramp == o.ramps_s.front() && k % o.field_every == 0) {
-                          fields.emplace_back(format("fields/full/displacement_mm_%04ld", k), field_mm(dofs, s.u));
-                          full_series.times.push_back(s.t);
-                          full_series.fields.push_back("/" + fields.back().first);
-                        }
-                      }}, format("full model, ramp %.1f s", ramp));
-    }
+    const std::vector<Vector> reference = run_reference(o, m, ramp, record);
     for (std::size_t si = 0; si < setups.size(); ++si) {
-      const Setup& setup = setups[si];
-      model::SecondOrderSystem reduced = setup.condensation->system();
-      reduced.load = reduced.load.with_ramp(model::Ramp{ramp});
-      PaperCurve curve{.setup = setup.name, .reduction = setup.reduction, .ramp_s = ramp, .mean_mm = {}, .max_mm = {}};
-      integrators::Trapezoid trapezoid(o.dt);
-      model::State state{0, Vector::Zero(reduced.size()), Vector::Zero(reduced.size())};
-      trapezoid.reset(reduced, state);
-      simulation::run(trapezoid, state, o.dt, o.steps, {[&](long k, const model::State& s, double) {
-                        const RoiError e = roi_error(setup.node_dofs, s.u, reference[static_cast<std::size_t>(k - 1)]);
-                        curve.mean_mm.push_back(e.mean / mm);
-                        curve.max_mm.push_back(e.max / mm);
-                        if (si == 0 && ramp == o.ramps_s.front() && k % o.field_every == 0) {  // setup1, static
-                          fields.emplace_back(format("fields/setup1/displacement_mm_%04ld", k),
-                                              field_mm(dofs, setup.condensation->expand(s.u, s.t)));
-                          roi_series.times.push_back(s.t);
-                          roi_series.fields.push_back("/" + fields.back().first);
-                        }
-                      }}, format("%s %s, ramp %.1f s", setup.name.c_str(), setup.reduction.c_str(), ramp));
-      if (setup.reduction == "static") results.curves.push_back(curve);
+      const bool record_fields = si == 0 && ramp == o.ramps_s.front();  // setup1, the paper's reduction
+      PaperCurve curve = run_setup(o, m, setups[si], ramp, reference, record_fields, record);
+      if (curve.kind == condensation::ReductionKind::static_condensation) results.curves.push_back(curve);
       results.reduction_curves.push_back(std::move(curve));
     }
   }
-  // Reorder curves setup-major (setup1: ramps..., setup2: ramps...).
+  // Setup-major (setup1: ramps..., setup2: ramps...).
   auto by_setup = [](const PaperCurve& a, const PaperCurve& b) { return a.setup < b.setup; };
   std::stable_sort(results.curves.begin(), results.curves.end(), by_setup);
   std::stable_sort(results.reduction_curves.begin(), results.reduction_curves.end(), by_setup);
+}
 
-  // Speed: per-step medians over timing_steps steps of each model, the models taking turns.
-  std::vector<const model::SecondOrderSystem*> timed{&full.system};
+/// Speed: per-step medians over timing_steps steps of each model, the models taking turns; the
+/// reductions' rows at the first ramp.
+void measure_speed(const PaperOptions& o, const PaperModel& m, const std::vector<Setup>& setups, PaperResults& results) {
+  std::vector<const model::SecondOrderSystem*> timed{&m.full.system};
   for (const auto& setup : setups) timed.push_back(&setup.condensation->system());
   const auto step_seconds = time_steps(timed, o.dt, o.timing_steps);
-  results.timing.push_back({"full", mesh.num_nodes(), dofs.num_free(), simulation::median(step_seconds[0]),
+  results.timing.push_back({"full", m.mesh.num_nodes(), m.full.dofs->num_free(), simulation::median(step_seconds[0]),
                             simulation::percentile(step_seconds[0], 0.99), 0.0});
   for (std::size_t si = 0; si < setups.size(); ++si) {
     const auto& setup = setups[si];
     const auto& seconds = step_seconds[si + 1];
-    if (setup.reduction == "static")
+    if (setup.reduction.is_static_condensation())
       results.timing.push_back({setup.name, static_cast<Index>(setup.condensation->partition().roi_nodes.size()),
                                 setup.condensation->system().size(), simulation::median(seconds),
                                 simulation::percentile(seconds, 0.99), setup.setup_s});
     const auto& curve = *std::find_if(results.reduction_curves.begin(), results.reduction_curves.end(), [&](const PaperCurve& c) {
-      return c.setup == setup.name && c.reduction == setup.reduction && c.ramp_s == o.ramps_s.front();
+      return c.setup == setup.name && c.reduction == setup.label && c.ramp_s == o.ramps_s.front();
     });
-    results.reductions.push_back({.setup = setup.name, .reduction = setup.reduction, .dofs = setup.condensation->system().size(),
-                                  .extra_dofs = setup.condensation->num_modes(), .ramp_s = curve.ramp_s,
-                                  .peak_max_mm = *std::max_element(curve.max_mm.begin(), curve.max_mm.end()),
+    results.reductions.push_back({.setup = setup.name, .reduction = setup.label, .kind = setup.reduction.kind,
+                                  .dofs = setup.condensation->system().size(), .extra_dofs = setup.condensation->num_modes(),
+                                  .ramp_s = curve.ramp_s, .peak_max_mm = *std::max_element(curve.max_mm.begin(), curve.max_mm.end()),
                                   .steady_mean_mm = steady_mean(curve), .step_s_median = simulation::median(seconds),
                                   .setup_s = setup.setup_s});
   }
+}
 
-  // Files: every one written under a temporary name and moved into place when complete.
+void write_tables(const PaperOptions& o, const PaperResults& results) {
   {
     io::CsvWriter csv(o.out / "errors.csv", "setup,reduction,ramp_s,step,time_s,mean_mm,max_mm");
     for (const auto& c : results.reduction_curves)
@@ -303,42 +331,74 @@ PaperResults run_paper_experiment(const PaperOptions& o, std::ostream& log) {
                      static_cast<long long>(t.dofs), t.step_s_median, 1.0 / t.step_s_median));
     csv.close();
   }
+}
+
+void write_results_h5(const PaperOptions& o, const PaperModel& m, const std::vector<Setup>& setups, const PaperResults& results,
+                      const FieldRecord& record) {
+  AtomicFile file(o.out / "results.h5");
   {
-    AtomicFile file(o.out / "results.h5");
-    {
-      io::Hdf5Writer h5(file.temporary_path());
-      const auto n = static_cast<hsize_t>(mesh.num_nodes());
-      io::write_mesh(h5, mesh);
-      for (std::size_t k = 0; k < setups.size(); ++k) {
-        if (setups[k].reduction != "static") continue;
-        const auto& roi_nodes = setups[k].condensation->partition().roi_nodes;
-        h5.write(setups[k].name + "/roi_nodes", roi_nodes, {roi_nodes.size()});
-      }
-      for (const auto& c : results.reduction_curves) {
-        const std::string group = format("errors/%s/%s/ramp_%gs/", c.setup.c_str(), c.reduction.c_str(), c.ramp_s);
-        h5.write(group + "mean_mm", c.mean_mm, {c.mean_mm.size()});
-        h5.write(group + "max_mm", c.max_mm, {c.max_mm.size()});
-      }
-      std::vector<double> medians;
-      for (const auto& t : results.timing) medians.push_back(t.step_s_median);
-      h5.write("timing/step_s_median", medians, {medians.size()});
-      for (const auto& [name, data] : fields) h5.write(name, data, {n, 3});
-      h5.attribute("experiment", "Hansen & Larsen 1998, Section 5: full model vs condensed ROI setups");
-      h5.attribute("mesh", o.mesh.string());
-      h5.attribute("material", o.material);
-      h5.attribute("force_per_wall_N", format("%.9g", results.force_N));
-      h5.attribute("opening_mm", format("%g", o.opening_mm));
-      h5.attribute("dt_s", format("%g", o.dt));
-      h5.attribute("steps", std::to_string(o.steps));
-      h5.attribute("timing_models", "full, setup1, setup2");
-      h5.attribute("fields", "full and setup1 (static part recovered) displacement, ramp 0.5 s, every " +
-                                 std::to_string(o.field_every) + " steps");
-      h5.close();
+    io::Hdf5Writer h5(file.temporary_path());
+    const auto n = static_cast<hsize_t>(m.mesh.num_nodes());
+    io::write_mesh(h5, m.mesh);
+    for (const auto& setup : setups) {
+      if (!setup.reduction.is_static_condensation()) continue;
+      const auto& roi_nodes = setup.condensation->partition().roi_nodes;
+      h5.write(setup.name + "/roi_nodes", roi_nodes, {roi_nodes.size()});
     }
-    file.commit();
+    for (const auto& c : results.reduction_curves) {
+      const std::string group = format("errors/%s/%s/ramp_%gs/", c.setup.c_str(), c.reduction.c_str(), c.ramp_s);
+      h5.write(group + "mean_mm", c.mean_mm, {c.mean_mm.size()});
+      h5.write(group + "max_mm", c.max_mm, {c.max_mm.size()});
+    }
+    std::vector<double> medians;
+    std::string models;
+    for (const auto& t : results.timing) {
+      medians.push_back(t.step_s_median);
+      models += (models.empty() ? "" : ", ") + t.model;
+    }
+    h5.write("timing/step_s_median", medians, {medians.size()});
+    for (const auto& [name, data] : record.fields) h5.write(name, data, {n, 3});
+    h5.attribute("experiment", "Hansen & Larsen 1998, Section 5: full model vs condensed ROI setups");
+    h5.attribute("mesh", o.mesh.string());
+    h5.attribute("material", o.material);
+    h5.attribute("force_per_wall_N", format("%.9g", results.force_N));
+    h5.attribute("opening_mm", format("%g", o.opening_mm));
+    h5.attribute("dt_s", format("%g", o.dt));
+    h5.attribute("steps", std::to_string(o.steps));
+    h5.attribute("timing_models", models);
+    h5.attribute("fields", "full and setup1 (static part recovered) displacement, ramp 0.5 s, every " +
+                               std::to_string(o.field_every) + " steps");
+    h5.close();
   }
-  io::write_xdmf(o.out / "results.xdmf", full_series);
-  if (!roi_series.fields.empty()) io::write_xdmf(o.out / "results_setup1.xdmf", roi_series);
+  file.commit();
+  io::write_xdmf(o.out / "results.xdmf", record.full_series);
+  if (!record.roi_series.fields.empty()) io::write_xdmf(o.out / "results_setup1.xdmf", record.roi_series);
+}
+
+void check_options(const PaperOptions& o) {
+  if (!(o.dt > 0)) throw InputError("paper: dt = " + number_text(o.dt) + " s must be positive");
+  if (o.steps <= 0) throw InputError("paper: steps must be positive");
+  if (o.timing_steps < 1) throw InputError("paper: timing steps must be positive");
+  if (!(o.opening_mm > 0)) throw InputError("paper: --opening-mm must be positive");
+  if (o.reductions.empty() || !o.reductions.front().is_static_condensation())
+    throw InputError("paper: the first reduction must be static condensation (the paper's)");
+  check_output_directory(o.out);
+}
+
+}  // namespace
+
+PaperResults run_paper_experiment(const PaperOptions& o, std::ostream& log) {
+  check_options(o);
+  PaperResults results;
+  const auto model = build_paper_model(o, results, log);
+  const std::vector<Setup> setups = build_setups(o, *model, results, log);
+  FieldRecord record;
+  record.full_series = {.h5_name = "results.h5", .nodes = model->mesh.num_nodes(), .tets = model->mesh.num_tets()};
+  record.roi_series = record.full_series;
+  measure_accuracy(o, *model, setups, results, record);
+  measure_speed(o, *model, setups, results);
+  write_tables(o, results);
+  write_results_h5(o, *model, setups, results, record);
 
   print_findings(o, results, log);
   print_table2(results, log);

@@ -42,7 +42,8 @@ struct PaperOptions {
 
 struct PaperCurve {  ///< one setup, one reduction, one ramp
   std::string setup;
-  std::string reduction = "static";
+  condensation::ReductionKind kind = condensation::ReductionKind::static_condensation;
+  std::string reduction = "static";  ///< its label
   double ramp_s = 0;
   std::vector<double> mean_mm, max_mm;  ///< per step 1..steps
 };
@@ -54,7 +55,8 @@ struct PaperTiming {
 };
 
 struct ReductionRow {  ///< one setup, one reduction, at the fastest (first) ramp
-  std::string setup, reduction;
+  std::string setup, reduction;  ///< reduction: its label
+  condensation::ReductionKind kind = condensation::ReductionKind::static_condensation;
   Index dofs = 0, extra_dofs = 0;   ///< of the reduced system; beyond the ROI's own
   double ramp_s = 0, peak_max_mm = 0, steady_mean_mm = 0;
   double step_s_median = 0, setup_s = 0;

@@ -27,7 +27,7 @@ class Search {
       : o_(o), sc_(sc), full_(full), log_(log),
         evaluated_(full_node_dofs(roi::select_roi_nodes(full.mesh, *full.full.dofs, *sc.roi), *full.full.dofs)) {
     auto integrator = integrators::make_integrator(sc.integrator, sc.dt);
-    model::State state{0, Vector::Zero(full.system().size()), Vector::Zero(full.system().size())};
+    model::State state = model::State::at_rest(full.system().size());
     integrator->reset(full.system(), state);
     for (long k = 1; k <= sc.steps; ++k) {
       integrator->advance_to(static_cast<double>(k) * sc.dt, state);
@@ -42,7 +42,7 @@ class Search {
     const auto reduced = reduce(n, reduction);
     auto integrator = integrators::make_integrator(sc_.integrator, sc_.dt);
     const auto& system = reduced->system();
-    model::State state{0, Vector::Zero(system.size()), Vector::Zero(system.size())};
+    model::State state = model::State::at_rest(system.size());
     integrator->reset(system, state);
     double peak = 0;
     for (long k = 1; k <= sc_.steps; ++k) {
@@ -91,7 +91,7 @@ class Search {
 
   double step_median(const model::SecondOrderSystem& system) const {
     auto integrator = integrators::make_integrator(sc_.integrator, sc_.dt);
-    model::State state{0, Vector::Zero(system.size()), Vector::Zero(system.size())};
+    model::State state = model::State::at_rest(system.size());
     integrator->reset(system, state);
     std::vector<double> seconds;
     for (long k = 1; k <= o_.timing_steps; ++k) {

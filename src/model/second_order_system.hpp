@@ -64,6 +64,8 @@ struct SecondOrderSystem {
 struct State {
   double t = 0;
   Vector u, v;
+  /// u = v = 0 at t over n dofs.
+  static State at_rest(Index n, double t = 0) { return {t, Vector::Zero(n), Vector::Zero(n)}; }
 };
 
 /// alpha when C = alpha M (mass-proportional damping, to `tolerance` relative), else NaN.

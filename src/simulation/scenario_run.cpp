@@ -54,7 +54,7 @@ ScenarioRunSummary run_scenario(const scenario::Scenario& sc, const std::filesys
   const std::vector<int>& roi_nodes = built->roi_nodes;
   const model::SecondOrderSystem& system = built->system();
   const FieldMapper mapper(dofs, condensation);
-  model::State state{0.0, Vector::Zero(system.size()), Vector::Zero(system.size())};
+  model::State state = model::State::at_rest(system.size());
   integrator->reset(system, state);
   summary.setup_s = setup_clock.seconds();
   summary.dofs = system.size();

@@ -54,7 +54,7 @@ TEST(ReducedModel, RoiOfAllNodesReproducesTheFullDynamicModel) {
   EXPECT_TRUE(p.s.empty());
   const ReducedModel condensed(brain.model.system, p, *brain.model.dofs);
   const Index n = brain.model.system.size();
-  model::State full{0, Vector::Zero(n), Vector::Zero(n)}, roi = full;
+  model::State full = model::State::at_rest(n), roi = full;
   integrators::Trapezoid a(0.05), b(0.05);
   a.reset(brain.model.system, full);
   b.reset(condensed.system(), roi);

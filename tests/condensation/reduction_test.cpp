@@ -84,8 +84,8 @@ TEST(Reduction, PodReproducesTheRunItLearntFromAndBeatsCraigBamptonOnAnotherLoad
   const auto& full = beam.model.system;
   const double dt = 0.01;
   auto error_against_full = [&](const ReducedModel& r, const model::SecondOrderSystem& full_system, long steps) {
-    model::State a{0, Vector::Zero(full_system.size()), Vector::Zero(full_system.size())};
-    model::State b{0, Vector::Zero(r.system().size()), Vector::Zero(r.system().size())};
+    model::State a = model::State::at_rest(full_system.size());
+    model::State b = model::State::at_rest(r.system().size());
     integrators::Trapezoid ta(dt), tb(dt);
     ta.reset(full_system, a);
     tb.reset(r.system(), b);
@@ -139,8 +139,8 @@ TEST(Reduction, CraigBamptonWithEveryModeReproducesTheFullModel) {
   const Index all = static_cast<Index>(p.s.size());
   const ReducedModel cb(full, p, *beam.model.dofs, {.kind = ReductionKind::craig_bampton, .modes = all});
   ASSERT_EQ(cb.num_modes(), all);
-  model::State a{0, Vector::Zero(full.size()), Vector::Zero(full.size())};
-  model::State b{0, Vector::Zero(cb.system().size()), Vector::Zero(cb.system().size())};
+  model::State a = model::State::at_rest(full.size());
+  model::State b = model::State::at_rest(cb.system().size());
   integrators::Trapezoid ta(0.01), tb(0.01);
   ta.reset(full, a);
   tb.reset(cb.system(), b);
@@ -212,7 +212,7 @@ void expect_every_named_integrator_meets_the_modal_solution(const Reduction& red
   const ReducedModel r(beam.model.system, beam.partition(), *beam.model.dofs, reduction);
   const auto& sys = r.system();
   ASSERT_FALSE(model::is_diagonal(sys.M)) << reduction.label();
-  const model::State rest{0, Vector::Zero(sys.size()), Vector::Zero(sys.size())};
+  const model::State rest = model::State::at_rest(sys.size());
   const Vector exact = model::ModalReference(sys, rest).displacement(0.4);
   for (const integrators::IntegratorInfo& info : integrators::integrator_table()) {
     const std::string& name = info.name;
@@ -264,7 +264,7 @@ TEST(Reduction, TheTrapezoidalRuleEliminatesModalCoordinatesAndStepsAsTheWholeSo
     model::SecondOrderSystem perturbed = eliminated;  // a general C: factored whole, C's own product
     perturbed.damping = {};
     integrators::Trapezoid a(0.01), b(0.01), c(0.01);
-    model::State sa{0, Vector::Zero(eliminated.size()), Vector::Zero(eliminated.size())}, sb = sa, sc = sa;
+    model::State sa = model::State::at_rest(eliminated.size()), sb = sa, sc = sa;
     a.reset(eliminated, sa);
     b.reset(whole, sb);
     c.reset(perturbed, sc);
@@ -304,7 +304,7 @@ TEST(Reduction, TheEnergyLedgerOfAReducedModelReadsItsSplitMatricesRight) {
                               {.kind = ReductionKind::craig_bampton, .modes = 5});
   const auto& sys = cb.system();
   ASSERT_FALSE(sys.M_split.empty());
-  model::State s{0, Vector::Zero(sys.size()), Vector::Zero(sys.size())};
+  model::State s = model::State::at_rest(sys.size());
   integrators::Trapezoid trapezoid(0.01);
   trapezoid.reset(sys, s);
   model::EnergyLedger ledger(sys, s);

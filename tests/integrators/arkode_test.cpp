@@ -29,7 +29,7 @@ struct Cantilever {
                                    {{"x1", Vec3(0, 0, force), model::Ramp{ramp}}});
   }
   const model::SecondOrderSystem& sys() const { return model.system; }
-  model::State rest() const { return {0, Vector::Zero(sys().size()), Vector::Zero(sys().size())}; }
+  model::State rest() const { return model::State::at_rest(sys().size()); }
 };
 
 Vector run(Integrator& integrator, const model::SecondOrderSystem& sys, model::State s, double T) {
@@ -55,7 +55,7 @@ TEST(Arkode, TrapezoidButcherTableEqualsTheHandWrittenRule) {
 TEST(Arkode, TrapezoidTableEqualsTheHandWrittenRuleOnTheCondensedPaperModel) {
   const auto model = simulation::build_scenario_model(scenario::read_scenario(std::string(ROIFEM_SCENARIO_DIR) + "/paper-setup1.toml"));
   const auto& sys = model->system();
-  const model::State rest{0, Vector::Zero(sys.size()), Vector::Zero(sys.size())};
+  const model::State rest = model::State::at_rest(sys.size());
   Trapezoid hand(0.05);
   const Vector a = run(hand, sys, rest, 10.0);
   for (const char* name : {"arkode-trapezoid", "arkode-trapezoid-schur"}) {
@@ -244,7 +244,7 @@ TEST(GslOdeiv2, RefusesSystemsTooLargeForDenseJacobians) {
   ASSERT_GT(model.system.size(), max_gsl_dofs);
   auto gsl = make_integrator("gsl-msbdf", 0.01);
   try {
-    gsl->reset(model.system, {0, Vector::Zero(model.system.size()), Vector::Zero(model.system.size())});
+    gsl->reset(model.system, model::State::at_rest(model.system.size()));
     FAIL();
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("dense Jacobian is limited to 2000 dofs"), std::string::npos) << e.what();
@@ -271,7 +271,7 @@ TEST(IdaRoiDae, TrajectoryEqualsTheCondensedModelToTheTolerance) {
       roi::partition_dofs(model.system.K, *model.dofs, roi::select_roi_nodes(mesh, *model.dofs, spec));
   const condensation::ReducedModel condensed(model.system, partition, *model.dofs);
   const model::ModalReference exact(
-      condensed.system(), {0, Vector::Zero(condensed.system().size()), Vector::Zero(condensed.system().size())});
+      condensed.system(), model::State::at_rest(condensed.system().size()));
 
   IdaRoiDae dae(model.system, partition, StepControl{.dt = 1e-4, .adaptive = true, .rtol = 1e-8, .atol = 1e-12});
   dae.reset(0.0);

@@ -27,7 +27,7 @@ struct Cantilever {
 
 TEST(Trapezoid, ConservesDiscreteEnergyWithoutDampingOrLoad) {
   const Cantilever c(0.0, 0.0, 0.0);
-  model::State s{0.0, Vector::Zero(c.sys().size()), Vector::Zero(c.sys().size())};
+  model::State s = model::State::at_rest(c.sys().size());
   for (Index i = 0; i < s.u.size(); ++i) s.u[i] = 1e-4 * std::sin(0.37 * static_cast<double>(i));  // rough start
   Trapezoid trapezoid(0.01);
   trapezoid.reset(c.sys(), s);
@@ -45,7 +45,7 @@ TEST(Trapezoid, ConservesDiscreteEnergyWithoutDampingOrLoad) {
 
 TEST(Trapezoid, EnergyBalanceHoldsWithDampingAndLoad) {
   const Cantilever c(0.8, 0.05, 0.3);
-  model::State s{0.0, Vector::Zero(c.sys().size()), Vector::Zero(c.sys().size())};
+  model::State s = model::State::at_rest(c.sys().size());
   Trapezoid trapezoid(0.01);
   trapezoid.reset(c.sys(), s);
   model::EnergyLedger ledger(c.sys(), s);
@@ -114,7 +114,7 @@ TEST(Trapezoid, RejectsNonPositiveTimeStepAndOffGridTimes) {
   EXPECT_THROW(Trapezoid(0.0), InputError);
   EXPECT_THROW(Trapezoid(-0.1), InputError);
   const Cantilever c(0.8, 0.0, 0.0);
-  model::State s{0.0, Vector::Zero(c.sys().size()), Vector::Zero(c.sys().size())};
+  model::State s = model::State::at_rest(c.sys().size());
   Trapezoid trapezoid(0.05);
   trapezoid.reset(c.sys(), s);
   EXPECT_THROW(trapezoid.advance_to(0.07, s), InputError);
@@ -129,7 +129,7 @@ TEST(Trapezoid, ConjugateGradientsGiveTheDirectSolvesAnswerOverThePaperRun) {
                                             {{"opening_left", Vec3(-0.016, 0, 0), model::Ramp{0.5}},
                                              {"opening_right", Vec3(0.016, 0, 0), model::Ramp{0.5}}});
   const auto& sys = model.system;
-  model::State direct_state{0.0, Vector::Zero(sys.size()), Vector::Zero(sys.size())};
+  model::State direct_state = model::State::at_rest(sys.size());
   model::State cg_state = direct_state;
   Trapezoid direct(0.05), cg(0.05, solvers::CgSettings{});
   direct.reset(sys, direct_state);
@@ -152,7 +152,7 @@ TEST(Trapezoid, ConjugateGradientsGiveTheDirectSolvesAnswerOverThePaperRun) {
 
 TEST(Trapezoid, ConjugateGradientsThatRunOutNameTheStep) {
   const Cantilever c(0.8, 0.05, 0.3);
-  model::State s{0.0, Vector::Zero(c.sys().size()), Vector::Zero(c.sys().size())};
+  model::State s = model::State::at_rest(c.sys().size());
   Trapezoid cg(0.01, solvers::CgSettings{.tolerance = 1e-12, .max_iterations = 2});
   cg.reset(c.sys(), s);
   try {

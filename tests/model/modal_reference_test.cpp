@@ -34,7 +34,7 @@ TEST(ModalReference, FreeDampedOscillatorMatchesTheTextbookFormula) {
 
 TEST(ModalReference, OverdampedStepResponseSettlesAtTheStaticAnswer) {
   const SecondOrderSystem s = single_dof(1, 4, 10.0, 3.0, 0.0);  // w = 2 < alpha / 2 = 5
-  const ModalReference ref(s, State{0, Vector::Zero(1), Vector::Zero(1)});
+  const ModalReference ref(s, model::State::at_rest(1));
   EXPECT_NEAR(ref.displacement(0)[0], 0.0, 1e-15);
   // The slow root is -5 + sqrt(21) = -0.417 1/s: within 1e-12 of the static answer after 70 s.
   EXPECT_NEAR(ref.displacement(70)[0], 3.0 / 4.0, 1e-12);
@@ -53,7 +53,7 @@ TEST(ModalReference, RampResponseAgreesWithAFineTrapezoidalRun) {
   const mesh::TetMesh mesh = mesh::structured_box_mesh(4, 2, 2, 0.04, 0.02, 0.02);
   const FemModel model = build_fem_model(mesh, fem::Material::from_young_poisson(3000, 0.45, 1000, 0.8), {"x0"},
                                          {{"x1", Vec3(0, 0, 1e-3), Ramp{0.3}}});
-  const State start{0, Vector::Zero(model.system.size()), Vector::Zero(model.system.size())};
+  const State start = model::State::at_rest(model.system.size());
   const ModalReference ref(model.system, start);
   integrators::Trapezoid trapezoid(1e-4);
   State s = start;
@@ -73,7 +73,7 @@ TEST(ModalReference, VelocityIsTheTimeDerivativeOfDisplacement) {
   const mesh::TetMesh mesh = mesh::structured_box_mesh(3, 2, 2, 0.03, 0.02, 0.02);
   const FemModel model = build_fem_model(mesh, fem::Material::from_young_poisson(3000, 0.45, 1000, 0.8), {"x0"},
                                          {{"x1", Vec3(0, 1e-3, 1e-3), Ramp{0.2}}});
-  const ModalReference ref(model.system, State{0, Vector::Zero(model.system.size()), Vector::Zero(model.system.size())});
+  const ModalReference ref(model.system, model::State::at_rest(model.system.size()));
   for (double t : {0.05, 0.3}) {  // central differences, inside and after the ramp
     const double h = 1e-6;
     const Vector numeric = (ref.displacement(t + h) - ref.displacement(t - h)) / (2 * h);

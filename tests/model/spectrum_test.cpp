@@ -13,7 +13,7 @@ namespace roifem::model {
 namespace {
 
 double dense_highest(const SecondOrderSystem& sys) {
-  const State rest{0, Vector::Zero(sys.size()), Vector::Zero(sys.size())};
+  const State rest = model::State::at_rest(sys.size());
   return ModalReference(sys, rest).frequencies().maxCoeff();
 }
 
