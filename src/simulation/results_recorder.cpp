@@ -1,0 +1,90 @@
+#include "simulation/results_recorder.hpp"
+
+#include "common/errors.hpp"
+#include "io/csv.hpp"
+#include "io/displacement_field.hpp"
+
+namespace roifem::simulation {
+
+namespace {
+
+constexpr long flush_every = 50;
+
+io::Hdf5Writer& with_header(io::Hdf5Writer& h5, const scenario::Scenario& sc, const ScenarioModel& model) {
+  io::write_mesh(h5, model.mesh);
+  if (!model.roi_nodes.empty()) h5.write("roi/nodes", model.roi_nodes, {model.roi_nodes.size()});
+  h5.attribute("scenario", sc.resolved_toml());
+  h5.attribute("integrator", sc.integrator);
+  return h5;
+}
+
+}  // namespace
+
+ResultsRecorder::ResultsRecorder(const scenario::Scenario& scenario, const ScenarioModel& model, const model::State& initial,
+                                 const std::filesystem::path& out)
+    : scenario_(scenario),
+      model_(model),
+      out_(out),
+      file_(out / "results.h5"),
+      h5_(file_.temporary_path()),
+      time_s_(with_header(h5_, scenario, model).appendable("time_s", {})),
+      wall_s_(h5_.appendable("step_wall_time_s", {})),
+      kinetic_(h5_.appendable("energy/kinetic_J", {})),
+      strain_(h5_.appendable("energy/strain_J", {})),
+      dissipated_(h5_.appendable("energy/dissipated_J", {})),
+      work_(h5_.appendable("energy/external_work_J", {})),
+      xdmf_{.h5_name = "results.h5", .nodes = model.mesh.num_nodes(), .tets = model.mesh.num_tets()},
+      ledger_(model.system(), initial) {
+  if (!model.roi_nodes.empty()) roi_series_.emplace(h5_.appendable("roi/displacement_mm", {model.roi_nodes.size(), 3}, 16));
+  if (model.condensation)
+    for (const auto& p : model.node_positions()) roi_position_.insert(roi_position_.end(), p.begin(), p.end());
+  roi_record_.resize(roi_position_.size());
+}
+
+void ResultsRecorder::record(long k, const model::State& s, double seconds) {
+  if (!s.u.allFinite())
+    throw SolverError(io::format("%s: non-finite displacement at step %ld, t = %g s", scenario_.integrator.c_str(), k, s.t));
+  if (k > 0) ledger_.record(s);
+  time_s_.append(&s.t);
+  wall_s_.append(&seconds);
+  const double energies[4] = {ledger_.kinetic(), ledger_.strain(), ledger_.dissipated(), ledger_.external_work()};
+  kinetic_.append(&energies[0]);
+  strain_.append(&energies[1]);
+  dissipated_.append(&energies[2]);
+  work_.append(&energies[3]);
+  if (roi_series_) {
+    for (std::size_t i = 0; i < roi_position_.size(); ++i)
+      roi_record_[i] = roi_position_[i] < 0 ? 0.0 : s.u[roi_position_[i]] / mm;
+    roi_series_->append(roi_record_.data());
+  }
+  if (scenario_.field_every > 0 && k % scenario_.field_every == 0) {
+    const std::string name = io::format("fields/displacement_mm_%06ld", k);
+    const Vector u_free = model_.condensation ? model_.condensation->expand(s.u, s.t) : s.u;
+    h5_.write(name, io::displacement_field_mm(*model_.full.dofs, u_free), {static_cast<hsize_t>(model_.mesh.num_nodes()), 3});
+    xdmf_.times.push_back(s.t);
+    xdmf_.fields.push_back("/" + name);
+  }
+  if (k % flush_every == 0) h5_.flush();
+}
+
+void ResultsRecorder::finish(const integrators::Stats& st) {
+  h5_.attribute("counters", io::format("steps=%ld rhs_evals=%ld jac_evals=%ld lin_setups=%ld lin_solves=%ld lin_iterations=%ld failed_steps=%ld",
+                                       st.steps, st.rhs_evals, st.jac_evals, st.lin_setups, st.lin_solves, st.lin_iterations,
+                                       st.failed_steps));
+  h5_.attribute("status", "complete");
+  h5_.close();
+  file_.commit();
+  if (has_fields()) io::write_xdmf(out_ / "results.xdmf", xdmf_);
+}
+
+void ResultsRecorder::abandon(const std::string& why) {
+  h5_.attribute("status", "incomplete: " + why);
+  h5_.close();
+  file_.commit_as(out_ / "results.incomplete.h5");
+  if (has_fields()) {
+    xdmf_.h5_name = "results.incomplete.h5";
+    io::write_xdmf(out_ / "results.incomplete.xdmf", xdmf_);
+  }
+}
+
+}  // namespace roifem::simulation

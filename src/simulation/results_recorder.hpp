@@ -1,0 +1,50 @@
+#pragma once
+/// The run loop's HDF5 observer for `roifem run`: appends every step's time, wall time, energies
+/// (EnergyLedger), ROI displacement and, every field_every steps, the whole displacement field
+/// (static part recovered) to results.h5 under a temporary name, flushes every 50 steps (what a
+/// kill -9 cannot take away), and on finish() moves the file into place: results.h5 when
+/// complete, results.incomplete.h5 (status attribute: why) beside a good one when not.
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "common/atomic_file.hpp"
+#include "integrators/integrator.hpp"
+#include "io/hdf5_file.hpp"
+#include "io/xdmf.hpp"
+#include "model/energy.hpp"
+#include "scenario/scenario.hpp"
+#include "simulation/scenario_model.hpp"
+
+namespace roifem::simulation {
+
+class ResultsRecorder {
+ public:
+  /// Opens DIR/results.h5's temporary file and writes the mesh, the ROI nodes and the scenario.
+  ResultsRecorder(const scenario::Scenario& scenario, const ScenarioModel& model, const model::State& initial,
+                  const std::filesystem::path& out);
+  /// The observer: step k's state and wall time (k = 0: the initial state).
+  void record(long k, const model::State& state, double seconds);
+  /// Writes the counters, marks the file complete and moves it into place (with results.xdmf).
+  void finish(const integrators::Stats& stats);
+  /// Keeps every recorded step as results.incomplete.h5 (status: `why`) beside any good results.h5.
+  void abandon(const std::string& why);
+  const model::EnergyLedger& ledger() const { return ledger_; }
+  bool has_fields() const { return !xdmf_.times.empty(); }
+
+ private:
+  const scenario::Scenario& scenario_;
+  const ScenarioModel& model_;
+  std::filesystem::path out_;
+  AtomicFile file_;
+  io::Hdf5Writer h5_;
+  io::AppendableDataset time_s_, wall_s_, kinetic_, strain_, dissipated_, work_;
+  std::optional<io::AppendableDataset> roi_series_;
+  std::vector<Index> roi_position_;  ///< each ROI node's components in the integrated vector (-1: constrained)
+  std::vector<double> roi_record_;
+  io::XdmfSeries xdmf_;
+  model::EnergyLedger ledger_;
+};
+
+}  // namespace roifem::simulation
