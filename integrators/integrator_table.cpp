@@ -4,6 +4,8 @@
 #include <arkode/arkode_butcher_dirk.h>
 #include <arkode/arkode_butcher_erk.h>
 
+#include <cstdio>
+
 #include "common/errors.hpp"
 #include "integrators/arkode.hpp"
 #include "integrators/gsl_odeiv2.hpp"
@@ -137,6 +139,18 @@ std::string integrator_name_list() {
   std::string list;
   for (const auto& info : integrator_table()) list += (list.empty() ? "" : ", ") + info.name;
   return list;
+}
+
+std::string integrator_table_text() {
+  std::string text = "Integrators (scenario [time] integrator, --integrators):\n";
+  for (const auto& info : integrator_table()) {
+    std::string steps = info.fixed_step && info.adaptive ? "fixed or adaptive" : info.fixed_step ? "fixed step" : "adaptive";
+    char line[160];
+    std::snprintf(line, sizeof line, "  %-28s order %-2d %-8s %-17s %-20s ", info.name.c_str(), info.order,
+                  info.is_explicit ? "explicit" : "implicit", steps.c_str(), std::string(linear_solver_name(info.linear_solver)).c_str());
+    text += line + info.summary + "\n";
+  }
+  return text;
 }
 
 std::string_view family_name(Family family) {

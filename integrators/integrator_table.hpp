@@ -59,6 +59,9 @@ const IntegratorInfo& integrator_info(std::string_view name);
 std::vector<std::string> integrator_names();
 /// "trapezoid, trapezoid-cg, ...": for messages and --help.
 std::string integrator_name_list();
+/// The table as text, a line per integrator (name, order, explicit/implicit, fixed/adaptive, linear
+/// solver, summary): the footer of `roifem run --help` and `roifem compare --help`.
+std::string integrator_table_text();
 std::string_view family_name(Family family);
 std::string_view linear_solver_name(LinearSolver solver);
 

@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "app/commands.hpp"
+#include "integrators/integrator_table.hpp"
 #include "experiments/compare_experiment.hpp"
 #include "scenario/scenario.hpp"
 
@@ -19,6 +20,7 @@ void add_compare_command(CLI::App& app, Action& action) {
       "measure true errors against the exact modal solution, find stability limits; writes compare.csv, "
       "stability.csv and work-precision plots");
   cmd->add_option("SCENARIO", o->scenario, "Scenario file (.toml); its dt is the output grid")->required();
+  cmd->footer(integrators::integrator_table_text());
   cmd->add_option("--out", o->compare.out, "Output directory")->required();
   cmd->add_option("--integrators", o->compare.integrators, "Only these integrators (default: all)");
   cmd->add_option("--t-end", o->compare.t_end, "Simulated time in s (0: the scenario's dt * steps)")->capture_default_str();

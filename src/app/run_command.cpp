@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "app/commands.hpp"
+#include "integrators/integrator_table.hpp"
 #include "scenario/scenario.hpp"
 #include "simulation/scenario_run.hpp"
 
@@ -16,6 +17,7 @@ void add_run_command(CLI::App& app, Action& action) {
                                         "integrator, dt, steps, outputs; see scenarios/README.md) and write "
                                         "DIR/results.h5 and DIR/results.xdmf");
   cmd->add_option("SCENARIO", o->scenario, "Scenario file (.toml)")->required();
+  cmd->footer(integrators::integrator_table_text());
   cmd->add_option("--out", o->out, "Output directory")->required();
   cmd->callback([&action, o] {
     action = [o] { simulation::run_scenario(scenario::read_scenario(o->scenario), o->out, std::cout); };

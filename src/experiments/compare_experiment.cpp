@@ -91,113 +91,108 @@ bool runs_stably(const std::string& name, double dt, const model::SecondOrderSys
   }
 }
 
-}  // namespace
-
-CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o, std::ostream& log) {
-  check_output_directory(o.out);
-  const auto built = simulation::build_scenario_model(sc);
-  const model::SecondOrderSystem& system = built->system();
-  const double t_end = o.t_end > 0 ? std::min(o.t_end, sc.dt * static_cast<double>(sc.steps)) : sc.dt * static_cast<double>(sc.steps);
-  const long outputs = std::lround(t_end / sc.dt);
-  if (outputs < 1) throw InputError("compare: --t-end must cover at least one output step of " + number_text(sc.dt) + " s");
-  std::vector<std::string> names = o.integrators.empty() ? integrators::integrator_names() : o.integrators;
-  for (const auto& name : names) (void)integrators::integrator_info(name);  // unknown names fail before any work
-
-  // The exact reference.
-  Stopwatch clock;
-  const model::State rest = model::State::at_rest(system.size());
-  const model::ModalReference modal(system, rest);
+/// What every run of one compare shares: the integrated system, its exact reference, the options.
+struct Sweep {
+  const scenario::Scenario& sc;
+  const CompareOptions& o;
+  const model::SecondOrderSystem& system;
+  const model::ModalReference& modal;
   Reference ref;
-  ref.interval = sc.dt;
-  ref.nodes = built->node_positions();
-  double peak = 0;
+  double t_end = 0, peak = 0;
+  CompareResults results;
+  std::ostream& log;
+};
+
+Reference exact_reference(const model::SecondOrderSystem& system, const model::ModalReference& modal,
+                          const simulation::ScenarioModel& built, double interval, long outputs, double t_end, double& peak) {
+  Reference ref;
+  ref.interval = interval;
+  ref.nodes = built.node_positions();
+  peak = 0;
   for (long k = 1; k <= outputs; ++k) {
-    ref.u.push_back(modal.displacement(static_cast<double>(k) * sc.dt));
+    ref.u.push_back(modal.displacement(static_cast<double>(k) * interval));
     peak = std::max(peak, ref.u.back().lpNorm<Eigen::Infinity>());
   }
-  {
-    const model::State exact_end{t_end, ref.u.back(), modal.velocity(t_end)};
-    ref.final_energy = kinetic_energy(system, exact_end) + strain_energy(system, exact_end);
-  }
-  CompareResults results;
-  results.omega_max = model::highest_frequency(system);  // Lanczos: the same figure at any size
-  log << format("compare: %s, %lld dofs, t_end = %g s on an output grid of %g s; exact modal reference in %.1f s\n",
-                sc.file.c_str(), static_cast<long long>(system.size()), t_end, sc.dt, clock.seconds());
-  log << format("  lowest w = %.3f rad/s, highest w = %.1f rad/s, alpha = %g 1/s\n", modal.frequencies()[0],
-                results.omega_max, modal.alpha());
+  const model::State exact_end{t_end, ref.u.back(), modal.velocity(t_end)};
+  ref.final_energy = kinetic_energy(system, exact_end) + strain_energy(system, exact_end);
+  return ref;
+}
 
-  // Returns false when the run went over the time budget (and is left out of the table).
-  auto record = [&](const std::string& name, const std::string& mode, double dt_or_tol,
-                    std::unique_ptr<integrators::Integrator> integrator) {
-    CompareRow row{.integrator = name, .mode = mode, .dt_or_tol = dt_or_tol};
-    Stopwatch run_clock;
-    try {
-      const RunError e = measure(*integrator, system, ref, o.max_run_s);
-      row.err_max_mm = e.max_mm;
-      row.err_rms_mm = e.rms_mm;
-      row.energy_drift = e.energy_drift;
-      // Growing without bound but still finite at the end of the window: unstable all the same.
-      if (e.max_mm > 10 * peak / mm) row.stable = false;
-    } catch (const SolverError& err) {
-      row.stable = false;
-      log << "    " << err.what() << '\n';
-    } catch (const OverBudget& stop) {
-      log << format("  %-20s %-8s %9.3g  stopped at t = %.3g s after %.0f s (--max-run-seconds); left out\n", name.c_str(),
+/// Runs one integrator against the reference and keeps its row; false when the run went over the
+/// time budget (and is left out of the table).
+bool record_run(Sweep& w, const std::string& name, const std::string& mode, double dt_or_tol,
+                std::unique_ptr<integrators::Integrator> integrator) {
+  CompareRow row{.integrator = name, .mode = mode, .dt_or_tol = dt_or_tol};
+  Stopwatch run_clock;
+  try {
+    const RunError e = measure(*integrator, w.system, w.ref, w.o.max_run_s);
+    row.err_max_mm = e.max_mm;
+    row.err_rms_mm = e.rms_mm;
+    row.energy_drift = e.energy_drift;
+    // Growing without bound but still finite at the end of the window: unstable all the same.
+    if (e.max_mm > 10 * w.peak / mm) row.stable = false;
+  } catch (const SolverError& err) {
+    row.stable = false;
+    w.log << "    " << err.what() << '\n';
+  } catch (const OverBudget& stop) {
+    w.log << format("  %-20s %-8s %9.3g  stopped at t = %.3g s after %.0f s (--max-run-seconds); left out\n", name.c_str(),
                     mode.c_str(), dt_or_tol, stop.t, run_clock.seconds());
-      return false;
-    }
-    row.wall_s = run_clock.seconds();
-    const auto st = integrator->stats();
-    row.steps = st.steps;
-    row.rhs_evals = st.rhs_evals;
-    row.jac_evals = st.jac_evals;
-    row.lin_setups = st.lin_setups;
-    row.lin_solves = st.lin_solves;
-    log << format("  %-20s %-8s %9.3g  %8ld steps  %9.3f s  max error %s mm\n", name.c_str(), mode.c_str(), dt_or_tol,
+    return false;
+  }
+  row.wall_s = run_clock.seconds();
+  const auto st = integrator->stats();
+  row.steps = st.steps;
+  row.rhs_evals = st.rhs_evals;
+  row.jac_evals = st.jac_evals;
+  row.lin_setups = st.lin_setups;
+  row.lin_solves = st.lin_solves;
+  w.log << format("  %-20s %-8s %9.3g  %8ld steps  %9.3f s  max error %s mm\n", name.c_str(), mode.c_str(), dt_or_tol,
                   row.steps, row.wall_s, row.stable ? format("%.3e", row.err_max_mm).c_str() : "(diverged)")
         << std::flush;  // a sweep runs for minutes: show each run as it ends
-    results.rows.push_back(row);
-    return true;
-  };
+  w.results.rows.push_back(row);
+  return true;
+}
 
-  for (const auto& name : names) {
-    const integrators::IntegratorInfo& info = integrators::integrator_info(name);
-    const double limit = integrators::predicted_stability_limit(info, modal.frequencies(), modal.alpha());
-    if (info.fixed_step) {
-      std::vector<double> dts;
-      if (std::isfinite(limit)) {
-        for (double f : {1.05, 0.9, 0.45, 0.225}) dts.push_back(grid_step(sc.dt, f * limit));
-        if (dts[0] == dts[1]) dts.erase(dts.begin());
-      } else {
-        for (int j = 0; j < o.fixed_levels; ++j) dts.push_back(sc.dt / std::pow(2.0, j));
-      }
-      for (double dt : dts) {
-        if (t_end / dt > static_cast<double>(o.max_steps)) {
-          log << format("  %-20s fixed    %9.3g  skipped: %.0f steps > --max-steps\n", name.c_str(), dt, t_end / dt);
-          continue;
-        }
-        if (!record(name, "fixed", dt, integrators::make_integrator(name, dt))) break;  // smaller dt: longer still
-      }
-    }
-    if (info.adaptive)
-      for (double tol : o.tolerances) {
-        const integrators::StepControl control{.dt = std::min(sc.dt, std::isfinite(limit) ? 0.5 * limit : sc.dt),
-                                               .adaptive = true, .rtol = tol, .atol = tol * peak};
-        if (!record(name, "adaptive", tol, integrators::make_integrator(name, control))) break;  // tighter: longer still
-      }
-    if (std::isfinite(limit)) {
-      double lo = 0.25 * limit, hi = 2.0 * limit;  // bisection between a stable and an unstable step
-      if (runs_stably(name, hi, system, t_end, 10 * peak)) lo = hi;
-      for (int k = 0; k < 10 && lo < hi; ++k) {
-        const double mid = 0.5 * (lo + hi);
-        (runs_stably(name, mid, system, t_end, 10 * peak) ? lo : hi) = mid;
-      }
-      results.stability.push_back({name, limit, lo});
-      log << format("  %-20s stability limit: predicted %.4e s, largest stable found %.4e s (ratio %.3f)\n", name.c_str(),
-                    limit, lo, lo / limit);
-    }
+/// Fixed steps: around the stability limit for an explicit method, else dt, dt/2, ...
+void sweep_fixed_steps(Sweep& w, const integrators::IntegratorInfo& info, double limit) {
+  std::vector<double> dts;
+  if (std::isfinite(limit)) {
+    for (double f : {1.05, 0.9, 0.45, 0.225}) dts.push_back(grid_step(w.sc.dt, f * limit));
+    if (dts[0] == dts[1]) dts.erase(dts.begin());
+  } else {
+    for (int j = 0; j < w.o.fixed_levels; ++j) dts.push_back(w.sc.dt / std::pow(2.0, j));
   }
+  for (double dt : dts) {
+    if (w.t_end / dt > static_cast<double>(w.o.max_steps)) {
+      w.log << format("  %-20s fixed    %9.3g  skipped: %.0f steps > --max-steps\n", info.name.c_str(), dt, w.t_end / dt);
+      continue;
+    }
+    if (!record_run(w, info.name, "fixed", dt, integrators::make_integrator(info.name, dt))) break;  // smaller dt: longer still
+  }
+}
 
+void sweep_tolerances(Sweep& w, const integrators::IntegratorInfo& info, double limit) {
+  for (double tol : w.o.tolerances) {
+    const integrators::StepControl control{.dt = std::min(w.sc.dt, std::isfinite(limit) ? 0.5 * limit : w.sc.dt),
+                                           .adaptive = true, .rtol = tol, .atol = tol * w.peak};
+    if (!record_run(w, info.name, "adaptive", tol, integrators::make_integrator(info.name, control))) break;  // tighter: longer still
+  }
+}
+
+/// Bisection between a stable and an unstable step, around the predicted limit.
+void search_stability_limit(Sweep& w, const integrators::IntegratorInfo& info, double limit) {
+  double lo = 0.25 * limit, hi = 2.0 * limit;
+  if (runs_stably(info.name, hi, w.system, w.t_end, 10 * w.peak)) lo = hi;
+  for (int k = 0; k < 10 && lo < hi; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (runs_stably(info.name, mid, w.system, w.t_end, 10 * w.peak) ? lo : hi) = mid;
+  }
+  w.results.stability.push_back({info.name, limit, lo});
+  w.log << format("  %-20s stability limit: predicted %.4e s, largest stable found %.4e s (ratio %.3f)\n", info.name.c_str(),
+                  limit, lo, lo / limit);
+}
+
+void write_compare_files(const CompareOptions& o, const CompareResults& results) {
   {
     io::CsvWriter csv(o.out / "compare.csv",
                       "integrator,mode,dt_or_tol,steps,rhs_evals,jac_evals,lin_setups,lin_solves,wall_s,err_max_mm,"
@@ -215,8 +210,10 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
       csv.row(format("%s,%.6g,%.6e,%.6e", s.integrator.c_str(), results.omega_max, s.predicted_dt, s.measured_dt));
     csv.close();
   }
+}
 
-  // Summary: the cheapest run within 0.1 mm, and the cost per step relative to the trapezoidal rule.
+/// The cheapest run within 0.1 mm, and the cost per step relative to the trapezoidal rule.
+void print_summary(const CompareResults& results, double dt, std::ostream& log) {
   const CompareRow* cheapest = nullptr;
   for (const auto& r : results.rows)
     if (r.stable && r.err_max_mm <= 0.1 && (!cheapest || r.wall_s < cheapest->wall_s)) cheapest = &r;
@@ -226,20 +223,53 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
                   cheapest->steps, cheapest->err_max_mm);
   double trapezoid_step = 0;
   for (const auto& r : results.rows)
-    if (r.integrator == "trapezoid" && r.mode == "fixed" && std::abs(r.dt_or_tol - sc.dt) < 1e-12 * sc.dt && r.steps > 0)
+    if (r.integrator == "trapezoid" && r.mode == "fixed" && std::abs(r.dt_or_tol - dt) < 1e-12 * dt && r.steps > 0)
       trapezoid_step = r.wall_s / static_cast<double>(r.steps);
-  if (trapezoid_step > 0) {
-    log << "cost per step relative to the trapezoidal rule at dt = " << sc.dt << " s (same run; includes setup):\n";
-    for (const auto& r : results.rows)
-      if (r.stable && r.steps > 0 && ((r.mode == "fixed" && std::abs(r.dt_or_tol - sc.dt) < 1e-12 * sc.dt) ||
-                                      (r.mode == "adaptive" && r.dt_or_tol == 1e-6)))
-        log << format("  %-20s %-8s %8.2fx\n", r.integrator.c_str(), r.mode.c_str(),
-                      r.wall_s / static_cast<double>(r.steps) / trapezoid_step);
+  if (trapezoid_step <= 0) return;
+  log << "cost per step relative to the trapezoidal rule at dt = " << dt << " s (same run; includes setup):\n";
+  for (const auto& r : results.rows)
+    if (r.stable && r.steps > 0 && ((r.mode == "fixed" && std::abs(r.dt_or_tol - dt) < 1e-12 * dt) ||
+                                    (r.mode == "adaptive" && r.dt_or_tol == 1e-6)))
+      log << format("  %-20s %-8s %8.2fx\n", r.integrator.c_str(), r.mode.c_str(),
+                    r.wall_s / static_cast<double>(r.steps) / trapezoid_step);
+}
+
+}  // namespace
+
+CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o, std::ostream& log) {
+  check_output_directory(o.out);
+  const auto built = simulation::build_scenario_model(sc);
+  const model::SecondOrderSystem& system = built->system();
+  const double t_end = o.t_end > 0 ? std::min(o.t_end, sc.dt * static_cast<double>(sc.steps)) : sc.dt * static_cast<double>(sc.steps);
+  const long outputs = std::lround(t_end / sc.dt);
+  if (outputs < 1) throw InputError("compare: --t-end must cover at least one output step of " + number_text(sc.dt) + " s");
+  std::vector<std::string> names = o.integrators.empty() ? integrators::integrator_names() : o.integrators;
+  for (const auto& name : names) (void)integrators::integrator_info(name);  // unknown names fail before any work
+
+  const Stopwatch clock;
+  const model::ModalReference modal(system, model::State::at_rest(system.size()));
+  Sweep w{.sc = sc, .o = o, .system = system, .modal = modal, .ref = {}, .t_end = t_end, .peak = 0, .results = {}, .log = log};
+  w.ref = exact_reference(system, modal, *built, sc.dt, outputs, t_end, w.peak);
+  w.results.omega_max = model::highest_frequency(system);  // Lanczos: the same figure at any size
+  log << format("compare: %s, %lld dofs, t_end = %g s on an output grid of %g s; exact modal reference in %.1f s\n",
+                sc.file.c_str(), static_cast<long long>(system.size()), t_end, sc.dt, clock.seconds());
+  log << format("  lowest w = %.3f rad/s, highest w = %.1f rad/s, alpha = %g 1/s\n", modal.frequencies()[0],
+                w.results.omega_max, modal.alpha());
+
+  for (const auto& name : names) {
+    const integrators::IntegratorInfo& info = integrators::integrator_info(name);
+    const double limit = integrators::predicted_stability_limit(info, modal.frequencies(), modal.alpha());
+    if (info.fixed_step) sweep_fixed_steps(w, info, limit);
+    if (info.adaptive) sweep_tolerances(w, info, limit);
+    if (std::isfinite(limit)) search_stability_limit(w, info, limit);
   }
+
+  write_compare_files(o, w.results);
+  print_summary(w.results, sc.dt, log);
   if (o.plots && io::run_plot_script("plot_compare.py", o.out, log))
     log << "plots: " << (o.out / "work_precision.png").string() << ", " << (o.out / "error_vs_dt.png").string() << '\n';
   log << "results: " << (o.out / "compare.csv").string() << ", " << (o.out / "stability.csv").string() << '\n';
-  return results;
+  return w.results;
 }
 
 }  // namespace roifem::experiments
