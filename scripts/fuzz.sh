@@ -19,7 +19,7 @@ mkdir -p "$out"
 flags=(-std=c++20 -O1 -g -DNDEBUG -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -I src -I /usr/include/eigen3)
 # Each harness is built from the few sources it exercises (instrumented), not the whole library.
 declare -A sources=(
-  [scenario_reader]="src/scenario/scenario_reader.cpp src/scenario/toml_text_guard.cpp src/fem/material.cpp"
+  [scenario_reader]="src/scenario/scenario_reader.cpp src/scenario/toml_text_guard.cpp src/fem/material.cpp src/condensation/reduction.cpp"
   [mesh_checks]="src/mesh/mesh_checks.cpp src/mesh/tet_mesh.cpp"
 )
 for name in scenario_reader mesh_checks; do
