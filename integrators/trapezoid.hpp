@@ -52,7 +52,7 @@ class Trapezoid final : public Integrator {
   bool eliminates_modal_ = false;
   double t0_ = 0;
   long k_ = 0;
-  Vector a_, rhs_, f_, u_next_, work_;
+  Vector a_, f_, u_next_, work_;
   Stats stats_;
 };
 

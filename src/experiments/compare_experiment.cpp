@@ -96,7 +96,6 @@ struct Sweep {
   const scenario::Scenario& sc;
   const CompareOptions& o;
   const model::SecondOrderSystem& system;
-  const model::ModalReference& modal;
   Reference ref;
   double t_end = 0, peak = 0;
   CompareResults results;
@@ -248,7 +247,7 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
 
   const Stopwatch clock;
   const model::ModalReference modal(system, model::State::at_rest(system.size()));
-  Sweep w{.sc = sc, .o = o, .system = system, .modal = modal, .ref = {}, .t_end = t_end, .peak = 0, .results = {}, .log = log};
+  Sweep w{.sc = sc, .o = o, .system = system, .ref = {}, .t_end = t_end, .peak = 0, .results = {}, .log = log};
   w.ref = exact_reference(system, modal, *built, sc.dt, outputs, t_end, w.peak);
   w.results.omega_max = model::highest_frequency(system);  // Lanczos: the same figure at any size
   log << format("compare: %s, %lld dofs, t_end = %g s on an output grid of %g s; exact modal reference in %.1f s\n",
