@@ -8,6 +8,7 @@
 ///                    (modal_elimination.hpp), chosen by "trapezoid" when the system has them
 #include <memory>
 
+#include "model/average_acceleration.hpp"
 #include "model/second_order_system.hpp"
 #include "solvers/cholesky.hpp"
 #include "solvers/jacobi_cg.hpp"
@@ -27,7 +28,7 @@ class EffectiveStiffnessSolver {
 class DirectSolve final : public EffectiveStiffnessSolver {
  public:
   /// Throws solvers::NotPositiveDefinite.
-  DirectSolve(const model::SecondOrderSystem& system, double dt);
+  DirectSolve(const model::SecondOrderSystem& system, const model::AverageAcceleration& rule);
   void solve(const Vector& f, const Vector& w, Vector& x) override;
 
  private:
@@ -38,7 +39,7 @@ class DirectSolve final : public EffectiveStiffnessSolver {
 
 class ConjugateGradients final : public EffectiveStiffnessSolver {
  public:
-  ConjugateGradients(const model::SecondOrderSystem& system, double dt, solvers::CgSettings settings);
+  ConjugateGradients(const model::SecondOrderSystem& system, const model::AverageAcceleration& rule, solvers::CgSettings settings);
   void solve(const Vector& f, const Vector& w, Vector& x) override;
   bool uses_initial_guess() const override { return true; }
   long iterations() const override { return iterations_; }

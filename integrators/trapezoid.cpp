@@ -15,9 +15,7 @@ std::unique_ptr<Integrator> make_trapezoid(const IntegratorInfo& info, const Ste
   return std::make_unique<Trapezoid>(control.dt);
 }
 
-Trapezoid::Trapezoid(double dt) : dt_(dt) {
-  if (!(dt > 0) || !std::isfinite(dt)) throw InputError("trapezoid: time step dt = " + number_text(dt) + " s must be positive");
-}
+Trapezoid::Trapezoid(double dt) : rule_(dt) {}
 
 Trapezoid::Trapezoid(double dt, solvers::CgSettings cg) : Trapezoid(dt) { cg_ = cg; }
 
@@ -30,22 +28,18 @@ void Trapezoid::reset(const model::SecondOrderSystem& system, const model::State
   eliminates_modal_ = !cg_ && system.modal && system.damping.is_mass_proportional();
   try {
     if (cg_)
-      K_eff_ = std::make_unique<ConjugateGradients>(system, dt_, *cg_);
+      K_eff_ = std::make_unique<ConjugateGradients>(system, rule_, *cg_);
     else if (eliminates_modal_)
-      K_eff_ = std::make_unique<ModalElimination>(system, dt_);
+      K_eff_ = std::make_unique<ModalElimination>(system, rule_.dt());
     else
-      K_eff_ = std::make_unique<DirectSolve>(system, dt_);
+      K_eff_ = std::make_unique<DirectSolve>(system, rule_);
   } catch (const solvers::NotPositiveDefinite& e) {
     throw SolverError(std::string(name()) + ": K + 2/dt C + 4/dt^2 M is not positive definite: " + e.what());
   }
   t0_ = initial.t;
   k_ = 0;
-  // Consistent initial acceleration: M a_0 = f(t_0) - C v_0 - K u_0.
-  f_ = system.load.at(initial.t);
-  const Vector r = f_ - system.C * initial.v - system.K * initial.u;
-  solvers::Cholesky mass;
-  mass.compute(system.M);
-  a_ = mass.solve(r);
+  a_ = model::AverageAcceleration::consistent_acceleration(system, initial);
+  f_.resize(n);
   u_next_.resize(n);
   work_.resize(n);
   stats_ = {};
@@ -54,31 +48,19 @@ void Trapezoid::reset(const model::SecondOrderSystem& system, const model::State
 }
 
 void Trapezoid::step(model::State& s) {
-  const double c_u = 4.0 / (dt_ * dt_), c_v = 4.0 / dt_;
+  const double dt = rule_.dt();
   ++k_;
-  s.t = t0_ + static_cast<double>(k_) * dt_;
+  s.t = t0_ + static_cast<double>(k_) * dt;
   system_->load.evaluate(s.t, f_);
-  // K_eff u_{n+1} = f + M (c_u u + c_v v + a) + C (2/dt u + v); with C = alpha M one product with M.
-  const model::Damping& damping = system_->damping;
-  if (damping.is_mass_proportional()) {
-    work_ = (c_u + damping.alpha * 2.0 / dt_) * s.u + (c_v + damping.alpha) * s.v + a_;
-  } else {
-    work_ = (2.0 / dt_) * s.u + s.v;
-    f_.noalias() += system_->C * work_;
-    work_ = c_u * s.u + c_v * s.v + a_;
-  }
-  if (K_eff_->uses_initial_guess()) u_next_ = s.u + dt_ * s.v + (0.5 * dt_ * dt_) * a_;  // constant acceleration
+  rule_.history(*system_, s, a_, f_, work_);
+  if (K_eff_->uses_initial_guess()) u_next_ = s.u + dt * s.v + (0.5 * dt * dt) * a_;  // constant acceleration
   try {
     K_eff_->solve(f_, work_, u_next_);
   } catch (const SolverError& e) {
     throw SolverError(std::string(name()) + ": step " + std::to_string(k_) + ", t = " + number_text(s.t) + " s: " + e.what());
   }
   stats_.lin_iterations = K_eff_->iterations();
-  // a_{n+1} = c_u (u_{n+1} - u_n) - c_v v_n - a_n, then v and u.
-  work_ = c_u * (u_next_ - s.u) - c_v * s.v - a_;
-  s.v += 0.5 * dt_ * (a_ + work_);
-  a_.swap(work_);
-  s.u.swap(u_next_);
+  rule_.advance(s, a_, u_next_, work_);
   ++stats_.steps;
   ++stats_.rhs_evals;
   ++stats_.lin_solves;
@@ -88,7 +70,7 @@ void Trapezoid::step(model::State& s) {
 
 void Trapezoid::advance_to(double t_out, model::State& state) {
   if (!system_) throw Error("internal: trapezoid: advance_to before reset");
-  const double steps = (t_out - t0_) / dt_;
+  const double steps = (t_out - t0_) / rule_.dt();
   const long target = std::lround(steps);
   if (std::abs(steps - static_cast<double>(target)) > 1e-9 * std::max(1.0, std::abs(steps)) || target < k_)
     throw InputError("trapezoid: t_out = " + number_text(t_out) + " s is not a later point of the grid t0 + k dt");

@@ -1,6 +1,6 @@
 #pragma once
-/// The trapezoidal rule (Newmark beta = 1/4, gamma = 1/2, average acceleration), fixed step,
-/// as in Hansen & Larsen (1998). Unconditionally stable, second order, no numerical damping:
+/// The trapezoidal rule (Newmark beta = 1/4, gamma = 1/2, average acceleration: the recurrence of
+/// model/average_acceleration.hpp), fixed step, as in Hansen & Larsen (1998). Unconditionally stable, second order, no numerical damping:
 /// without C and f the discrete energy v^T M v / 2 + u^T K u / 2 is conserved exactly.
 ///   K_eff u_{n+1} = f_{n+1} + M (4/dt^2 u_n + 4/dt v_n + a_n) + C (2/dt u_n + v_n),
 ///   K_eff = K + 2/dt C + 4/dt^2 M  (factored once),
@@ -20,6 +20,7 @@
 #include "integrators/integrator.hpp"
 #include "integrators/effective_stiffness.hpp"
 #include "integrators/step_control.hpp"
+#include "model/average_acceleration.hpp"
 #include "solvers/jacobi_cg.hpp"
 
 namespace roifem::integrators {
@@ -40,12 +41,12 @@ class Trapezoid final : public Integrator {
   Stats stats() const override { return stats_; }
   /// One step from the current state (the hot path a simulator calls each tick).
   void step(model::State& state);
-  double dt() const { return dt_; }
+  double dt() const { return rule_.dt(); }
   /// Whether the last reset eliminates the system's modal coordinates (modal_elimination.hpp).
   bool eliminates_modal_coordinates() const { return eliminates_modal_; }
 
  private:
-  double dt_;
+  model::AverageAcceleration rule_;  // the recurrence; K_eff_ solves its one linear system
   const model::SecondOrderSystem* system_ = nullptr;
   std::optional<solvers::CgSettings> cg_;  // set: K_eff is solved iteratively
   std::unique_ptr<EffectiveStiffnessSolver> K_eff_;

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "common/errors.hpp"
+#include "model/average_acceleration.hpp"
 #include "solvers/cholesky.hpp"
 
 namespace roifem::condensation {
@@ -15,16 +16,15 @@ namespace roifem::condensation {
 namespace {
 
 /// Snapshots w = u_s + X u_I of the full model's response to a unit step of each load pattern, by
-/// the trapezoidal rule (the recurrence of integrators::Trapezoid, which this layer sits below).
+/// the trapezoidal rule (model::AverageAcceleration, the recurrence integrators::Trapezoid steps).
 DenseMatrix fixed_interface_snapshots(const PodTraining& in) {
   const auto& d = in.partition.d;
   const auto& s = in.partition.s;
   const auto& full = in.full;
   const Index n = full.size();
-  const double dt = in.dt, c_u = 4.0 / (dt * dt), c_v = 4.0 / dt;
+  const model::AverageAcceleration rule(in.dt);
   solvers::Cholesky K_eff;
-  K_eff.compute(SparseMatrix(full.K + (2.0 / dt) * full.C + c_u * full.M));
-  const Vector M = full.M.diagonal(), C = full.C.diagonal();
+  K_eff.compute(rule.effective_stiffness(full));
   // One training input per time history: terms that share a ramp always act together (the two
   // walls of the opening), so their patterns are summed rather than learnt apart.
   std::vector<std::pair<double, Vector>> inputs;  // (ramp duration, summed pattern)
@@ -40,14 +40,15 @@ DenseMatrix fixed_interface_snapshots(const PodTraining& in) {
   Index column = 0;
   for (const auto& input : inputs) {
     const Vector& pattern = input.second;
-    Vector u = Vector::Zero(n), v = u, a = u, u_next(n), a_next(n);
+    model::State state = model::State::at_rest(n);
+    Vector a = Vector::Zero(n), f(n), w(n), rhs(n), u_next(n), work(n);
     for (long k = 0; k < in.steps; ++k) {  // the load is switched on just after t = 0
-      const Vector rhs = pattern + M.cwiseProduct(c_u * u + c_v * v + a) + C.cwiseProduct((2.0 / dt) * u + v);
+      f = pattern;
+      rule.history(full, state, a, f, w);
+      rhs = f + full.M * w;
       K_eff.solve(rhs, u_next);
-      a_next = c_u * (u_next - u) - c_v * v - a;
-      v += 0.5 * dt * (a + a_next);
-      a.swap(a_next);
-      u.swap(u_next);
+      rule.advance(state, a, u_next, work);
+      const Vector& u = state.u;
       for (std::size_t i = 0; i < in.partition.interface.size(); ++i)
         u_I[static_cast<Index>(i)] = u[d[static_cast<std::size_t>(in.partition.interface[i])]];
       snapshots.col(column++) = roi::gather(u, s) + in.X * u_I;

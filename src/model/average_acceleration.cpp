@@ -1,0 +1,44 @@
+#include "model/average_acceleration.hpp"
+
+#include <cmath>
+
+#include "common/errors.hpp"
+#include "common/number_text.hpp"
+#include "solvers/cholesky.hpp"
+
+namespace roifem::model {
+
+AverageAcceleration::AverageAcceleration(double dt) : dt_(dt) {
+  if (!(dt > 0) || !std::isfinite(dt)) throw InputError("trapezoid: time step dt = " + number_text(dt) + " s must be positive");
+}
+
+SparseMatrix AverageAcceleration::effective_stiffness(const SecondOrderSystem& system) const {
+  return system.K + (2.0 / dt_) * system.C + c_u() * system.M;
+}
+
+void AverageAcceleration::history(const SecondOrderSystem& system, const State& s, const Vector& a, Vector& f, Vector& w) const {
+  const Damping& damping = system.damping;
+  if (damping.is_mass_proportional()) {
+    w = (c_u() + damping.alpha * 2.0 / dt_) * s.u + (c_v() + damping.alpha) * s.v + a;
+  } else {
+    w = (2.0 / dt_) * s.u + s.v;
+    f.noalias() += system.C * w;
+    w = c_u() * s.u + c_v() * s.v + a;
+  }
+}
+
+void AverageAcceleration::advance(State& s, Vector& a, Vector& u_next, Vector& work) const {
+  work = c_u() * (u_next - s.u) - c_v() * s.v - a;
+  s.v += 0.5 * dt_ * (a + work);
+  a.swap(work);
+  s.u.swap(u_next);
+}
+
+Vector AverageAcceleration::consistent_acceleration(const SecondOrderSystem& system, const State& s) {
+  const Vector r = system.load.at(s.t) - system.C * s.v - system.K * s.u;
+  solvers::Cholesky mass;
+  mass.compute(system.M);
+  return mass.solve(r);
+}
+
+}  // namespace roifem::model
