@@ -10,6 +10,7 @@
 #include "common/errors.hpp"
 #include "common/number_text.hpp"
 #include "common/timer.hpp"
+#include "experiments/roi_error.hpp"
 #include "integrators/factory.hpp"
 #include "integrators/stability.hpp"
 #include "io/csv.hpp"
@@ -29,7 +30,7 @@ struct Reference {
   std::vector<Vector> u;  ///< at t_k = k * interval, k = 1..K
   double final_energy = 0;
   double interval = 0;
-  std::vector<std::array<Index, 3>> nodes;
+  RoiNodeDofs nodes;  ///< the integrated system's nodes, the same numbering in both
 };
 
 struct RunError {
@@ -50,22 +51,15 @@ RunError measure(integrators::Integrator& integrator, const model::SecondOrderSy
   model::State state = model::State::at_rest(system.size());
   integrator.reset(system, state);
   RunError e;
-  double sum2 = 0;
-  long count = 0;
+  double mean_square = 0;
   for (std::size_t k = 0; k < ref.u.size(); ++k) {
     integrator.advance_to(static_cast<double>(k + 1) * ref.interval, state);
     if (clock.seconds() > budget_s) throw OverBudget{state.t};
-    for (const auto& node : ref.nodes) {
-      Vec3 d = Vec3::Zero();
-      for (int c = 0; c < 3; ++c)
-        if (node[static_cast<std::size_t>(c)] >= 0)
-          d[c] = state.u[node[static_cast<std::size_t>(c)]] - ref.u[k][node[static_cast<std::size_t>(c)]];
-      e.max_mm = std::max(e.max_mm, d.norm() / mm);
-      sum2 += d.squaredNorm();
-      count += 3;
-    }
+    const RoiError at_k = roi_error(ref.nodes, state.u, ref.u[k]);
+    e.max_mm = std::max(e.max_mm, at_k.max / mm);
+    mean_square += at_k.rms * at_k.rms;
   }
-  e.rms_mm = std::sqrt(sum2 / static_cast<double>(std::max(count, 1L))) / mm;
+  e.rms_mm = std::sqrt(mean_square / static_cast<double>(std::max<std::size_t>(ref.u.size(), 1))) / mm;
   const double energy = kinetic_energy(system, state) + strain_energy(system, state);
   e.energy_drift = std::abs(energy - ref.final_energy) / ref.final_energy;
   return e;
@@ -106,7 +100,7 @@ Reference exact_reference(const model::SecondOrderSystem& system, const model::M
                           const simulation::ScenarioModel& built, double interval, long outputs, double t_end, double& peak) {
   Reference ref;
   ref.interval = interval;
-  ref.nodes = built.node_positions();
+  ref.nodes = same_numbering(built.node_positions());
   peak = 0;
   for (long k = 1; k <= outputs; ++k) {
     ref.u.push_back(modal.displacement(static_cast<double>(k) * interval));

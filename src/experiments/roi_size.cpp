@@ -128,9 +128,7 @@ RoiSizeResults run_roi_size(const RoiSizeOptions& o, std::ostream& log) {
 
   RoiSizeResults results;
   results.target = target;
-  for (int n = 0; n < full->mesh.num_nodes(); ++n)
-    if (full->full.dofs->free_dof(n, 0) >= 0 || full->full.dofs->free_dof(n, 1) >= 0 || full->full.dofs->free_dof(n, 2) >= 0)
-      ++results.free_nodes;
+  results.free_nodes = static_cast<Index>(roi::free_nodes(full->mesh, *full->full.dofs).size());
   log << format("roi-size: %s, %lld free nodes; ROI = the N nodes nearest (%g, %g, %g) mm; budget: max error <= %g mm at the "
                 "scenario's ROI (%s) over %ld steps of %s at dt = %g s\n",
                 sc.file.c_str(), static_cast<long long>(results.free_nodes), target.x() / mm, target.y() / mm, target.z() / mm,

@@ -25,23 +25,28 @@ std::string RoiSpec::describe() const {
   return s.str();
 }
 
-std::vector<int> select_roi_nodes(const mesh::TetMesh& mesh, const fem::DofMap& dofs, const RoiSpec& spec) {
-  std::vector<int> free_nodes;
+std::vector<int> free_nodes(const mesh::TetMesh& mesh, const fem::DofMap& dofs) {
+  std::vector<int> nodes;
   for (int n = 0; n < mesh.num_nodes(); ++n)
-    if (dofs.free_dof(n, 0) >= 0 || dofs.free_dof(n, 1) >= 0 || dofs.free_dof(n, 2) >= 0) free_nodes.push_back(n);
+    if (dofs.free_dof(n, 0) >= 0 || dofs.free_dof(n, 1) >= 0 || dofs.free_dof(n, 2) >= 0) nodes.push_back(n);
+  return nodes;
+}
+
+std::vector<int> select_roi_nodes(const mesh::TetMesh& mesh, const fem::DofMap& dofs, const RoiSpec& spec) {
+  const std::vector<int> free = free_nodes(mesh, dofs);
   std::vector<int> roi;
   switch (spec.kind) {
-    case RoiSpec::Kind::all: roi = free_nodes; break;
+    case RoiSpec::Kind::all: roi = free; break;
     case RoiSpec::Kind::ball:
       if (!(spec.radius > 0)) throw InputError("ROI ball radius " + number_text(spec.radius / mm) + " mm must be positive");
-      for (int n : free_nodes)
+      for (int n : free)
         if ((mesh.node(n) - spec.center).norm() <= spec.radius) roi.push_back(n);
       break;
     case RoiSpec::Kind::nearest: {
       if (spec.count <= 0) throw InputError("ROI node count " + std::to_string(spec.count) + " must be positive");
-      if (spec.count > static_cast<Index>(free_nodes.size()))
+      if (spec.count > static_cast<Index>(free.size()))
         throw ModelError("ROI of " + std::to_string(spec.count) + " nodes asked, but the mesh has only " +
-                         std::to_string(free_nodes.size()) + " free nodes");
+                         std::to_string(free.size()) + " free nodes");
       // A target outside the mesh would silently pick boundary nodes (a length in metres read as
       // millimetres does that): refuse a target outside the mesh's bounding box.
       const Vec3 low = mesh.nodes.rowwise().minCoeff(), high = mesh.nodes.rowwise().maxCoeff();
@@ -50,7 +55,7 @@ std::vector<int> select_roi_nodes(const mesh::TetMesh& mesh, const fem::DofMap& 
                          number_text(low.x() / mm) + ", " + number_text(low.y() / mm) + ", " +
                          number_text(low.z() / mm) + ") to (" + number_text(high.x() / mm) + ", " +
                          number_text(high.y() / mm) + ", " + number_text(high.z() / mm) + ") mm");
-      roi = free_nodes;
+      roi = free;
       auto distance = [&](int n) { return (mesh.node(n) - spec.center).squaredNorm(); };
       std::nth_element(roi.begin(), roi.begin() + spec.count - 1, roi.end(), [&](int a, int b) {
         return distance(a) < distance(b) || (distance(a) == distance(b) && a < b);
@@ -60,7 +65,7 @@ std::vector<int> select_roi_nodes(const mesh::TetMesh& mesh, const fem::DofMap& 
     }
     case RoiSpec::Kind::set:
       for (int n : mesh.set(spec.set).nodes)
-        if (std::binary_search(free_nodes.begin(), free_nodes.end(), n)) roi.push_back(n);
+        if (std::binary_search(free.begin(), free.end(), n)) roi.push_back(n);
       break;
   }
   std::sort(roi.begin(), roi.end());

@@ -22,6 +22,9 @@ struct RoiSpec {
   std::string describe() const;
 };
 
+/// The nodes with at least one free component, ascending.
+std::vector<int> free_nodes(const mesh::TetMesh& mesh, const fem::DofMap& dofs);
+
 /// The ROI's nodes (sorted), among nodes with at least one free dof. ModelError for an empty
 /// ROI (naming the spec), a count larger than the free nodes, or a `nearest` target outside the
 /// mesh's bounding box.

@@ -24,29 +24,10 @@ std::unique_ptr<ScenarioModel> build_scenario_model(const scenario::Scenario& sc
   return m;
 }
 
-std::vector<std::array<Index, 3>> ScenarioModel::node_positions() const {
+roi::NodeDofs ScenarioModel::node_positions() const {
   const fem::DofMap& dofs = *full.dofs;
-  std::vector<Index> position(static_cast<std::size_t>(dofs.num_free()), -1);
-  if (condensation) {
-    const auto& d = condensation->partition().d;
-    for (std::size_t k = 0; k < d.size(); ++k) position[static_cast<std::size_t>(d[k])] = static_cast<Index>(k);
-  } else {
-    for (Index i = 0; i < dofs.num_free(); ++i) position[static_cast<std::size_t>(i)] = i;
-  }
-  std::vector<int> nodes = roi_nodes;
-  if (nodes.empty())
-    for (int n = 0; n < mesh.num_nodes(); ++n)
-      if (dofs.free_dof(n, 0) >= 0 || dofs.free_dof(n, 1) >= 0 || dofs.free_dof(n, 2) >= 0) nodes.push_back(n);
-  std::vector<std::array<Index, 3>> out;
-  for (int n : nodes) {
-    std::array<Index, 3> p{};
-    for (int c = 0; c < 3; ++c) {
-      const int i = dofs.free_dof(n, c);
-      p[static_cast<std::size_t>(c)] = i < 0 ? -1 : position[static_cast<std::size_t>(i)];
-    }
-    out.push_back(p);
-  }
-  return out;
+  const std::vector<int> nodes = roi_nodes.empty() ? roi::free_nodes(mesh, dofs) : roi_nodes;
+  return condensation ? roi::node_dofs_in_reduced(nodes, condensation->partition(), dofs) : roi::node_dofs_in_full(nodes, dofs);
 }
 
 }  // namespace roifem::simulation

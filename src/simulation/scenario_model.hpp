@@ -6,6 +6,7 @@
 
 #include "condensation/reduced_model.hpp"
 #include "model/fem_model.hpp"
+#include "roi/node_dofs.hpp"
 #include "scenario/scenario.hpp"
 
 namespace roifem::simulation {
@@ -17,9 +18,9 @@ struct ScenarioModel {
   std::vector<int> roi_nodes;  ///< empty for the full model
 
   const model::SecondOrderSystem& system() const { return condensation ? condensation->system() : full.system; }
-  /// Per node of the integrated system (ROI nodes, or all free nodes), its positions in the system
-  /// vector (-1 for a constrained component): errors are measured per node.
-  std::vector<std::array<Index, 3>> node_positions() const;
+  /// The integrated system's nodes (ROI nodes, or all free nodes) in its numbering
+  /// (roi/node_dofs.hpp): errors are measured per node.
+  roi::NodeDofs node_positions() const;
 };
 
 /// Reads and checks the mesh, builds the model and condenses it. Held by unique_ptr: the model
