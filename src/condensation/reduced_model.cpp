@@ -12,7 +12,7 @@ ReducedModel::ReducedModel(const model::SecondOrderSystem& full, const roi::Part
                            const Reduction& reduction)
     : partition_(partition), reduction_(reduction) {
   validate(full);
-  factor_ = std::make_shared<const StaticPartFactor>(full.K, partition_, dofs);
+  factor_ = std::make_unique<StaticPartFactor>(full.K, partition_, dofs);
   timings_.factorization_s = factor_->factorization_s();
   Stopwatch clock;
   const DenseMatrix X = reduction_.info().carries_mass ? factor_->static_modes() : DenseMatrix();
@@ -56,7 +56,7 @@ void ReducedModel::assemble(const model::SecondOrderSystem& full, const DenseMat
   static_response_ = std::move(loads.static_response);
 }
 
-Vector ReducedModel::recover_static(const Vector& y, double t) const {
+Vector ReducedModel::recover_static(const Vector& y, double t) {
   Vector u_s = static_response_.at(t);
   if (u_s.size() == 0) return u_s;
   Vector u_i(static_cast<Index>(partition_.interface.size()));
@@ -66,7 +66,7 @@ Vector ReducedModel::recover_static(const Vector& y, double t) const {
   return u_s;
 }
 
-Vector ReducedModel::expand(const Vector& y, double t) const {
+Vector ReducedModel::expand(const Vector& y, double t) {
   const Vector u_s = recover_static(y, t);
   Vector u(static_cast<Index>(partition_.d.size() + partition_.s.size()));
   for (std::size_t k = 0; k < partition_.d.size(); ++k) u[partition_.d[k]] = y[static_cast<Index>(k)];

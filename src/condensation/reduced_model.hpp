@@ -58,9 +58,11 @@ class ReducedModel {
   Index num_modes() const { return basis_.omega.size(); }
   const Vector& mode_frequencies() const { return basis_.omega; }
   /// u over all free dofs from the reduced coordinates y = [u_d; eta] at time t (u_s recovered).
-  Vector expand(const Vector& y, double t) const;
+  /// Non-const: recovering u_s solves with the static part's factor, whose workspace it writes
+  /// (one thread at a time per model).
+  Vector expand(const Vector& y, double t);
   /// u_s alone.
-  Vector recover_static(const Vector& y, double t) const;
+  Vector recover_static(const Vector& y, double t);
   /// K_ds K_ss^-1 K_sd: the interface block subtracted from K_dd.
   const DenseMatrix& interface_schur() const { return factor_->interface_schur(); }
   const CondensationTimings& timings() const { return timings_; }
@@ -71,7 +73,7 @@ class ReducedModel {
 
   roi::Partition partition_;
   Reduction reduction_;
-  std::shared_ptr<const StaticPartFactor> factor_;
+  std::unique_ptr<StaticPartFactor> factor_;
   model::Modes basis_;                  ///< Phi (#s x k, M_ss-orthonormal) and W
   model::SecondOrderSystem reduced_;
   model::LoadHistory static_response_;  ///< per load term: K_ss^-1 p_s, less its modal part

@@ -73,7 +73,7 @@ model::SplitMatrix reduced_diagonal_operator(const SparseMatrix& D_full, const r
   return D;
 }
 
-ReducedLoads reduce_loads(const model::LoadHistory& load, const roi::Partition& partition, const StaticPartFactor& factor,
+ReducedLoads reduce_loads(const model::LoadHistory& load, const roi::Partition& partition, StaticPartFactor& factor,
                           const model::Modes& basis) {
   const auto n_d = static_cast<Index>(partition.d.size());
   const auto n_i = static_cast<Index>(partition.interface.size());

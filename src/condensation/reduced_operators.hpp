@@ -30,7 +30,7 @@ struct ReducedLoads {
   model::LoadHistory reduced;          ///< f_r, per load term
   model::LoadHistory static_response;  ///< per load term: K_ss^-1 p_s less Phi W^-2 Phi^T p_s
 };
-ReducedLoads reduce_loads(const model::LoadHistory& load, const roi::Partition& partition, const StaticPartFactor& factor,
+ReducedLoads reduce_loads(const model::LoadHistory& load, const roi::Partition& partition, StaticPartFactor& factor,
                           const model::Modes& basis);
 
 }  // namespace roifem::condensation

@@ -39,7 +39,7 @@ StaticPartFactor::StaticPartFactor(const SparseMatrix& K, const roi::Partition& 
     trailing.push_back(std::lower_bound(static_and_interface.begin(), static_and_interface.end(), dof) -
                        static_and_interface.begin());
   try {
-    factor_ = std::make_shared<const solvers::PartialCholesky>(
+    factor_ = std::make_unique<solvers::PartialCholesky>(
         roi::submatrix(K, static_and_interface, static_and_interface), trailing);
   } catch (const solvers::NotPositiveDefinite& e) {
     std::string where = "a part of it is free to move as a rigid body";
@@ -61,7 +61,7 @@ StaticPartFactor::StaticPartFactor(const SparseMatrix& K, const roi::Partition& 
   schur_s_ = clock.seconds();
 }
 
-DenseMatrix StaticPartFactor::static_modes() const {
+DenseMatrix StaticPartFactor::static_modes() {
   DenseMatrix X(n_s_, K_sI_.cols());
   if (!factor_) return X;
   const DenseMatrix K_sI(K_sI_);

@@ -22,16 +22,17 @@ class StaticPartFactor {
   /// S = K_Is K_ss^-1 K_sI, symmetric (zero without a static part).
   const DenseMatrix& interface_schur() const { return schur_; }
   const SparseMatrix& K_sI() const { return K_sI_; }
-  /// K_ss^-1 b over the static dofs.
-  Vector solve_static(const Eigen::Ref<const Vector>& b) const { return factor_->solve_leading(b); }
-  void solve_static(const Eigen::Ref<const Vector>& b, Eigen::Ref<Vector> x) const { factor_->solve_leading(b, x); }
+  /// K_ss^-1 b over the static dofs. Non-const: solves write the factor's workspace (one thread at
+  /// a time, solvers/cholesky.hpp).
+  Vector solve_static(const Eigen::Ref<const Vector>& b) { return factor_->solve_leading(b); }
+  void solve_static(const Eigen::Ref<const Vector>& b, Eigen::Ref<Vector> x) { factor_->solve_leading(b, x); }
   /// X = K_ss^-1 K_sI (#s x #I): one solve per interface column.
-  DenseMatrix static_modes() const;
+  DenseMatrix static_modes();
   double factorization_s() const { return factorization_s_; }
   double schur_s() const { return schur_s_; }
 
  private:
-  std::shared_ptr<const solvers::PartialCholesky> factor_;  ///< K over s and I, I last; null without s
+  std::unique_ptr<solvers::PartialCholesky> factor_;  ///< K over s and I, I last; null without s
   SparseMatrix K_sI_;
   DenseMatrix schur_;
   Index n_s_ = 0;

@@ -120,7 +120,7 @@ Modes modes_below(const Vector& mass_diagonal, const SolveK& solve_K, double cut
   }
 }
 
-Modes lowest_modes(const Vector& mass_diagonal, const solvers::Cholesky& K_factor, Index count, double tolerance) {
+Modes lowest_modes(const Vector& mass_diagonal, solvers::Cholesky& K_factor, Index count, double tolerance) {
   if (mass_diagonal.size() != K_factor.size()) throw Error("internal: lowest_modes: M and K differ in size");
   return lowest_modes(mass_diagonal, [&](const Vector& b, Vector& x) { K_factor.solve(b, x); }, count, tolerance);
 }

@@ -24,7 +24,7 @@ struct Modes {
 /// `solve_K(b, x)` sets x = K^-1 b.
 using SolveK = std::function<void(const Vector& b, Vector& x)>;
 Modes lowest_modes(const Vector& mass_diagonal, const SolveK& solve_K, Index count, double tolerance = 1e-10);
-Modes lowest_modes(const Vector& mass_diagonal, const solvers::Cholesky& K_factor, Index count, double tolerance = 1e-10);
+Modes lowest_modes(const Vector& mass_diagonal, solvers::Cholesky& K_factor, Index count, double tolerance = 1e-10);
 /// The modes below `cutoff` rad/s (at most n): lowest_modes with a growing count.
 Modes modes_below(const Vector& mass_diagonal, const SolveK& solve_K, double cutoff, double tolerance = 1e-10);
 

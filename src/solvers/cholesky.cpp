@@ -36,10 +36,10 @@ NotPositiveDefinite::NotPositiveDefinite(Index col, double rc)
 struct Cholesky::Impl {
   cholmod_common common{};
   cholmod_factor* factor = nullptr;
-  // Workspaces of cholmod_solve2, kept between solves; mutable: solving changes no visible state.
-  mutable cholmod_dense* x = nullptr;
-  mutable cholmod_dense* y = nullptr;
-  mutable cholmod_dense* e = nullptr;
+  // Workspaces of cholmod_solve2, kept between solves.
+  cholmod_dense* x = nullptr;
+  cholmod_dense* y = nullptr;
+  cholmod_dense* e = nullptr;
 
   explicit Impl(Kind kind) {
     cholmod_start(&common);
@@ -54,11 +54,10 @@ struct Cholesky::Impl {
     if (factor) cholmod_free_factor(&factor, &common);
     cholmod_finish(&common);
   }
-  void free_workspace() const {
-    auto* c = const_cast<cholmod_common*>(&common);
-    if (x) cholmod_free_dense(&x, c);
-    if (y) cholmod_free_dense(&y, c);
-    if (e) cholmod_free_dense(&e, c);
+  void free_workspace() {
+    if (x) cholmod_free_dense(&x, &common);
+    if (y) cholmod_free_dense(&y, &common);
+    if (e) cholmod_free_dense(&e, &common);
   }
   void check(bool ok, const char* what) const { detail::check_status(common, ok, what); }
 };
@@ -114,29 +113,29 @@ void Cholesky::factorize(const SparseMatrix& A) {
   if (const double rc = rcond(); !(rc > 1e-15)) throw NotPositiveDefinite(-1, rc);
 }
 
-Vector Cholesky::solve(const Eigen::Ref<const Vector>& b) const {
+Vector Cholesky::solve(const Eigen::Ref<const Vector>& b) {
   Vector x(b.size());
   solve(b, x);
   return x;
 }
 
-void Cholesky::solve(const Eigen::Ref<const Vector>& b, Eigen::Ref<Vector> x) const {
+void Cholesky::solve(const Eigen::Ref<const Vector>& b, Eigen::Ref<Vector> x) {
   if (!impl_->factor) throw Error("internal: Cholesky::solve before factorize");
   const bool small = impl_->factor->is_super && static_cast<double>(impl_->factor->xsize) < one_thread_solve_below;
   const BlasThreadsScope blas(small ? 1 : BlasThreadsScope::unchanged);
   cholmod_dense rhs = dense_view(b.data(), b.size(), 1);
-  auto* common = const_cast<cholmod_common*>(&impl_->common);
+  auto* common = &impl_->common;
   const int ok = cholmod_solve2(CHOLMOD_A, impl_->factor, &rhs, nullptr, &impl_->x, nullptr, &impl_->y, &impl_->e,
                                 common);
   impl_->check(ok, "solve");
   std::memcpy(x.data(), impl_->x->x, sizeof(double) * static_cast<std::size_t>(b.size()));
 }
 
-DenseMatrix Cholesky::solve_matrix(const Eigen::Ref<const DenseMatrix>& B) const {
+DenseMatrix Cholesky::solve_matrix(const Eigen::Ref<const DenseMatrix>& B) {
   if (!impl_->factor) throw Error("internal: Cholesky::solve before factorize");
   const DenseMatrix Bc = B;  // contiguous, column-major
   cholmod_dense rhs = dense_view(Bc.data(), Bc.rows(), Bc.cols());
-  auto* common = const_cast<cholmod_common*>(&impl_->common);
+  auto* common = &impl_->common;
   cholmod_dense* X = cholmod_solve(CHOLMOD_A, impl_->factor, &rhs, common);
   impl_->check(X != nullptr, "solve");
   DenseMatrix result = Eigen::Map<const DenseMatrix>(static_cast<double*>(X->x), Bc.rows(), Bc.cols());
@@ -154,8 +153,8 @@ std::vector<Index> Cholesky::ordering() const {
 
 double Cholesky::factor_nonzeros() const { return impl_->common.lnz; }
 
-double Cholesky::rcond() const {
-  return impl_->factor ? cholmod_rcond(impl_->factor, const_cast<cholmod_common*>(&impl_->common)) : 0.0;
+double Cholesky::rcond() {
+  return impl_->factor ? cholmod_rcond(impl_->factor, &impl_->common) : 0.0;
 }
 
 }  // namespace roifem::solvers

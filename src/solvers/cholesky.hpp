@@ -4,6 +4,10 @@
 /// the factor; the pattern is analysed once (fill-reducing ordering) and re-factorized as values
 /// change; solves reuse CHOLMOD's workspace (cholmod_solve2), so a time step allocates nothing.
 /// A reads as symmetric from its lower triangle; full symmetric storage is fine.
+///
+/// Threads: every call into CHOLMOD, solves included, writes the object's cholmod_common (status,
+/// statistics) and its solve workspace, so those methods are non-const and an object serves one
+/// thread at a time. Threads that solve concurrently each hold their own factor.
 #include <memory>
 #include <vector>
 
@@ -39,10 +43,10 @@ class Cholesky {
     factorize(A);
   }
 
-  Vector solve(const Eigen::Ref<const Vector>& b) const;
+  Vector solve(const Eigen::Ref<const Vector>& b);
   /// x = A^-1 b into x (no allocation after the first call of the same size).
-  void solve(const Eigen::Ref<const Vector>& b, Eigen::Ref<Vector> x) const;
-  DenseMatrix solve_matrix(const Eigen::Ref<const DenseMatrix>& B) const;
+  void solve(const Eigen::Ref<const Vector>& b, Eigen::Ref<Vector> x);
+  DenseMatrix solve_matrix(const Eigen::Ref<const DenseMatrix>& B);
 
   Index size() const;
   /// The fill-reducing ordering: the k-th column of L is column ordering()[k] of A.
@@ -50,7 +54,7 @@ class Cholesky {
   /// Non-zeros in L.
   double factor_nonzeros() const;
   /// CHOLMOD's reciprocal condition estimate (min/max of diag(L))^2.
-  double rcond() const;
+  double rcond();
 
  private:
   struct Impl;

@@ -21,9 +21,9 @@ struct PartialCholesky::Impl {
   std::vector<Index> leading;      ///< A's leading indices, ascending
   std::vector<Long> leading_order;  ///< factor position k < n_leading -> position in `leading`
   double analysis_s = 0, factorization_s = 0;
-  // Workspaces of cholmod_solve2, kept between solves; mutable: solving changes no visible state.
-  mutable cholmod_dense *x1 = nullptr, *x2 = nullptr, *y = nullptr, *e = nullptr;
-  mutable Vector rhs;
+  // Workspaces of cholmod_solve2, kept between solves.
+  cholmod_dense *x1 = nullptr, *x2 = nullptr, *y = nullptr, *e = nullptr;
+  Vector rhs;
 
   Impl() {
     cholmod_l_start(&common);
@@ -136,13 +136,13 @@ DenseMatrix PartialCholesky::trailing_schur_complement() const {
   return S.selfadjointView<Eigen::Lower>();
 }
 
-void PartialCholesky::solve_leading(const Eigen::Ref<const Vector>& b, Eigen::Ref<Vector> x) const {
-  const auto& m = *impl_;
+void PartialCholesky::solve_leading(const Eigen::Ref<const Vector>& b, Eigen::Ref<Vector> x) {
+  auto& m = *impl_;
   if (b.size() != m.n_leading || x.size() != m.n_leading) throw Error("internal: PartialCholesky::solve_leading: size mismatch");
   // [b; 0] in factor order, L z = it, z's trailing part dropped, L^T w = [z_l; 0]: w_l = A_ll^-1 b.
   m.rhs.setZero(m.n);
   for (Index k = 0; k < m.n_leading; ++k) m.rhs[k] = b[m.leading_order[static_cast<std::size_t>(k)]];
-  auto* common = const_cast<cholmod_common*>(&m.common);
+  auto* common = &m.common;
   cholmod_dense rhs = detail::dense_view(m.rhs.data(), m.n, 1);
   m.check(cholmod_l_solve2(CHOLMOD_L, m.factor, &rhs, nullptr, &m.x1, nullptr, &m.y, &m.e, common), "solve");
   auto* z = static_cast<double*>(m.x1->x);
@@ -152,7 +152,7 @@ void PartialCholesky::solve_leading(const Eigen::Ref<const Vector>& b, Eigen::Re
   for (Index k = 0; k < m.n_leading; ++k) x[m.leading_order[static_cast<std::size_t>(k)]] = w[k];
 }
 
-Vector PartialCholesky::solve_leading(const Eigen::Ref<const Vector>& b) const {
+Vector PartialCholesky::solve_leading(const Eigen::Ref<const Vector>& b) {
   Vector x(b.size());
   solve_leading(b, x);
   return x;

@@ -31,8 +31,9 @@ class PartialCholesky {
   /// A_tt - A_tl A_ll^-1 A_lt (#t x #t, symmetric), rows and columns in the order of `trailing`.
   DenseMatrix trailing_schur_complement() const;
   /// x = A_ll^-1 b over the leading indices (A's indices not trailing, ascending).
-  void solve_leading(const Eigen::Ref<const Vector>& b, Eigen::Ref<Vector> x) const;
-  Vector solve_leading(const Eigen::Ref<const Vector>& b) const;
+  /// Non-const: the solve writes the object's CHOLMOD workspace (one thread at a time, as Cholesky).
+  void solve_leading(const Eigen::Ref<const Vector>& b, Eigen::Ref<Vector> x);
+  Vector solve_leading(const Eigen::Ref<const Vector>& b);
   /// The leading indices, ascending.
   const std::vector<Index>& leading() const;
 

@@ -31,7 +31,7 @@ TEST(ReducedModel, CondensedStaticAnswerEqualsTheFullOneOnTheRoi) {
   const auto p = brain.partition(nearest(306));
   ASSERT_EQ(p.roi_nodes.size(), 306u);
   ASSERT_FALSE(p.interface.empty());
-  const ReducedModel condensed(brain.model.system, p, *brain.model.dofs);
+  ReducedModel condensed(brain.model.system, p, *brain.model.dofs);
   const double t = 1.0;  // loads fully applied
   solvers::Cholesky full, reduced;
   full.compute(brain.model.system.K);
@@ -52,7 +52,7 @@ TEST(ReducedModel, RoiOfAllNodesReproducesTheFullDynamicModel) {
   const PaperBrain brain;
   const auto p = brain.partition(roi::RoiSpec{});
   EXPECT_TRUE(p.s.empty());
-  const ReducedModel condensed(brain.model.system, p, *brain.model.dofs);
+  ReducedModel condensed(brain.model.system, p, *brain.model.dofs);
   const Index n = brain.model.system.size();
   model::State full = model::State::at_rest(n), roi = full;
   integrators::Trapezoid a(0.05), b(0.05);
@@ -69,7 +69,7 @@ TEST(ReducedModel, RoiOfAllNodesReproducesTheFullDynamicModel) {
 
 TEST(ReducedModel, CondensedStiffnessIsSymmetricPositiveDefinite) {
   const PaperBrain brain;
-  const ReducedModel condensed(brain.model.system, brain.partition(nearest(228)), *brain.model.dofs);
+  ReducedModel condensed(brain.model.system, brain.partition(nearest(228)), *brain.model.dofs);
   const SparseMatrix& K = condensed.system().K;
   EXPECT_LT((K - SparseMatrix(K.transpose())).norm(), 1e-12 * K.norm());
   solvers::Cholesky cholesky;
@@ -92,7 +92,7 @@ TEST(ReducedModel, StaticPieceHeldByNothingIsAModelErrorNamingANodeOfIt) {
   const roi::RoiSpec spec{.kind = roi::RoiSpec::Kind::nearest, .center = Vec3(0.01, 0.005, 0.005), .radius = 0, .count = 5, .set = {}};
   const auto p = roi::partition_dofs(model.system.K, *model.dofs, roi::select_roi_nodes(both, *model.dofs, spec));
   try {
-    const ReducedModel condensed(model.system, p, *model.dofs);
+    ReducedModel condensed(model.system, p, *model.dofs);
     FAIL() << "expected ModelError";
   } catch (const ModelError& e) {
     const std::string message = e.what();

@@ -26,7 +26,7 @@ struct Beam {
 };
 
 /// T: the full free displacement of each reduced unit vector (at t = 0 the ramped loads are zero).
-DenseMatrix transformation(const ReducedModel& r) {
+DenseMatrix transformation(ReducedModel& r) {
   const Index n_r = r.system().size();
   DenseMatrix T(r.partition().d.size() + r.partition().s.size(), n_r);
   for (Index j = 0; j < n_r; ++j) T.col(j) = r.expand(Vector::Unit(n_r, j), 0.0);
@@ -35,7 +35,7 @@ DenseMatrix transformation(const ReducedModel& r) {
 
 double relative(const DenseMatrix& a, const DenseMatrix& b) { return (a - b).norm() / b.norm(); }
 
-void expect_projection(const ReducedModel& r, const model::SecondOrderSystem& full, bool mass_projected) {
+void expect_projection(ReducedModel& r, const model::SecondOrderSystem& full, bool mass_projected) {
   const DenseMatrix T = transformation(r);
   const double dK = relative(DenseMatrix(r.system().K), T.transpose() * DenseMatrix(full.K) * T);
   const double dM = relative(DenseMatrix(r.system().M), T.transpose() * DenseMatrix(full.M) * T);
@@ -63,13 +63,14 @@ TEST(Reduction, EachReducedMatrixIsTheProjectionThroughItsTransformation) {
   const auto p = beam.partition();
   ASSERT_GT(p.s.size(), 20u);
   const auto& full = beam.model.system;
-  expect_projection(ReducedModel(full, p, *beam.model.dofs), full, false);
-  expect_projection(ReducedModel(full, p, *beam.model.dofs, {.kind = ReductionKind::guyan}), full, true);
-  const ReducedModel cb(full, p, *beam.model.dofs, {.kind = ReductionKind::craig_bampton, .modes = 5});
+  ReducedModel plain(full, p, *beam.model.dofs), guyan(full, p, *beam.model.dofs, {.kind = ReductionKind::guyan});
+  expect_projection(plain, full, false);
+  expect_projection(guyan, full, true);
+  ReducedModel cb(full, p, *beam.model.dofs, {.kind = ReductionKind::craig_bampton, .modes = 5});
   EXPECT_EQ(cb.num_modes(), 5);
   EXPECT_EQ(cb.system().size(), static_cast<Index>(p.d.size()) + 5);
   expect_projection(cb, full, true);
-  const ReducedModel pod(full, p, *beam.model.dofs, {.kind = ReductionKind::pod, .modes = 5, .snapshot_dt_s = 0.01});
+  ReducedModel pod(full, p, *beam.model.dofs, {.kind = ReductionKind::pod, .modes = 5, .snapshot_dt_s = 0.01});
   EXPECT_EQ(pod.num_modes(), 5);
   expect_projection(pod, full, true);
 }
@@ -83,7 +84,7 @@ TEST(Reduction, PodReproducesTheRunItLearntFromAndBeatsCraigBamptonOnAnotherLoad
   const auto p = beam.partition();
   const auto& full = beam.model.system;
   const double dt = 0.01;
-  auto error_against_full = [&](const ReducedModel& r, const model::SecondOrderSystem& full_system, long steps) {
+  auto error_against_full = [&](ReducedModel& r, const model::SecondOrderSystem& full_system, long steps) {
     model::State a = model::State::at_rest(full_system.size());
     model::State b = model::State::at_rest(r.system().size());
     integrators::Trapezoid ta(dt), tb(dt);
@@ -99,7 +100,7 @@ TEST(Reduction, PodReproducesTheRunItLearntFromAndBeatsCraigBamptonOnAnotherLoad
     return worst / peak;
   };
   const Reduction every{.kind = ReductionKind::pod, .modes = 30, .snapshot_dt_s = dt, .snapshot_steps = 30};
-  const ReducedModel replay(full, p, *beam.model.dofs, every);
+  ReducedModel replay(full, p, *beam.model.dofs, every);
   ASSERT_GT(replay.num_modes(), 5);
   const double replayed = error_against_full(replay, full, 30);
   std::printf("POD with %lld vectors, the training run replayed: %.2e (relative)\n",
@@ -110,9 +111,9 @@ TEST(Reduction, PodReproducesTheRunItLearntFromAndBeatsCraigBamptonOnAnotherLoad
   // 4 Craig-Bampton modes (the load history was never seen).
   model::SecondOrderSystem ramped = full;
   ramped.load = full.load.with_ramp(model::Ramp{0.1});
-  const ReducedModel pod(ramped, p, *beam.model.dofs, {.kind = ReductionKind::pod, .modes = 4, .snapshot_dt_s = dt, .snapshot_steps = 30});
-  const ReducedModel cb(ramped, p, *beam.model.dofs, {.kind = ReductionKind::craig_bampton, .modes = 4});
-  const ReducedModel plain(ramped, p, *beam.model.dofs);
+  ReducedModel pod(ramped, p, *beam.model.dofs, {.kind = ReductionKind::pod, .modes = 4, .snapshot_dt_s = dt, .snapshot_steps = 30});
+  ReducedModel cb(ramped, p, *beam.model.dofs, {.kind = ReductionKind::craig_bampton, .modes = 4});
+  ReducedModel plain(ramped, p, *beam.model.dofs);
   const double e_pod = error_against_full(pod, ramped, 60), e_cb = error_against_full(cb, ramped, 60),
                e_plain = error_against_full(plain, ramped, 60);
   std::printf("0.1 s ramp, 60 steps, max |u_r - u| / max |u|: static %.2e, craig-bampton-4 %.2e, pod-4 %.2e\n", e_plain, e_cb, e_pod);
@@ -137,7 +138,7 @@ TEST(Reduction, CraigBamptonWithEveryModeReproducesTheFullModel) {
   const auto p = beam.partition();
   const auto& full = beam.model.system;
   const Index all = static_cast<Index>(p.s.size());
-  const ReducedModel cb(full, p, *beam.model.dofs, {.kind = ReductionKind::craig_bampton, .modes = all});
+  ReducedModel cb(full, p, *beam.model.dofs, {.kind = ReductionKind::craig_bampton, .modes = all});
   ASSERT_EQ(cb.num_modes(), all);
   model::State a = model::State::at_rest(full.size());
   model::State b = model::State::at_rest(cb.system().size());
@@ -157,9 +158,9 @@ TEST(Reduction, CraigBamptonWithEveryModeReproducesTheFullModel) {
 TEST(Reduction, CutOffKeepsExactlyTheModesBelowIt) {
   const Beam beam;
   const auto p = beam.partition();
-  const ReducedModel ten(beam.model.system, p, *beam.model.dofs, {.kind = ReductionKind::craig_bampton, .modes = 10});
+  ReducedModel ten(beam.model.system, p, *beam.model.dofs, {.kind = ReductionKind::craig_bampton, .modes = 10});
   const double cutoff = 0.5 * (ten.mode_frequencies()[5] + ten.mode_frequencies()[6]);
-  const ReducedModel cut(beam.model.system, p, *beam.model.dofs,
+  ReducedModel cut(beam.model.system, p, *beam.model.dofs,
                                {.kind = ReductionKind::craig_bampton, .cutoff_rad_s = cutoff});
   EXPECT_EQ(cut.num_modes(), 6);
   EXPECT_LT((cut.mode_frequencies() - ten.mode_frequencies().head(6)).norm() / ten.mode_frequencies().head(6).norm(), 1e-9);
@@ -209,7 +210,7 @@ namespace {
 
 void expect_every_named_integrator_meets_the_modal_solution(const Reduction& reduction) {
   const Beam beam;
-  const ReducedModel r(beam.model.system, beam.partition(), *beam.model.dofs, reduction);
+  ReducedModel r(beam.model.system, beam.partition(), *beam.model.dofs, reduction);
   const auto& sys = r.system();
   ASSERT_FALSE(model::is_diagonal(sys.M)) << reduction.label();
   const model::State rest = model::State::at_rest(sys.size());
@@ -255,7 +256,7 @@ TEST(Reduction, TheTrapezoidalRuleEliminatesModalCoordinatesAndStepsAsTheWholeSo
   const Beam beam;
   for (const Reduction& reduction : {Reduction{.kind = ReductionKind::craig_bampton, .modes = 5},
                                      Reduction{.kind = ReductionKind::pod, .modes = 4}.trained_on(0.01, 60)}) {
-    const ReducedModel r(beam.model.system, beam.partition(), *beam.model.dofs, reduction);
+    ReducedModel r(beam.model.system, beam.partition(), *beam.model.dofs, reduction);
     const auto& eliminated = r.system();
     ASSERT_TRUE(eliminated.modal.has_value()) << reduction.label();
     ASSERT_EQ(eliminated.modal->count, r.num_modes()) << reduction.label();
@@ -300,7 +301,7 @@ TEST(Reduction, TheEnergyLedgerOfAReducedModelReadsItsSplitMatricesRight) {
   // assembled matrices give the same energies, and the trapezoidal rule's discrete balance
   // E_n + D_n - W_n = E_0 holds with the Craig-Bampton model's full, damped mass.
   const Beam beam;
-  const ReducedModel cb(beam.model.system, beam.partition(), *beam.model.dofs,
+  ReducedModel cb(beam.model.system, beam.partition(), *beam.model.dofs,
                               {.kind = ReductionKind::craig_bampton, .modes = 5});
   const auto& sys = cb.system();
   ASSERT_FALSE(sys.M_split.empty());

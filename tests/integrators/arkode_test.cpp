@@ -260,7 +260,7 @@ TEST(IdaRoiDae, TrajectoryEqualsTheCondensedModelToTheTolerance) {
                           .set = {}};
   const auto partition =
       roi::partition_dofs(model.system.K, *model.dofs, roi::select_roi_nodes(mesh, *model.dofs, spec));
-  const condensation::ReducedModel condensed(model.system, partition, *model.dofs);
+  condensation::ReducedModel condensed(model.system, partition, *model.dofs);
   const model::ModalReference exact(
       condensed.system(), model::State::at_rest(condensed.system().size()));
 

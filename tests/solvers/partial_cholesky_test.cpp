@@ -39,7 +39,7 @@ TEST(PartialCholesky, TrailingBlockOfTheFactorIsTheSchurComplement) {
   const SparseMatrix K = brain_stiffness();
   const DenseMatrix A(K);
   const std::vector<Index> trailing = random_indices(K.rows(), 150, 7);
-  const PartialCholesky factor(K, trailing);
+  PartialCholesky factor(K, trailing);
   const std::vector<Index>& leading = factor.leading();
   ASSERT_EQ(leading.size() + trailing.size(), static_cast<std::size_t>(K.rows()));
   // The independent answer: A_tt - A_tl A_ll^-1 A_lt by a dense Cholesky of A_ll.
@@ -56,7 +56,7 @@ TEST(PartialCholesky, TrailingBlockOfTheFactorIsTheSchurComplement) {
 
 TEST(PartialCholesky, LeadingBlockSolvesWithTheLeadingMatrix) {
   const SparseMatrix K = brain_stiffness();
-  const PartialCholesky factor(K, random_indices(K.rows(), 90, 11));
+  PartialCholesky factor(K, random_indices(K.rows(), 90, 11));
   const DenseMatrix A_ll = dense_block(DenseMatrix(K), factor.leading(), factor.leading());
   const Vector b = Vector::Random(A_ll.rows());
   const Vector x = factor.solve_leading(b);
@@ -69,7 +69,7 @@ TEST(PartialCholesky, LeadingBlockSolvesWithTheLeadingMatrix) {
 
 TEST(PartialCholesky, NoTrailingIndicesIsAPlainCholesky) {
   const SparseMatrix K = brain_stiffness();
-  const PartialCholesky factor(K, {});
+  PartialCholesky factor(K, {});
   EXPECT_EQ(factor.trailing_schur_complement().size(), 0);
   const Vector b = Vector::Ones(K.rows());
   Cholesky plain;
@@ -86,7 +86,7 @@ TEST(PartialCholesky, IndefiniteMatrixNamesTheColumnOfA) {
   A.coeffRef(bad, bad) = -1;
   A.makeCompressed();
   try {
-    const PartialCholesky factor(A, {3, 40});
+    PartialCholesky factor(A, {3, 40});
     FAIL() << "expected NotPositiveDefinite";
   } catch (const NotPositiveDefinite& e) {
     EXPECT_EQ(e.column, bad);
