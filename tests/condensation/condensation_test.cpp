@@ -105,47 +105,5 @@ TEST(ReducedModel, StaticPieceHeldByNothingIsAModelErrorNamingANodeOfIt) {
   }
 }
 
-TEST(RoiSelection, EmptyRoiIsAModelErrorNamingTheRoi) {
-  const PaperBrain brain;
-  const roi::RoiSpec far{.kind = roi::RoiSpec::Kind::ball, .center = Vec3(1, 1, 1), .radius = 0.001, .count = 0, .set = {}};
-  try {
-    roi::select_roi_nodes(brain.mesh, *brain.model.dofs, far);
-    FAIL() << "expected ModelError";
-  } catch (const ModelError& e) {
-    EXPECT_NE(std::string(e.what()).find("contains no free node"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("ball of radius 1 mm"), std::string::npos) << e.what();
-  }
-}
-
-TEST(RoiSelection, NearestTargetOutsideTheMeshIsAModelErrorNamingTargetAndBox) {
-  const PaperBrain brain;
-  roi::RoiSpec spec = nearest(100);
-  spec.center = Vec3(0, 0, 40);  // 40 m: millimetres mistaken for metres
-  try {
-    roi::select_roi_nodes(brain.mesh, *brain.model.dofs, spec);
-    FAIL() << "expected ModelError";
-  } catch (const ModelError& e) {
-    const std::string message = e.what();
-    EXPECT_NE(message.find("100 nodes nearest (0, 0, 40000) mm"), std::string::npos) << message;
-    EXPECT_NE(message.find("lies outside the mesh"), std::string::npos) << message;
-    EXPECT_NE(message.find("brain-800.msh"), std::string::npos) << message;
-  }
-}
-
-TEST(RoiSelection, NearestPicksTheClosestFreeNodes) {
-  const PaperBrain brain;
-  const auto spec = nearest(50);
-  const auto roi_nodes = roi::select_roi_nodes(brain.mesh, *brain.model.dofs, spec);
-  ASSERT_EQ(roi_nodes.size(), 50u);
-  double farthest_in = 0;
-  for (int n : roi_nodes) farthest_in = std::max(farthest_in, (brain.mesh.node(n) - spec.center).norm());
-  std::vector<bool> in(static_cast<std::size_t>(brain.mesh.num_nodes()), false);
-  for (int n : roi_nodes) in[static_cast<std::size_t>(n)] = true;
-  for (int n = 0; n < brain.mesh.num_nodes(); ++n)
-    if (!in[static_cast<std::size_t>(n)] && brain.model.dofs->free_dof(n, 0) >= 0) {
-      EXPECT_GE((brain.mesh.node(n) - spec.center).norm(), farthest_in);
-    }
-}
-
 }  // namespace
 }  // namespace roifem::condensation
