@@ -28,10 +28,9 @@ ReducedModel::ReducedModel(const model::SecondOrderSystem& full, const roi::Part
 void ReducedModel::validate(const model::SecondOrderSystem& full) const {
   if (partition_.d.empty()) throw ModelError("static condensation: the ROI has no free dof");
   const ReductionInfo& info = reduction_.info();
-  if (info.basis == StaticBasis::pod && reduction_.modes <= 0)
-    throw InputError("POD reduction: give a positive number of vectors");
-  if (info.basis == StaticBasis::fixed_interface_modes && reduction_.modes <= 0 && !(reduction_.cutoff_rad_s > 0))
-    throw InputError("Craig-Bampton: give a positive number of modes or a positive cut-off frequency");
+  if (info.counted && reduction_.modes <= 0 && !(info.takes_cutoff && reduction_.cutoff_rad_s > 0))
+    throw InputError(std::string(info.key) + " reduction: give a positive number of " +
+                     (info.takes_cutoff ? "modes or a positive cut-off frequency" : "vectors"));
   if (info.carries_mass && !(model::is_diagonal(full.M) && model::is_diagonal(full.C)))
     throw InputError(reduction_.label() + " reduction: needs the lumped (diagonal) M and C of the full model");
 }

@@ -10,13 +10,13 @@ namespace roifem::condensation {
 namespace {
 
 constexpr std::array<ReductionInfo, 4> table{{
-    {ReductionKind::static_condensation, "static", false, false, StaticBasis::none,
+    {ReductionKind::static_condensation, "static", false, false, false, StaticBasis::none,
      "the paper's static condensation: K~ = K_dd - K_ds K_ss^-1 K_sd; the static part answers without inertia"},
-    {ReductionKind::guyan, "guyan", false, true, StaticBasis::none,
+    {ReductionKind::guyan, "guyan", false, false, true, StaticBasis::none,
      "the static part's mass carried into the ROI through the static modes, M~ = T^T M T"},
-    {ReductionKind::craig_bampton, "craig-bampton", true, true, StaticBasis::fixed_interface_modes,
+    {ReductionKind::craig_bampton, "craig-bampton", true, true, true, StaticBasis::fixed_interface_modes,
      "K fixed-interface modes of (K_ss, M_ss) as extra generalized coordinates"},
-    {ReductionKind::pod, "pod", true, true, StaticBasis::pod,
+    {ReductionKind::pod, "pod", true, false, true, StaticBasis::pod,
      "K fixed-interface vectors learnt from the full model's step responses (mass-weighted POD)"},
 }};
 
@@ -45,10 +45,23 @@ std::string reduction_key_list() {
   return list;
 }
 
+std::string quoted_keys(bool ReductionInfo::*flag) {
+  std::string first, others;
+  for (const auto& info : table) {
+    if (!(info.*flag)) continue;
+    const std::string quoted = "\"" + std::string(info.key) + "\"";
+    if (first.empty())
+      first = quoted;
+    else
+      others += (others.empty() ? "" : ", ") + quoted;
+  }
+  return others.empty() ? first : first + " (or " + others + ")";
+}
+
 std::string Reduction::label() const {
   const std::string key(info().key);
   if (!info().counted) return key;
-  if (modes > 0 || kind != ReductionKind::craig_bampton) return key + "-" + std::to_string(modes);
+  if (modes > 0 || !info().takes_cutoff) return key + "-" + std::to_string(modes);
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, "-below-%grad/s", cutoff_rad_s);
   return key + buffer;

@@ -18,7 +18,8 @@ enum class StaticBasis { none, fixed_interface_modes, pod };
 struct ReductionInfo {
   ReductionKind kind;
   std::string_view key;     ///< scenario: [roi] reduction = "<key>"; CLI label: <key> or <key>-K
-  bool counted;             ///< the CLI label takes a count K (modes or vectors)
+  bool counted;             ///< the CLI label takes a count K (modes or vectors): scenario key `modes`
+  bool takes_cutoff;        ///< instead of K, every mode below a frequency: scenario key `cutoff_rad_s`
   bool carries_mass;        ///< the static part's inertia moves with the ROI (needs a lumped M, C)
   StaticBasis basis;
   std::string_view description;
@@ -29,6 +30,8 @@ std::span<const ReductionInfo> reduction_table();
 const ReductionInfo& reduction_info(ReductionKind kind);
 /// "static, guyan, craig-bampton, pod".
 std::string reduction_key_list();
+/// The keys of the rows with `flag` set, quoted: "\"craig-bampton\" (or \"pod\")".
+std::string quoted_keys(bool ReductionInfo::*flag);
 
 struct Reduction {
   ReductionKind kind = ReductionKind::static_condensation;

@@ -171,7 +171,6 @@ fem::Material read_material(StrictTable& t, std::string& name) {
 }
 
 condensation::Reduction read_reduction(StrictTable& t) {
-  using condensation::ReductionKind;
   condensation::Reduction r;
   const std::string kind = t.string("reduction").value_or("static");
   const auto table = condensation::reduction_table();
@@ -182,22 +181,22 @@ condensation::Reduction read_reduction(StrictTable& t) {
   r.kind = row->kind;
   const auto modes = t.integer("modes");
   const double cutoff = t.number("cutoff_rad_s", 0.0);
-  if (r.kind == ReductionKind::pod) {
-    if (cutoff != 0) throw InputError(t.source() + ": key 'roi.cutoff_rad_s' belongs to reduction = \"craig-bampton\"");
-    if (!modes || *modes <= 0) throw InputError(t.source() + ": reduction = \"pod\" needs a positive key 'roi.modes'");
-    r.modes = *modes;
+  const std::string named = "reduction = \"" + kind + "\"";
+  if (!row->counted) {
+    if (modes || cutoff != 0)
+      throw InputError(t.source() + ": keys 'roi.modes' and 'roi.cutoff_rad_s' belong to reduction = " +
+                       condensation::quoted_keys(&condensation::ReductionInfo::counted));
     return r;
   }
-  if (r.kind != ReductionKind::craig_bampton && (modes || cutoff != 0))
-    throw InputError(t.source() + ": keys 'roi.modes' and 'roi.cutoff_rad_s' belong to reduction = \"craig-bampton\" (or \"pod\")");
-  if (r.kind == ReductionKind::craig_bampton) {
-    if (modes && *modes <= 0) throw InputError(t.source() + ": key 'roi.modes' must be positive (got " + std::to_string(*modes) + ")");
-    if (cutoff < 0) throw InputError(t.source() + ": key 'roi.cutoff_rad_s' must be positive");
-    if (!modes && !(cutoff > 0))
-      throw InputError(t.source() + ": reduction = \"craig-bampton\" needs key 'roi.modes' or 'roi.cutoff_rad_s'");
-    r.modes = modes.value_or(0);
-    r.cutoff_rad_s = modes ? 0.0 : cutoff;
-  }
+  if (cutoff != 0 && !row->takes_cutoff)
+    throw InputError(t.source() + ": key 'roi.cutoff_rad_s' belongs to reduction = " +
+                     condensation::quoted_keys(&condensation::ReductionInfo::takes_cutoff));
+  if (modes && *modes <= 0) throw InputError(t.source() + ": key 'roi.modes' must be positive (got " + std::to_string(*modes) + ")");
+  if (cutoff < 0) throw InputError(t.source() + ": key 'roi.cutoff_rad_s' must be positive");
+  if (!modes && !(cutoff > 0))
+    throw InputError(t.source() + ": " + named + (row->takes_cutoff ? " needs key 'roi.modes' or 'roi.cutoff_rad_s'" : " needs a positive key 'roi.modes'"));
+  r.modes = modes.value_or(0);
+  r.cutoff_rad_s = modes ? 0.0 : cutoff;
   return r;
 }
 

@@ -188,7 +188,7 @@ TEST(Reduction, CraigBamptonWithoutModesOrCutOffIsAnInputError) {
     ReducedModel(beam.model.system, beam.partition(), *beam.model.dofs, {.kind = ReductionKind::craig_bampton});
     FAIL() << "expected an InputError";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("Craig-Bampton"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("craig-bampton reduction: give a positive number of modes"), std::string::npos) << e.what();
   }
 }
 
