@@ -18,6 +18,7 @@ packages=(
   libgtest-dev libgmock-dev
   libbenchmark-dev
   clang libclang-rt-14-dev # libFuzzer harnesses (scripts/fuzz.sh)
+  clang-format clang-tidy  # scripts/lint.sh (14 on Debian 12)
   python3-h5py python3-matplotlib python3-numpy   # plots (Debian's /usr/bin/python3)
 )
 

@@ -6,7 +6,9 @@
 #include "app/commands.hpp"
 #include "common/errors.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+int run_cli(int argc, char** argv) {
   CLI::App app{
       "roifem: region-of-interest (ROI) finite element models of the brain for surgery simulation.\n"
       "A linear-elastic tetrahedral brain whose ROI is dynamic and whose rest is condensed statically.\n"
@@ -39,4 +41,15 @@ int main(int argc, char** argv) {
     std::_Exit(1);
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run_cli(argc, argv);
+  } catch (...) {  // building the CLI itself failed (out of memory): nothing to clean up yet
+    std::cerr << "roifem: error: could not start\n";
+    return 1;
+  }
 }

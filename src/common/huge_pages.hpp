@@ -13,9 +13,13 @@ namespace roifem {
 inline void advise_huge_pages(void* data, std::size_t bytes) {
   constexpr std::uintptr_t huge = std::uintptr_t{2} << 20;
   if (bytes < 2 * huge) return;
-  const auto begin = (reinterpret_cast<std::uintptr_t>(data) + huge - 1) & ~(huge - 1);
-  const auto end = (reinterpret_cast<std::uintptr_t>(data) + bytes) & ~(huge - 1);
-  if (end > begin) ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+  // The whole 2 MiB pages inside [data, data + bytes), found by offsets from data (no integer-to-
+  // pointer casts: the pointer keeps its provenance).
+  const auto address = reinterpret_cast<std::uintptr_t>(data);
+  const std::uintptr_t lead = (huge - address % huge) % huge;
+  if (bytes < lead) return;
+  const std::size_t whole = (bytes - lead) / huge * huge;
+  if (whole > 0) ::madvise(static_cast<char*>(data) + lead, whole, MADV_HUGEPAGE);
 }
 
 }  // namespace roifem

@@ -59,7 +59,7 @@ std::string quoted_keys(bool ReductionInfo::*flag) {
 }
 
 std::string Reduction::label() const {
-  const std::string key(info().key);
+  std::string key(info().key);
   if (!info().counted) return key;
   if (modes > 0 || !info().takes_cutoff) return key + "-" + std::to_string(modes);
   char buffer[64];

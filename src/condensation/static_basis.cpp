@@ -10,7 +10,7 @@ namespace roifem::condensation {
 model::Modes static_basis(const Reduction& reduction, const model::SecondOrderSystem& full,
                           const roi::Partition& partition, StaticPartFactor& factor, const DenseMatrix& X) {
   const auto n_s = static_cast<Index>(partition.s.size());
-  const model::Modes none{.omega = Vector(0), .shapes = DenseMatrix(n_s, 0)};
+  model::Modes none{.omega = Vector(0), .shapes = DenseMatrix(n_s, 0)};
   if (!factor.has_static_part()) return none;
   const Vector M_s = roi::gather(full.M.diagonal(), partition.s);
   const model::SolveK solve_K_ss = [&factor](const Vector& b, Vector& x) { factor.solve_static(b, x); };

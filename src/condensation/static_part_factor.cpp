@@ -35,6 +35,7 @@ StaticPartFactor::StaticPartFactor(const SparseMatrix& K, const roi::Partition& 
   static_and_interface.insert(static_and_interface.end(), interface_dofs.begin(), interface_dofs.end());
   std::sort(static_and_interface.begin(), static_and_interface.end());
   std::vector<Index> trailing;
+  trailing.reserve(interface_dofs.size());
   for (Index dof : interface_dofs)
     trailing.push_back(std::lower_bound(static_and_interface.begin(), static_and_interface.end(), dof) -
                        static_and_interface.begin());

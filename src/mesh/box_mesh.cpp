@@ -56,7 +56,7 @@ TetMesh structured_box_mesh(int nx, int ny, int nz, double lx, double ly, double
           t[0] = id(c[0], c[1], c[2]);
           for (int s = 0; s < 3; ++s) {
             ++c[p[s]];
-            t[static_cast<std::size_t>(s + 1)] = id(c[0], c[1], c[2]);
+            t[static_cast<std::size_t>(s) + 1] = id(c[0], c[1], c[2]);
           }
           mesh.tets.push_back(t);
           if (signed_volume(mesh, mesh.num_tets() - 1) < 0) std::swap(mesh.tets.back()[2], mesh.tets.back()[3]);

@@ -46,7 +46,7 @@ std::string diagnose_msh2_ascii(const std::filesystem::path& file) {
   std::istringstream format(r.line);
   std::string version;
   int file_type = -1;
-  if (!(format >> version >> file_type) || version.rfind("2", 0) != 0 || file_type != 0) return "";
+  if (!(format >> version >> file_type) || !version.starts_with('2') || file_type != 0) return "";
   std::ostringstream what;
   while (r.next()) {
     if (r.line.empty() || r.line[0] != '$' || r.line.rfind("$End", 0) == 0) continue;

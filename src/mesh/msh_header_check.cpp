@@ -37,7 +37,7 @@ void check_msh_header_counts(const std::filesystem::path& file) {
         in.read(reinterpret_cast<char*>(one.data()), 4);
         little_endian_ones = in && one == std::array<unsigned char, 4>{1, 0, 0, 0};
       }
-    } else if (version.rfind("4", 0) == 0 && file_type == 1 && (line == "$Nodes" || line == "$Elements")) {
+    } else if (version.starts_with('4') && file_type == 1 && (line == "$Nodes" || line == "$Elements")) {
       // MSH 4 binary: numEntityBlocks numEntries minTag maxTag as data-size unsigned integers.
       if (!little_endian_ones || data_size != 8) return;  // another writer's byte order: Gmsh checks those
       std::array<std::uint64_t, 2> counts{};
@@ -53,7 +53,7 @@ void check_msh_header_counts(const std::filesystem::path& file) {
       ++line_number;
       std::istringstream header(line);
       double first = 0, second = 0;
-      if (version.rfind("4", 0) == 0) {  // MSH 4: numEntityBlocks numEntries minTag maxTag
+      if (version.starts_with('4')) {  // MSH 4: numEntityBlocks numEntries minTag maxTag
         if (!(header >> first >> second)) return;
         if (first > bytes) refuse(section + " (entity blocks)", first);
         if (second > bytes) refuse(section, second);

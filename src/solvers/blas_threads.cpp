@@ -36,7 +36,8 @@ BlasThreadsScope::BlasThreadsScope(int threads) {
 }
 
 BlasThreadsScope::~BlasThreadsScope() {
-  if (previous_ > 0) open_blas().set(previous_);
+  const auto& blas = open_blas();
+  if (previous_ > 0 && blas.set) blas.set(previous_);
 }
 
 bool BlasThreadsScope::controllable() { return open_blas().set != nullptr; }
