@@ -72,7 +72,8 @@ struct Split {
   SparseMatrix K;
   std::vector<Index> s, interface_dofs;
   Split(const Model& model, Index roi_nodes) : K(fem::StiffnessAssembler(model.mesh, *model.dofs).stiffness(material)) {
-    const roi::RoiSpec spec{.kind = roi::RoiSpec::Kind::nearest, .center = Vec3(0, 0, 40 * mm), .radius = 0, .count = roi_nodes, .set = {}};
+    const roi::RoiSpec spec{
+        .kind = roi::RoiSpec::Kind::nearest, .center = Vec3(0, 0, 40 * mm), .radius = 0, .count = roi_nodes, .set = {}};
     const auto p = roi::partition_dofs(K, *model.dofs, roi::select_roi_nodes(model.mesh, *model.dofs, spec));
     s = p.s;
     for (Index k : p.interface) interface_dofs.push_back(p.d[static_cast<std::size_t>(k)]);

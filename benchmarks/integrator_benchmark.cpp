@@ -10,9 +10,9 @@
 
 #include "integrators/arkode.hpp"
 #include "integrators/factory.hpp"
-#include "solvers/cholesky.hpp"
 #include "scenario/scenario.hpp"
 #include "simulation/scenario_model.hpp"
+#include "solvers/cholesky.hpp"
 
 namespace roifem::bench {
 namespace {
@@ -20,7 +20,9 @@ namespace {
 const simulation::ScenarioModel& paper_model(const std::string& which) {
   static std::map<std::string, std::unique_ptr<simulation::ScenarioModel>> cache;
   auto& slot = cache[which];
-  if (!slot) slot = simulation::build_scenario_model(scenario::read_scenario(std::string(ROIFEM_SCENARIO_DIR) + "/paper-" + which + ".toml"));
+  if (!slot)
+    slot =
+        simulation::build_scenario_model(scenario::read_scenario(std::string(ROIFEM_SCENARIO_DIR) + "/paper-" + which + ".toml"));
   return *slot;
 }
 
@@ -66,7 +68,8 @@ void factor_solve(benchmark::State& st, const std::string& model_name) {
 // Setup of an integrator: reset (patterns, analysis, factorization) and its first step, where
 // SUNDIALS does its first linear-solver setup. factor_ms: the seconds inside factorizations
 // (KLU: analysis and first factorization; CHOLMOD for trapezoid and -schur).
-void setup(benchmark::State& st, const std::string& model_name, const std::string& method, integrators::sundials::KluOrdering ordering) {
+void setup(benchmark::State& st, const std::string& model_name, const std::string& method,
+           integrators::sundials::KluOrdering ordering) {
   const auto& sys = paper_model(model_name).system();
   const double dt = 0.05;
   double factor_s = 0;
@@ -111,9 +114,8 @@ int main(int argc, char** argv) {
           ->Unit(benchmark::kMillisecond);
   }
   for (const char* model : {"full", "setup1", "setup2"})
-    for (const char* method : {"trapezoid", "arkode-trapezoid", "arkode-trapezoid-schur", "arkode-sdirk2",
-                               "arkode-sdirk2-schur", "arkode-sdirk2-mass", "arkode-sdirk2-mass-schur", "arkode-ark3-schur",
-                               "arkode-esdirk4-schur"}) {
+    for (const char* method : {"trapezoid", "arkode-trapezoid", "arkode-trapezoid-schur", "arkode-sdirk2", "arkode-sdirk2-schur",
+                               "arkode-sdirk2-mass", "arkode-sdirk2-mass-schur", "arkode-ark3-schur", "arkode-esdirk4-schur"}) {
       // GSL's implicit rk4imp does not converge its stage iteration at dt = 0.05 s on these models
       // (w_max dt ~ 100); GSL is compared adaptively in `roifem compare` instead.
       benchmark::RegisterBenchmark((std::string("step/") + model + "/" + method).c_str(), step, model, method)

@@ -59,8 +59,8 @@ std::string row_text(long nodes, const std::string& label, const std::optional<S
   }
   return io::format("%8ld %-10s %6ld %8ld %6ld %8.2f %9.2f %9.2f %8.2f %10.3f %10.3f %9.2f %8.0f %8s%s", nodes, label.c_str(),
                     m->roi_nodes, m->system_dofs, m->interface_dofs, m->assembly_s, m->factorization_s, m->condensation_s,
-                    m->integrator_setup_s, m->step_median_s * 1e3, m->step_p99_s * 1e3, 1.0 / m->step_median_s,
-                    m->peak_rss_mb, full ? io::format("%.3gx", vs_full).c_str() : "-", note.c_str());
+                    m->integrator_setup_s, m->step_median_s * 1e3, m->step_p99_s * 1e3, 1.0 / m->step_median_s, m->peak_rss_mb,
+                    full ? io::format("%.3gx", vs_full).c_str() : "-", note.c_str());
 }
 
 /// The machine's DGEMM rate and read bandwidth, measured in a child (as the models are) and
@@ -72,9 +72,10 @@ void report_machine_bounds(const std::filesystem::path& out) {
     return;
   }
   const MachineBounds b = MachineBounds::parse(child.output);
-  std::printf("Machine: %d threads, DGEMM %.1f GFLOP/s (a factorization's ceiling), streaming read %.1f GB/s (a direct "
-              "solve's)\n",
-              b.threads, b.dgemm_gflops, b.read_gb_per_s);
+  std::printf(
+      "Machine: %d threads, DGEMM %.1f GFLOP/s (a factorization's ceiling), streaming read %.1f GB/s (a direct "
+      "solve's)\n",
+      b.threads, b.dgemm_gflops, b.read_gb_per_s);
   io::CsvWriter csv(out / "machine.csv", "threads,dgemm_gflops,read_gb_per_s");
   csv.row(io::format("%d,%.6g,%.6g", b.threads, b.dgemm_gflops, b.read_gb_per_s));
   csv.close();
@@ -87,7 +88,8 @@ int run(const Options& o) {
                     "nodes,model,roi_nodes,system_dofs,interface_dofs,read_s,assembly_s,factorization_s,condensation_s,"
                     "integrator_setup_s,setup_s,step_median_ms,step_p99_ms,frame_rate_hz,steps_timed,peak_rss_mb,"
                     "step_vs_full,cg_iterations_per_step,cg_deviation_vs_direct,status");
-  std::printf("Scale: trapezoidal rule, dt = 0.05 s; a step = new load + step + displacement out; medians over the timed steps\n");
+  std::printf(
+      "Scale: trapezoidal rule, dt = 0.05 s; a step = new load + step + displacement out; medians over the timed steps\n");
   std::printf("%8s %-10s %6s %8s %6s %8s %9s %9s %8s %10s %10s %9s %8s %8s\n", "nodes", "model", "ROI", "dofs", "iface",
               "assem s", "factor s", "condens s", "K_eff s", "step ms", "p99 ms", "rate Hz", "peak MB", "vs full");
   for (long n : o.nodes) {
@@ -110,10 +112,10 @@ int run(const Options& o) {
       if (m)
         csv.row(io::format("%ld,%s,%ld,%ld,%ld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%ld,%.6g,%.6g,%.6g,%.6g,ok", m->nodes,
                            spec.label.c_str(), m->roi_nodes, m->system_dofs, m->interface_dofs, m->read_s, m->assembly_s,
-                           m->factorization_s, m->condensation_s, m->integrator_setup_s, m->setup_s(),
-                           m->step_median_s * 1e3, m->step_p99_s * 1e3, 1.0 / m->step_median_s, m->steps_timed,
-                           m->peak_rss_mb, full && !direct_full ? full->step_median_s / m->step_median_s : 1.0,
-                           m->cg_iterations_per_step, m->deviation_vs_direct));
+                           m->factorization_s, m->condensation_s, m->integrator_setup_s, m->setup_s(), m->step_median_s * 1e3,
+                           m->step_p99_s * 1e3, 1.0 / m->step_median_s, m->steps_timed, m->peak_rss_mb,
+                           full && !direct_full ? full->step_median_s / m->step_median_s : 1.0, m->cg_iterations_per_step,
+                           m->deviation_vs_direct));
       else
         csv.row(io::format("%ld,%s,,,,,,,,,,,,,,,,,,failed", n, spec.label.c_str()));
     }
@@ -134,7 +136,9 @@ int run(const Options& o) {
       }
       const RoiProbe probe = [&](long count) {
         const ChildResult child = run_in_child(
-            [&] { return measure_model(mesh_file, {"roi-" + std::to_string(count), count}, o.timing).serialize(); },
+            [&] {
+              return measure_model(mesh_file, {"roi-" + std::to_string(count), count}, o.timing).serialize();
+            },
             o.model_timeout_s);
         if (!child.ok) {
           std::printf("         %ld nodes, ROI %ld: failed: %s\n", n, count, child.output.c_str());
@@ -155,8 +159,8 @@ int run(const Options& o) {
       std::printf("%8ld nodes: ROI %ld nodes (%ld dofs, %ld on the interface), step %.3f ms   probes %s\n", r.nodes, r.roi_nodes,
                   r.system_dofs, r.interface_dofs, r.step_median_s * 1e3, probes.c_str());
       std::fflush(stdout);
-      haptic.row(io::format("%ld,%.6g,%ld,%ld,%ld,%.6g,%s", r.nodes, o.haptic_rate_hz, r.roi_nodes, r.system_dofs, r.interface_dofs,
-                            r.step_median_s * 1e3, probes.c_str()));
+      haptic.row(io::format("%ld,%.6g,%ld,%ld,%ld,%.6g,%s", r.nodes, o.haptic_rate_hz, r.roi_nodes, r.system_dofs,
+                            r.interface_dofs, r.step_median_s * 1e3, probes.c_str()));
     }
     haptic.close();
   }
@@ -171,9 +175,10 @@ int run(const Options& o) {
 int main(int argc, char** argv) {
   using namespace roifem::bench;
   Options o;
-  CLI::App app{"roifem scale benchmark: full and condensed brain models from 800 to 300k nodes, per-step time,\n"
-               "setup time, memory, and the largest ROI at a haptic rate. Meshes are generated once and cached\n"
-               "in $ROIFEM_MESH_CACHE (default ./bench-meshes)."};
+  CLI::App app{
+      "roifem scale benchmark: full and condensed brain models from 800 to 300k nodes, per-step time,\n"
+      "setup time, memory, and the largest ROI at a haptic rate. Meshes are generated once and cached\n"
+      "in $ROIFEM_MESH_CACHE (default ./bench-meshes)."};
   app.add_option("--nodes", o.nodes, "brain sizes (nodes)")->capture_default_str();
   app.add_option("--rois", o.rois, "condensed models: ROI sizes in nodes, a percentage of the brain's nodes, or none")
       ->capture_default_str();
@@ -187,7 +192,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--rate", o.haptic_rate_hz, "haptic rate (Hz)")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--out", o.out, "directory for scale.csv, haptic.csv and scale.png")->capture_default_str();
-  app.add_option("--steps", o.timing.max_steps, "timed steps per model at most")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_option("--steps", o.timing.max_steps, "timed steps per model at most")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   app.add_option("--step-budget", o.timing.step_budget_s, "seconds of timed steps per model (at least 10 steps)")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);

@@ -27,9 +27,14 @@ ArkodeMethod arkode_method(const IntegratorInfo& info) {
   if (info.family != Family::arkode) throw InputError("integrator '" + info.name + "' is not an ARKODE method");
   const bool mass = info.linear_solver == LinearSolver::klu_mass || info.linear_solver == LinearSolver::schur_mass;
   const bool schur = info.linear_solver == LinearSolver::schur || info.linear_solver == LinearSolver::schur_mass;
-  return {.name = info.name, .implicit = !info.is_explicit, .table = info.method_id,
-          .trapezoid = !info.is_explicit && info.method_id < 0, .mass_matrix = mass, .schur = schur,
-          .order = info.order, .klu_ordering = sundials::KluOrdering::amd};
+  return {.name = info.name,
+          .implicit = !info.is_explicit,
+          .table = info.method_id,
+          .trapezoid = !info.is_explicit && info.method_id < 0,
+          .mass_matrix = mass,
+          .schur = schur,
+          .order = info.order,
+          .klu_ordering = sundials::KluOrdering::amd};
 }
 
 ArkodeMethod arkode_method(const std::string& name) { return arkode_method(integrator_info(name)); }
@@ -40,8 +45,8 @@ std::unique_ptr<Integrator> make_arkode(const IntegratorInfo& info, const StepCo
 
 void Arkode::check(int flag, const char* call) const {
   if (flag < 0)
-    throw SolverError(method_.name + ": " + call + " failed at t = " + number_text(t0_) + " s: " +
-                      sundials::flag_name(ARKStepGetReturnFlagName(flag)));
+    throw SolverError(method_.name + ": " + call + " failed at t = " + number_text(t0_) +
+                      " s: " + sundials::flag_name(ARKStepGetReturnFlagName(flag)));
 }
 
 int Arkode::rhs(double t, N_Vector y, N_Vector ydot, void* self) {
@@ -76,8 +81,8 @@ void Arkode::reset(const model::SecondOrderSystem& system, const model::State& i
   J_.reset();
   M_.reset();
   pending_ = nullptr;
-  form_ = std::make_unique<FirstOrderForm>(
-      system, method_.mass_matrix ? FirstOrderForm::Mass::kept : FirstOrderForm::Mass::inverted);
+  form_ =
+      std::make_unique<FirstOrderForm>(system, method_.mass_matrix ? FirstOrderForm::Mass::kept : FirstOrderForm::Mass::inverted);
   create_memory(initial);
   set_steps();
   set_butcher_table();

@@ -27,13 +27,13 @@
 namespace roifem::integrators {
 
 struct ArkodeMethod {
-  std::string name;        ///< e.g. "arkode-sdirk2-mass"
+  std::string name;  ///< e.g. "arkode-sdirk2-mass"
   bool implicit = false;
   int table = -1;          ///< ARKODE_ERKTableID or ARKODE_DIRKTableID; -1 with `trapezoid`
   bool trapezoid = false;  ///< the user table above
   bool mass_matrix = false;
-  bool schur = false;      ///< the Schur-complement Cholesky solver instead of KLU (see schur_solver.hpp)
-  int order = 0;           ///< of the method (for the docs and tests)
+  bool schur = false;  ///< the Schur-complement Cholesky solver instead of KLU (see schur_solver.hpp)
+  int order = 0;       ///< of the method (for the docs and tests)
   sundials::KluOrdering klu_ordering = sundials::KluOrdering::amd;
 };
 

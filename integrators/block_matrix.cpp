@@ -2,8 +2,7 @@
 
 namespace roifem::integrators {
 
-SparseMatrix assemble_blocks(const std::vector<Index>& sizes, const std::vector<Block>& blocks,
-                             const SparseMatrix* pattern_of) {
+SparseMatrix assemble_blocks(const std::vector<Index>& sizes, const std::vector<Block>& blocks, const SparseMatrix* pattern_of) {
   std::vector<Index> start(sizes.size() + 1, 0);
   for (std::size_t k = 0; k < sizes.size(); ++k) start[k + 1] = start[k] + sizes[k];
   std::vector<Eigen::Triplet<double>> t;

@@ -8,8 +8,8 @@
 namespace roifem::integrators {
 
 struct Block {
-  int row = 0, col = 0;          ///< block position
-  const SparseMatrix* matrix;    ///< its entries
+  int row = 0, col = 0;        ///< block position
+  const SparseMatrix* matrix;  ///< its entries
   double scale = 1.0;
 };
 

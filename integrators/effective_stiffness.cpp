@@ -2,7 +2,8 @@
 
 namespace roifem::integrators {
 
-DirectSolve::DirectSolve(const model::SecondOrderSystem& system, const model::AverageAcceleration& rule) : system_(system), rhs_(system.size()) {
+DirectSolve::DirectSolve(const model::SecondOrderSystem& system, const model::AverageAcceleration& rule)
+    : system_(system), rhs_(system.size()) {
   K_eff_.compute(rule.effective_stiffness(system), system.dense_block_dofs());
 }
 

@@ -39,7 +39,8 @@ class DirectSolve final : public EffectiveStiffnessSolver {
 
 class ConjugateGradients final : public EffectiveStiffnessSolver {
  public:
-  ConjugateGradients(const model::SecondOrderSystem& system, const model::AverageAcceleration& rule, solvers::CgSettings settings);
+  ConjugateGradients(const model::SecondOrderSystem& system, const model::AverageAcceleration& rule,
+                     solvers::CgSettings settings);
   void solve(const Vector& f, const Vector& w, Vector& x) override;
   bool uses_initial_guess() const override { return true; }
   long iterations() const override { return iterations_; }

@@ -44,8 +44,8 @@ int GslOdeiv2::jacobian(double, const double*, double* dfdy, double dfdt[], void
 void GslOdeiv2::reset(const model::SecondOrderSystem& system, const model::State& initial) {
   const Index n = system.size();
   if (n > max_gsl_dofs)
-    throw InputError(name_ + ": GSL's dense Jacobian is limited to " + std::to_string(max_gsl_dofs) +
-                     " dofs; this system has " + std::to_string(n) + " (use an ARKODE or IDA method)");
+    throw InputError(name_ + ": GSL's dense Jacobian is limited to " + std::to_string(max_gsl_dofs) + " dofs; this system has " +
+                     std::to_string(n) + " (use an ARKODE or IDA method)");
   system_ = &system;
   form_ = std::make_unique<FirstOrderForm>(system, FirstOrderForm::Mass::inverted);
   jacobian_ = form_->dense_jacobian();
@@ -78,8 +78,7 @@ void GslOdeiv2::advance_to(double t_out, model::State& state) {
     if (n > 0) status = gsl_odeiv2_driver_apply_fixed_step(driver_.get(), &t_, control_.dt, n, y_.data());
   }
   if (pending_) std::rethrow_exception(std::exchange(pending_, nullptr));
-  if (status != GSL_SUCCESS)
-    throw SolverError(name_ + ": failed at t = " + number_text(t_) + " s: " + gsl_strerror(status));
+  if (status != GSL_SUCCESS) throw SolverError(name_ + ": failed at t = " + number_text(t_) + " s: " + gsl_strerror(status));
   if (!y_.allFinite())
     throw SolverError(name_ + ": the solution diverged (non-finite values) by t = " + number_text(t_) +
                       " s; the step is beyond the method's stability limit");

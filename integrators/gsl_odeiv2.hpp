@@ -19,8 +19,7 @@ inline constexpr Index max_gsl_dofs = 2000;  ///< of the second-order system (th
 
 struct IntegratorInfo;
 /// The factory's maker for the table's GSL rows.
-std::unique_ptr<Integrator> make_gsl(const IntegratorInfo& info, const gsl_odeiv2_step_type* stepper,
-                                     const StepControl& control);
+std::unique_ptr<Integrator> make_gsl(const IntegratorInfo& info, const gsl_odeiv2_step_type* stepper, const StepControl& control);
 
 struct GslDriverDeleter {
   void operator()(gsl_odeiv2_driver* driver) const { gsl_odeiv2_driver_free(driver); }

@@ -7,8 +7,8 @@
 
 #include "common/errors.hpp"
 #include "common/number_text.hpp"
-#include "integrators/callback_guard.hpp"
 #include "integrators/block_matrix.hpp"
+#include "integrators/callback_guard.hpp"
 #include "integrators/integrator_table.hpp"
 #include "integrators/sundials/ida_support.hpp"
 #include "solvers/cholesky.hpp"
@@ -39,9 +39,7 @@ int Ida::residual(double t, N_Vector y, N_Vector yp, N_Vector r, void* self) {
 
 int Ida::jacobian(double, double c_j, N_Vector, N_Vector, N_Vector, SUNMatrix J, void* self, N_Vector, N_Vector, N_Vector) {
   auto* me = static_cast<Ida*>(self);
-  return guarded_callback(me->pending_, -1, [&] {
-    sundials::write_newton_matrix(me->dF_dy_, me->dF_dyp_, c_j, J);
-  });
+  return guarded_callback(me->pending_, -1, [&] { sundials::write_newton_matrix(me->dF_dy_, me->dF_dyp_, c_j, J); });
 }
 
 void Ida::reset(const model::SecondOrderSystem& system, const model::State& initial) {

@@ -28,8 +28,7 @@ class Ida final : public Integrator {
 
  private:
   static int residual(double t, N_Vector y, N_Vector yp, N_Vector r, void* self);
-  static int jacobian(double t, double c_j, N_Vector, N_Vector, N_Vector, SUNMatrix J, void* self, N_Vector, N_Vector,
-                      N_Vector);
+  static int jacobian(double t, double c_j, N_Vector, N_Vector, N_Vector, SUNMatrix J, void* self, N_Vector, N_Vector, N_Vector);
 
   std::string name_;
   int max_order_;

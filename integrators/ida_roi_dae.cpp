@@ -6,14 +6,13 @@
 
 #include "common/errors.hpp"
 #include "common/number_text.hpp"
-#include "integrators/callback_guard.hpp"
 #include "integrators/block_matrix.hpp"
+#include "integrators/callback_guard.hpp"
 #include "integrators/sundials/ida_support.hpp"
 
 namespace roifem::integrators {
 
-IdaRoiDae::IdaRoiDae(const model::SecondOrderSystem& full, const roi::Partition& partition, StepControl control,
-                     int max_order)
+IdaRoiDae::IdaRoiDae(const model::SecondOrderSystem& full, const roi::Partition& partition, StepControl control, int max_order)
     : full_(full), partition_(partition), control_(control), max_order_(max_order), context_(sundials::make_context()) {
   const auto& d = partition_.d;
   const auto& s = partition_.s;
@@ -56,12 +55,9 @@ int IdaRoiDae::residual(double t, N_Vector y, N_Vector yp, N_Vector r, void* sel
   });
 }
 
-int IdaRoiDae::jacobian(double, double c_j, N_Vector, N_Vector, N_Vector, SUNMatrix J, void* self, N_Vector, N_Vector,
-                        N_Vector) {
+int IdaRoiDae::jacobian(double, double c_j, N_Vector, N_Vector, N_Vector, SUNMatrix J, void* self, N_Vector, N_Vector, N_Vector) {
   auto* me = static_cast<IdaRoiDae*>(self);
-  return guarded_callback(me->pending_, -1, [&] {
-    sundials::write_newton_matrix(me->dF_dy_, me->dF_dyp_, c_j, J);
-  });
+  return guarded_callback(me->pending_, -1, [&] { sundials::write_newton_matrix(me->dF_dy_, me->dF_dyp_, c_j, J); });
 }
 
 void IdaRoiDae::reset(double t0) {
@@ -80,7 +76,8 @@ void IdaRoiDae::reset(double t0) {
   id.head(2 * nd).setOnes();  // differential: u_d, v_d
   id.tail(ns).setZero();      // algebraic: u_s
   auto check = [&](int flag, const char* call) {
-    if (flag < 0) throw SolverError(std::string("IDA ROI DAE: ") + call + " failed: " + sundials::flag_name(IDAGetReturnFlagName(flag)));
+    if (flag < 0)
+      throw SolverError(std::string("IDA ROI DAE: ") + call + " failed: " + sundials::flag_name(IDAGetReturnFlagName(flag)));
   };
   memory_.reset(IDACreate(context_.get()));
   if (!memory_) throw SolverError("IDA ROI DAE: IDACreate failed");
@@ -105,7 +102,8 @@ void IdaRoiDae::advance_to(double t_out, Vector& u_d, Vector& u_s) {
   const int flag = IDASolve(memory_.get(), t_out, &t_, y_.get(), yp_.get(), IDA_NORMAL);
   if (pending_) std::rethrow_exception(std::exchange(pending_, nullptr));
   if (flag < 0)
-    throw SolverError("IDA ROI DAE: failed at t = " + number_text(t_) + " s: " + sundials::flag_name(IDAGetReturnFlagName(flag)) + last_error_.detail());
+    throw SolverError("IDA ROI DAE: failed at t = " + number_text(t_) + " s: " + sundials::flag_name(IDAGetReturnFlagName(flag)) +
+                      last_error_.detail());
   const Index nd = K_dd_.rows(), ns = K_ss_.rows();
   const auto y = sundials::view(y_.get());
   u_d = y.head(nd);

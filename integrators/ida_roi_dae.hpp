@@ -21,8 +21,7 @@ namespace roifem::integrators {
 class IdaRoiDae {
  public:
   /// `full`: the whole model over all free dofs; `partition`: its ROI split.
-  IdaRoiDae(const model::SecondOrderSystem& full, const roi::Partition& partition, StepControl control,
-            int max_order = 5);
+  IdaRoiDae(const model::SecondOrderSystem& full, const roi::Partition& partition, StepControl control, int max_order = 5);
   IdaRoiDae(const IdaRoiDae&) = delete;
   IdaRoiDae& operator=(const IdaRoiDae&) = delete;
 
@@ -34,8 +33,7 @@ class IdaRoiDae {
 
  private:
   static int residual(double t, N_Vector y, N_Vector yp, N_Vector r, void* self);
-  static int jacobian(double t, double c_j, N_Vector, N_Vector, N_Vector, SUNMatrix J, void* self, N_Vector, N_Vector,
-                      N_Vector);
+  static int jacobian(double t, double c_j, N_Vector, N_Vector, N_Vector, SUNMatrix J, void* self, N_Vector, N_Vector, N_Vector);
 
   const model::SecondOrderSystem& full_;
   roi::Partition partition_;

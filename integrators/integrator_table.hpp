@@ -18,14 +18,14 @@ enum class Family { trapezoid, arkode, ida, gsl };
 
 /// What solves the method's linear systems.
 enum class LinearSolver {
-  none,              ///< explicit: no linear system (a lumped M is inverted by a product)
-  cholmod,           ///< K_eff = K + 2/dt C + 4/dt^2 M by a sparse Cholesky factor (CHOLMOD)
-  jacobi_cg,         ///< K_eff by Jacobi-preconditioned conjugate gradients (no factor)
-  klu,               ///< the sparse Newton matrix of the first-order form by KLU
-  klu_mass,          ///< the same with M given to the library as a mass matrix (a second KLU)
-  schur,             ///< the Newton matrix's Schur complement by one SPD Cholesky solve of size n
-  schur_mass,        ///< the same with M as a mass matrix
-  dense,             ///< GSL's dense LU of the 2n x 2n Jacobian
+  none,        ///< explicit: no linear system (a lumped M is inverted by a product)
+  cholmod,     ///< K_eff = K + 2/dt C + 4/dt^2 M by a sparse Cholesky factor (CHOLMOD)
+  jacobi_cg,   ///< K_eff by Jacobi-preconditioned conjugate gradients (no factor)
+  klu,         ///< the sparse Newton matrix of the first-order form by KLU
+  klu_mass,    ///< the same with M given to the library as a mass matrix (a second KLU)
+  schur,       ///< the Newton matrix's Schur complement by one SPD Cholesky solve of size n
+  schur_mass,  ///< the same with M as a mass matrix
+  dense,       ///< GSL's dense LU of the 2n x 2n Jacobian
 };
 
 /// A Runge-Kutta method's Butcher tableau.
@@ -40,16 +40,16 @@ using IntegratorMaker = std::unique_ptr<Integrator> (*)(const IntegratorInfo&, c
 struct IntegratorInfo {
   std::string name;
   Family family = Family::trapezoid;
-  int order = 0;              ///< theoretical order of accuracy (GSL's msadams / msbdf: their highest)
+  int order = 0;  ///< theoretical order of accuracy (GSL's msadams / msbdf: their highest)
   bool is_explicit = false;
-  bool fixed_step = false;    ///< takes a fixed dt on request; a method without one runs error-controlled
-                              ///< at rtol 1e-8, atol 1e-12 when asked for a fixed step
-  bool adaptive = false;      ///< has an error estimate and takes rtol / atol
+  bool fixed_step = false;  ///< takes a fixed dt on request; a method without one runs error-controlled
+                            ///< at rtol 1e-8, atol 1e-12 when asked for a fixed step
+  bool adaptive = false;    ///< has an error estimate and takes rtol / atol
   LinearSolver linear_solver = LinearSolver::none;
-  int method_id = -1;         ///< the family's own choice: an ARKODE table ID, IDA's maximum BDF order, an index of GSL's steppers
+  int method_id = -1;  ///< the family's own choice: an ARKODE table ID, IDA's maximum BDF order, an index of GSL's steppers
   ButcherTableau (*tableau)() = nullptr;  ///< explicit Runge-Kutta methods: the tableau the stability search reads
   IntegratorMaker make = nullptr;
-  std::string summary;        ///< one line for --help and the README
+  std::string summary;  ///< one line for --help and the README
 };
 
 /// Every integrator, in the order `compare` runs them and `--help` lists them.

@@ -33,14 +33,14 @@ class ModalElimination final : public EffectiveStiffnessSolver {
   void solve(const Vector& f, const Vector& w, Vector& x) override;
 
  private:
-  Index n_d_ = 0;                // ROI dofs, first
+  Index n_d_ = 0;  // ROI dofs, first
   double c_ = 0;
-  SparseMatrix M_dd_;            // the split M's sparse part over d (diagonal for a lumped M)
-  std::vector<Index> interface_; // rows of B and of the interface mass block
+  SparseMatrix M_dd_;               // the split M's sparse part over d (diagonal for a lumped M)
+  std::vector<Index> interface_;    // rows of B and of the interface mass block
   DenseMatrix interface_operator_;  // G - c B D^-1 B^T (G: M_dd's interface block; lower triangle read)
-  DenseMatrix B_;                // #interface x k
-  Vector D_inverse_;             // (Lambda + c I)^-1
-  solvers::Cholesky factor_;     // K_eff,dd - c^2 B D^-1 B^T, interface last
+  DenseMatrix B_;                   // #interface x k
+  Vector D_inverse_;                // (Lambda + c I)^-1
+  solvers::Cholesky factor_;        // K_eff,dd - c^2 B D^-1 B^T, interface last
   Vector r_d_, w_i_, x_i_, product_i_, r_q_, y_q_;
 };
 

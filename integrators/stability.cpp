@@ -3,7 +3,6 @@
 #include <complex>
 #include <limits>
 
-
 namespace roifem::integrators {
 
 namespace {

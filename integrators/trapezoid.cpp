@@ -65,7 +65,8 @@ void Trapezoid::step(model::State& s) {
   ++stats_.rhs_evals;
   ++stats_.lin_solves;
   if (!s.u.allFinite())
-    throw SolverError(std::string(name()) + ": non-finite displacement at step " + std::to_string(k_) + ", t = " + number_text(s.t) + " s");
+    throw SolverError(std::string(name()) + ": non-finite displacement at step " + std::to_string(k_) +
+                      ", t = " + number_text(s.t) + " s");
 }
 
 void Trapezoid::advance_to(double t_out, model::State& state) {

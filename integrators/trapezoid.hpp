@@ -1,7 +1,7 @@
 #pragma once
 /// The trapezoidal rule (Newmark beta = 1/4, gamma = 1/2, average acceleration: the recurrence of
-/// model/average_acceleration.hpp), fixed step, as in Hansen & Larsen (1998). Unconditionally stable, second order, no numerical damping:
-/// without C and f the discrete energy v^T M v / 2 + u^T K u / 2 is conserved exactly.
+/// model/average_acceleration.hpp), fixed step, as in Hansen & Larsen (1998). Unconditionally stable, second order, no numerical
+/// damping: without C and f the discrete energy v^T M v / 2 + u^T K u / 2 is conserved exactly.
 ///   K_eff u_{n+1} = f_{n+1} + M (4/dt^2 u_n + 4/dt v_n + a_n) + C (2/dt u_n + v_n),
 ///   K_eff = K + 2/dt C + 4/dt^2 M  (factored once),
 ///   a_{n+1} = 4/dt^2 (u_{n+1} - u_n) - 4/dt v_n - a_n,   v_{n+1} = v_n + dt/2 (a_n + a_{n+1}).
@@ -17,8 +17,8 @@
 #include <memory>
 #include <optional>
 
-#include "integrators/integrator.hpp"
 #include "integrators/effective_stiffness.hpp"
+#include "integrators/integrator.hpp"
 #include "integrators/step_control.hpp"
 #include "model/average_acceleration.hpp"
 #include "solvers/jacobi_cg.hpp"

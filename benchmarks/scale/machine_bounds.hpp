@@ -11,9 +11,9 @@
 namespace roifem::bench {
 
 struct MachineBounds {
-  int threads = 0;            ///< cores the read ran on
-  double dgemm_gflops = 0;    ///< n = 4000, median of 5
-  double read_gb_per_s = 0;   ///< 400 MB, median of 7
+  int threads = 0;           ///< cores the read ran on
+  double dgemm_gflops = 0;   ///< n = 4000, median of 5
+  double read_gb_per_s = 0;  ///< 400 MB, median of 7
 
   /// "key=value" lines (to pass through a child process) and back.
   std::string serialize() const;

@@ -19,7 +19,7 @@ struct ProbeResult {
 using RoiProbe = std::function<ProbeResult(long count)>;
 
 struct RateSearch {
-  long nodes = 0;  ///< of the brain (from the probes)
+  long nodes = 0;                                           ///< of the brain (from the probes)
   long roi_nodes = 0, system_dofs = 0, interface_dofs = 0;  ///< of the largest ROI that holds
   double step_median_s = 0;
   std::vector<std::pair<long, ProbeResult>> probes;  ///< in probing order

@@ -20,7 +20,7 @@ namespace roifem::bench {
 
 namespace {
 
-constexpr double dt = 0.05;             // the paper's step
+constexpr double dt = 0.05;               // the paper's step
 constexpr double wall_force_N = 0.01601;  // as scenarios/paper-setup1.toml
 
 double peak_rss_mb() {
@@ -106,7 +106,8 @@ struct Condensed {
 
 Condensed condense(const Brain& brain, Index roi_nodes) {
   const auto& dofs = *brain.model.dofs;
-  const auto partition = roi::partition_dofs(brain.model.system.K, dofs, roi::select_roi_nodes(brain.mesh, dofs, nearest_target(roi_nodes)));
+  const auto partition =
+      roi::partition_dofs(brain.model.system.K, dofs, roi::select_roi_nodes(brain.mesh, dofs, nearest_target(roi_nodes)));
   Condensed c;
   c.interface_dofs = static_cast<long>(partition.interface.size());
   c.condensation = std::make_unique<condensation::ReducedModel>(brain.model.system, partition, dofs);
@@ -121,8 +122,8 @@ std::string ScaleMeasurement::serialize() const {
   out << "nodes=" << nodes << "\ndofs=" << dofs << "\nroi_nodes=" << roi_nodes << "\nsystem_dofs=" << system_dofs
       << "\ninterface_dofs=" << interface_dofs << "\nread_s=" << read_s << "\nassembly_s=" << assembly_s
       << "\nfactorization_s=" << factorization_s << "\ncondensation_s=" << condensation_s
-      << "\nintegrator_setup_s=" << integrator_setup_s << "\nstep_median_s=" << step_median_s
-      << "\nstep_p99_s=" << step_p99_s << "\nsteps_timed=" << steps_timed << "\npeak_rss_mb=" << peak_rss_mb
+      << "\nintegrator_setup_s=" << integrator_setup_s << "\nstep_median_s=" << step_median_s << "\nstep_p99_s=" << step_p99_s
+      << "\nsteps_timed=" << steps_timed << "\npeak_rss_mb=" << peak_rss_mb
       << "\ncg_iterations_per_step=" << cg_iterations_per_step << "\ndeviation_vs_direct=" << deviation_vs_direct
       << "\ncheck_note=" << check_note << "\n";
   return out.str();
@@ -158,8 +159,8 @@ ScaleMeasurement measure_model(const std::filesystem::path& mesh_file, const Mod
   m.dofs = static_cast<long>(brain->model.system.size());
   m.read_s = brain->read_s;
   m.assembly_s = brain->assembly_s;
-  integrators::Trapezoid trapezoid = spec.conjugate_gradients ? integrators::Trapezoid(dt, solvers::CgSettings{})
-                                                               : integrators::Trapezoid(dt);
+  integrators::Trapezoid trapezoid =
+      spec.conjugate_gradients ? integrators::Trapezoid(dt, solvers::CgSettings{}) : integrators::Trapezoid(dt);
   const model::SecondOrderSystem* system = &brain->model.system;
   Condensed condensed;
   if (spec.roi_nodes > 0) {

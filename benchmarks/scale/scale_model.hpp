@@ -15,25 +15,25 @@
 namespace roifem::bench {
 
 struct ModelSpec {
-  std::string label;   ///< "full", "full-cg", "roi-300", "roi-3%", ...
-  Index roi_nodes = 0; ///< 0: the full model
+  std::string label;                 ///< "full", "full-cg", "roi-300", "roi-3%", ...
+  Index roi_nodes = 0;               ///< 0: the full model
   bool conjugate_gradients = false;  ///< the full model by trapezoid-cg (no factor) instead of CHOLMOD
   long check_steps = 0;              ///< trapezoid-cg: steps compared against the direct solve (when its factor fits)
 };
 
 struct TimingOptions {
-  long max_steps = 200;        ///< timed steps at most
-  double step_budget_s = 15;   ///< fewer steps when a model steps slowly (at least 10)
+  long max_steps = 200;       ///< timed steps at most
+  double step_budget_s = 15;  ///< fewer steps when a model steps slowly (at least 10)
   long warmup_steps = 3;
 };
 
 struct ScaleMeasurement {
   long nodes = 0, dofs = 0, roi_nodes = 0, system_dofs = 0, interface_dofs = 0;
-  double read_s = 0;             ///< mesh file read and checked
-  double assembly_s = 0;         ///< dof map, K, M, C and loads
-  double factorization_s = 0;    ///< condensed: ordering + factor of K over s and I; full: K_eff's factor
-  double condensation_s = 0;     ///< S read off the factor, loads reduced, reduced system assembled
-  double integrator_setup_s = 0; ///< condensed: the factor of the condensed K_eff
+  double read_s = 0;              ///< mesh file read and checked
+  double assembly_s = 0;          ///< dof map, K, M, C and loads
+  double factorization_s = 0;     ///< condensed: ordering + factor of K over s and I; full: K_eff's factor
+  double condensation_s = 0;      ///< S read off the factor, loads reduced, reduced system assembled
+  double integrator_setup_s = 0;  ///< condensed: the factor of the condensed K_eff
   double step_median_s = 0, step_p99_s = 0;
   long steps_timed = 0;
   double peak_rss_mb = 0;

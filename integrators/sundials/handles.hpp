@@ -70,9 +70,7 @@ inline Vector make_vector(Index n, SUNContext ctx) {
 }
 
 /// A view of an N_Vector's data as an Eigen vector.
-inline Eigen::Map<Eigen::VectorXd> view(N_Vector v) {
-  return {N_VGetArrayPointer(v), static_cast<Index>(N_VGetLength(v))};
-}
+inline Eigen::Map<Eigen::VectorXd> view(N_Vector v) { return {N_VGetArrayPointer(v), static_cast<Index>(N_VGetLength(v))}; }
 
 /// The name of a return flag from ARKStepGetReturnFlagName / IDAGetReturnFlagName, which
 /// malloc the string they return: copied, and the original freed.

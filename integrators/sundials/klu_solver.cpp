@@ -6,8 +6,7 @@
 
 namespace roifem::integrators::sundials {
 
-KluSolver::KluSolver(N_Vector y, SUNMatrix A, SUNContext context, KluOrdering ordering)
-    : klu_(SUNLinSol_KLU(y, A, context)) {
+KluSolver::KluSolver(N_Vector y, SUNMatrix A, SUNContext context, KluOrdering ordering) : klu_(SUNLinSol_KLU(y, A, context)) {
   if (!klu_) throw SolverError("SUNDIALS: cannot create the KLU linear solver");
   if (SUNLinSol_KLUSetOrdering(klu_.get(), static_cast<int>(ordering)) != 0)
     throw SolverError("SUNDIALS: KLU rejected the ordering");
@@ -42,6 +41,8 @@ int KluSolver::solve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b, dou
   return SUNLinSolSolve(static_cast<KluSolver*>(S->content)->klu_.get(), A, x, b, tol);
 }
 
-sunindextype KluSolver::last_flag(SUNLinearSolver S) { return SUNLinSolLastFlag(static_cast<KluSolver*>(S->content)->klu_.get()); }
+sunindextype KluSolver::last_flag(SUNLinearSolver S) {
+  return SUNLinSolLastFlag(static_cast<KluSolver*>(S->content)->klu_.get());
+}
 
 }  // namespace roifem::integrators::sundials

@@ -24,9 +24,7 @@ void add_constant(N_Vector x, double b, N_Vector z) { map(z) = map(x).array() + 
 double dot(N_Vector x, N_Vector y) { return map(x).dot(map(y)); }
 double max_norm(N_Vector x) { return NV_LENGTH_S(x) == 0 ? 0.0 : map(x).lpNorm<Eigen::Infinity>(); }
 double weighted_square_sum(N_Vector x, N_Vector w) { return map(x).cwiseProduct(map(w)).squaredNorm(); }
-double wrms_norm(N_Vector x, N_Vector w) {
-  return std::sqrt(weighted_square_sum(x, w) / static_cast<double>(NV_LENGTH_S(x)));
-}
+double wrms_norm(N_Vector x, N_Vector w) { return std::sqrt(weighted_square_sum(x, w) / static_cast<double>(NV_LENGTH_S(x))); }
 
 // z = sum_i c_i X_i; z may be one of the X_i (SUNDIALS allows X[0] == z).
 int linear_combination(int count, double* c, N_Vector* X, N_Vector z) {

@@ -2,8 +2,8 @@
 #include <iostream>
 
 #include "app/commands.hpp"
-#include "integrators/integrator_table.hpp"
 #include "experiments/compare_experiment.hpp"
+#include "integrators/integrator_table.hpp"
 #include "scenario/scenario.hpp"
 
 namespace roifem::app {
@@ -14,11 +14,11 @@ void add_compare_command(CLI::App& app, Action& action) {
     experiments::CompareOptions compare;
   };
   auto o = std::make_shared<Options>();
-  auto* cmd = app.add_subcommand(
-      "compare",
-      "Run every integrator (trapezoid, ARKODE, IDA, GSL) on one scenario across fixed steps and tolerances, "
-      "measure true errors against the exact modal solution, find stability limits; writes compare.csv, "
-      "stability.csv and work-precision plots");
+  auto* cmd =
+      app.add_subcommand("compare",
+                         "Run every integrator (trapezoid, ARKODE, IDA, GSL) on one scenario across fixed steps and tolerances, "
+                         "measure true errors against the exact modal solution, find stability limits; writes compare.csv, "
+                         "stability.csv and work-precision plots");
   cmd->add_option("SCENARIO", o->scenario, "Scenario file (.toml); its dt is the output grid")->required();
   cmd->footer(integrators::integrator_table_text());
   cmd->add_option("--out", o->compare.out, "Output directory")->required();
@@ -32,9 +32,8 @@ void add_compare_command(CLI::App& app, Action& action) {
                   "Stop a run taking longer (and skip its tighter tolerances / smaller steps)")
       ->capture_default_str();
   cmd->add_flag("!--no-plots", o->compare.plots, "Skip the PNG plots");
-  cmd->callback([&action, o] {
-    action = [o] { experiments::run_compare(scenario::read_scenario(o->scenario), o->compare, std::cout); };
-  });
+  cmd->callback(
+      [&action, o] { action = [o] { experiments::run_compare(scenario::read_scenario(o->scenario), o->compare, std::cout); }; });
 }
 
 }  // namespace roifem::app

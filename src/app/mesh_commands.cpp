@@ -18,8 +18,9 @@ void add_mesh_command(CLI::App& app, Action& action) {
     double tolerance = 3;
   };
   auto opts = std::make_shared<Options>();
-  auto* cmd = app.add_subcommand("mesh", "Generate a simplified brain mesh (ellipsoid 14 x 17 x 10 cm with a "
-                                         "surgical opening) with Gmsh, in millimetres");
+  auto* cmd = app.add_subcommand("mesh",
+                                 "Generate a simplified brain mesh (ellipsoid 14 x 17 x 10 cm with a "
+                                 "surgical opening) with Gmsh, in millimetres");
   cmd->add_option("--nodes", opts->nodes, "Number of nodes wanted (e.g. 800, 5000, 20000, 100000, 300000)")
       ->capture_default_str();
   cmd->add_option("--out", opts->out, "Output mesh file (.msh, Gmsh 4.1 ASCII)")->required();
@@ -28,10 +29,9 @@ void add_mesh_command(CLI::App& app, Action& action) {
     action = [opts] {
       Stopwatch clock;
       const auto result = mesh::generate_brain_mesh(opts->nodes, opts->out, {}, opts->tolerance / 100.0);
-      std::printf("wrote %s: %lld nodes, %lld tetrahedra (element size %.2f mm, %d meshings, %.1f s)\n",
-                  opts->out.c_str(), static_cast<long long>(result.mesh.num_nodes()),
-                  static_cast<long long>(result.mesh.num_tets()), result.element_size_mm, result.attempts,
-                  clock.seconds());
+      std::printf("wrote %s: %lld nodes, %lld tetrahedra (element size %.2f mm, %d meshings, %.1f s)\n", opts->out.c_str(),
+                  static_cast<long long>(result.mesh.num_nodes()), static_cast<long long>(result.mesh.num_tets()),
+                  result.element_size_mm, result.attempts, clock.seconds());
     };
   });
 }
@@ -50,15 +50,13 @@ void add_info_command(CLI::App& app, Action& action) {
       std::printf("nodes         %lld\n", static_cast<long long>(s.nodes));
       std::printf("tetrahedra    %lld\n", static_cast<long long>(s.tets));
       std::printf("volume        %.6g mm^3 (%.4g cm^3)\n", s.volume * 1e9, s.volume * 1e6);
-      std::printf("quality       min %.3f, median %.3f  (6 sqrt(2) V / l_rms^3; 1 = regular)\n", s.quality_min,
-                  s.quality_median);
-      std::printf("bounding box  [%.2f, %.2f] x [%.2f, %.2f] x [%.2f, %.2f] mm\n", s.box_min.x() * to_mm,
-                  s.box_max.x() * to_mm, s.box_min.y() * to_mm, s.box_max.y() * to_mm, s.box_min.z() * to_mm,
-                  s.box_max.z() * to_mm);
+      std::printf("quality       min %.3f, median %.3f  (6 sqrt(2) V / l_rms^3; 1 = regular)\n", s.quality_min, s.quality_median);
+      std::printf("bounding box  [%.2f, %.2f] x [%.2f, %.2f] x [%.2f, %.2f] mm\n", s.box_min.x() * to_mm, s.box_max.x() * to_mm,
+                  s.box_min.y() * to_mm, s.box_max.y() * to_mm, s.box_min.z() * to_mm, s.box_max.z() * to_mm);
       std::printf("named sets    %zu\n", m.sets.size());
       for (const auto& [name, set] : m.sets)
-        std::printf("  %-16s %dD  %6zu nodes  %6zu tetrahedra  %6zu triangles\n", name.c_str(), set.dim,
-                    set.nodes.size(), set.tets.size(), set.triangles.size());
+        std::printf("  %-16s %dD  %6zu nodes  %6zu tetrahedra  %6zu triangles\n", name.c_str(), set.dim, set.nodes.size(),
+                    set.tets.size(), set.triangles.size());
     };
   });
 }

@@ -20,11 +20,11 @@ std::string default_brain_mesh() {
 void add_paper_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<experiments::PaperOptions>();
   o->mesh = default_brain_mesh();
-  auto* cmd = app.add_subcommand(
-      "paper",
-      "Reproduce Hansen & Larsen (1998): the full dynamic brain against two condensed ROI models "
-      "(306 and 228 nodes) while two forces pull the opening apart (ramps 0.5, 1, 2 s; dt 0.05 s; 200 steps). "
-      "Prints Table 2 and writes errors.csv, timing.csv, results.h5/.xdmf and PNG plots");
+  auto* cmd =
+      app.add_subcommand("paper",
+                         "Reproduce Hansen & Larsen (1998): the full dynamic brain against two condensed ROI models "
+                         "(306 and 228 nodes) while two forces pull the opening apart (ramps 0.5, 1, 2 s; dt 0.05 s; 200 steps). "
+                         "Prints Table 2 and writes errors.csv, timing.csv, results.h5/.xdmf and PNG plots");
   cmd->add_option("--out", o->out, "Output directory")->required();
   cmd->add_option("--mesh", o->mesh, "The 800-node brain mesh (mm)")->capture_default_str();
   cmd->add_option("--material", o->material, "Material preset: paper (Table 1) or brain")->capture_default_str();

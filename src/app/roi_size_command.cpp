@@ -17,10 +17,13 @@ void add_roi_size_command(CLI::App& app, Action& action) {
       "Find the smallest ROI (the N nodes nearest the scenario's [roi] target) whose max error against the full "
       "dynamic model stays within a budget over the scenario's run, for each reduction of the static part; "
       "prints size, error and step cost (and writes DIR/roi_size.csv with --out)");
-  cmd->add_option("SCENARIO", o->size.scenario, "Scenario file (.toml) with [roi] kind = nearest or ball (its target)")->required();
-  cmd->add_option("--max-error-mm", o->size.max_error_mm, "Error budget: max distance to the full model over ROI nodes and steps (mm)")
+  cmd->add_option("SCENARIO", o->size.scenario, "Scenario file (.toml) with [roi] kind = nearest or ball (its target)")
       ->required();
-  cmd->add_option("--reductions", o->reductions, "Reductions to size: static, guyan, craig-bampton-K, pod-K")->capture_default_str();
+  cmd->add_option("--max-error-mm", o->size.max_error_mm,
+                  "Error budget: max distance to the full model over ROI nodes and steps (mm)")
+      ->required();
+  cmd->add_option("--reductions", o->reductions, "Reductions to size: static, guyan, craig-bampton-K, pod-K")
+      ->capture_default_str();
   cmd->add_option("--start-nodes", o->size.start_nodes, "Smallest ROI tried (nodes)")->capture_default_str();
   cmd->add_option("--out", o->size.out, "Output directory for roi_size.csv (optional)");
   cmd->callback([&action, o] {

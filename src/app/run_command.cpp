@@ -13,15 +13,15 @@ void add_run_command(CLI::App& app, Action& action) {
     std::string scenario, out;
   };
   auto o = std::make_shared<Options>();
-  auto* cmd = app.add_subcommand("run", "Run one scenario (TOML: mesh, material, fixed sets, loads with ramps, ROI, "
-                                        "integrator, dt, steps, outputs; see scenarios/README.md) and write "
-                                        "DIR/results.h5 and DIR/results.xdmf");
+  auto* cmd = app.add_subcommand("run",
+                                 "Run one scenario (TOML: mesh, material, fixed sets, loads with ramps, ROI, "
+                                 "integrator, dt, steps, outputs; see scenarios/README.md) and write "
+                                 "DIR/results.h5 and DIR/results.xdmf");
   cmd->add_option("SCENARIO", o->scenario, "Scenario file (.toml)")->required();
   cmd->footer(integrators::integrator_table_text());
   cmd->add_option("--out", o->out, "Output directory")->required();
-  cmd->callback([&action, o] {
-    action = [o] { simulation::run_scenario(scenario::read_scenario(o->scenario), o->out, std::cout); };
-  });
+  cmd->callback(
+      [&action, o] { action = [o] { simulation::run_scenario(scenario::read_scenario(o->scenario), o->out, std::cout); }; });
 }
 
 }  // namespace roifem::app

@@ -41,8 +41,7 @@ void ensure_writable_directory(const fs::path& directory) {
   std::error_code ec;
   fs::create_directories(directory, ec);
   if (ec) throw InputError(directory.string() + ": cannot create output directory: " + ec.message());
-  if (::access(directory.c_str(), W_OK) != 0)
-    throw InputError(directory.string() + ": output directory is not writable");
+  if (::access(directory.c_str(), W_OK) != 0) throw InputError(directory.string() + ": output directory is not writable");
 }
 
 void check_output_directory(const fs::path& directory) {

@@ -47,8 +47,7 @@ void ReducedModel::assemble(const model::SecondOrderSystem& full, const DenseMat
   reduced_.M = assembled(reduced_.M_split);
   reduced_.C = assembled(reduced_diagonal_operator(full.C, partition_, X, basis_, carries_mass));
   reduced_.damping = full.damping;  // T^T (alpha M) T = alpha M_r
-  if (k > 0)
-    reduced_.modal = model::ModalBlock{.count = k, .interface_dofs = static_cast<Index>(partition_.interface.size())};
+  if (k > 0) reduced_.modal = model::ModalBlock{.count = k, .interface_dofs = static_cast<Index>(partition_.interface.size())};
   if (!carries_mass) reduced_.M_split = {};  // diagonal: the plain product is the fast one
   ReducedLoads loads = reduce_loads(full.load, partition_, *factor_, basis_);
   reduced_.load = std::move(loads.reduced);

@@ -74,7 +74,7 @@ class ReducedModel {
   roi::Partition partition_;
   Reduction reduction_;
   std::unique_ptr<StaticPartFactor> factor_;
-  model::Modes basis_;                  ///< Phi (#s x k, M_ss-orthonormal) and W
+  model::Modes basis_;  ///< Phi (#s x k, M_ss-orthonormal) and W
   model::SecondOrderSystem reduced_;
   model::LoadHistory static_response_;  ///< per load term: K_ss^-1 p_s, less its modal part
   CondensationTimings timings_;

@@ -48,8 +48,8 @@ model::SplitMatrix reduced_stiffness(const SparseMatrix& K, const roi::Partition
   return K_r;
 }
 
-model::SplitMatrix reduced_diagonal_operator(const SparseMatrix& D_full, const roi::Partition& partition,
-                                             const DenseMatrix& X, const model::Modes& basis, bool carries_mass) {
+model::SplitMatrix reduced_diagonal_operator(const SparseMatrix& D_full, const roi::Partition& partition, const DenseMatrix& X,
+                                             const model::Modes& basis, bool carries_mass) {
   const auto n_d = static_cast<Index>(partition.d.size());
   const auto n_i = static_cast<Index>(partition.interface.size());
   const Index k = basis.omega.size();

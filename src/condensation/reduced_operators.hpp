@@ -23,8 +23,8 @@ model::SplitMatrix reduced_stiffness(const SparseMatrix& K, const roi::Partition
                                      const Vector& omega);
 
 /// `D_full` diagonal. Without `carries_mass` only D_dd, padded by zeros to the reduced size.
-model::SplitMatrix reduced_diagonal_operator(const SparseMatrix& D_full, const roi::Partition& partition,
-                                             const DenseMatrix& X, const model::Modes& basis, bool carries_mass);
+model::SplitMatrix reduced_diagonal_operator(const SparseMatrix& D_full, const roi::Partition& partition, const DenseMatrix& X,
+                                             const model::Modes& basis, bool carries_mass);
 
 struct ReducedLoads {
   model::LoadHistory reduced;          ///< f_r, per load term

@@ -17,10 +17,10 @@ enum class StaticBasis { none, fixed_interface_modes, pod };
 
 struct ReductionInfo {
   ReductionKind kind;
-  std::string_view key;     ///< scenario: [roi] reduction = "<key>"; CLI label: <key> or <key>-K
-  bool counted;             ///< the CLI label takes a count K (modes or vectors): scenario key `modes`
-  bool takes_cutoff;        ///< instead of K, every mode below a frequency: scenario key `cutoff_rad_s`
-  bool carries_mass;        ///< the static part's inertia moves with the ROI (needs a lumped M, C)
+  std::string_view key;  ///< scenario: [roi] reduction = "<key>"; CLI label: <key> or <key>-K
+  bool counted;          ///< the CLI label takes a count K (modes or vectors): scenario key `modes`
+  bool takes_cutoff;     ///< instead of K, every mode below a frequency: scenario key `cutoff_rad_s`
+  bool carries_mass;     ///< the static part's inertia moves with the ROI (needs a lumped M, C)
   StaticBasis basis;
   std::string_view description;
 };
@@ -35,8 +35,8 @@ std::string quoted_keys(bool ReductionInfo::*flag);
 
 struct Reduction {
   ReductionKind kind = ReductionKind::static_condensation;
-  Index modes = 0;          ///< Craig-Bampton: fixed-interface modes kept, or 0 to use the cut-off; POD: vectors
-  double cutoff_rad_s = 0;  ///< Craig-Bampton with modes == 0: every mode below this frequency
+  Index modes = 0;              ///< Craig-Bampton: fixed-interface modes kept, or 0 to use the cut-off; POD: vectors
+  double cutoff_rad_s = 0;      ///< Craig-Bampton with modes == 0: every mode below this frequency
   double snapshot_dt_s = 0.05;  ///< POD: the full model's training run (step responses), step and length
   long snapshot_steps = 200;
 

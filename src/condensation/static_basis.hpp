@@ -13,7 +13,7 @@ namespace roifem::condensation {
 
 /// The basis `reduction` asks for (empty for none). X: the static modes K_ss^-1 K_sI (POD trains
 /// against them). Throws InputError for a Craig-Bampton request without modes or a cut-off.
-model::Modes static_basis(const Reduction& reduction, const model::SecondOrderSystem& full,
-                          const roi::Partition& partition, StaticPartFactor& factor, const DenseMatrix& X);
+model::Modes static_basis(const Reduction& reduction, const model::SecondOrderSystem& full, const roi::Partition& partition,
+                          StaticPartFactor& factor, const DenseMatrix& X);
 
 }  // namespace roifem::condensation

@@ -40,8 +40,7 @@ StaticPartFactor::StaticPartFactor(const SparseMatrix& K, const roi::Partition& 
     trailing.push_back(std::lower_bound(static_and_interface.begin(), static_and_interface.end(), dof) -
                        static_and_interface.begin());
   try {
-    factor_ = std::make_unique<solvers::PartialCholesky>(
-        roi::submatrix(K, static_and_interface, static_and_interface), trailing);
+    factor_ = std::make_unique<solvers::PartialCholesky>(roi::submatrix(K, static_and_interface, static_and_interface), trailing);
   } catch (const solvers::NotPositiveDefinite& e) {
     std::string where = "a part of it is free to move as a rigid body";
     if (e.column >= 0) {

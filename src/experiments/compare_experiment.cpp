@@ -139,8 +139,8 @@ bool record_run(Sweep& w, const std::string& name, const std::string& mode, doub
   row.jac_evals = st.jac_evals;
   row.lin_setups = st.lin_setups;
   row.lin_solves = st.lin_solves;
-  w.log << format("  %-20s %-8s %9.3g  %8ld steps  %9.3f s  max error %s mm\n", name.c_str(), mode.c_str(), dt_or_tol,
-                  row.steps, row.wall_s, row.stable ? format("%.3e", row.err_max_mm).c_str() : "(diverged)")
+  w.log << format("  %-20s %-8s %9.3g  %8ld steps  %9.3f s  max error %s mm\n", name.c_str(), mode.c_str(), dt_or_tol, row.steps,
+                  row.wall_s, row.stable ? format("%.3e", row.err_max_mm).c_str() : "(diverged)")
         << std::flush;  // a sweep runs for minutes: show each run as it ends
   w.results.rows.push_back(row);
   return true;
@@ -167,8 +167,11 @@ void sweep_fixed_steps(Sweep& w, const integrators::IntegratorInfo& info, double
 void sweep_tolerances(Sweep& w, const integrators::IntegratorInfo& info, double limit) {
   for (double tol : w.o.tolerances) {
     const integrators::StepControl control{.dt = std::min(w.sc.dt, std::isfinite(limit) ? 0.5 * limit : w.sc.dt),
-                                           .adaptive = true, .rtol = tol, .atol = tol * w.peak};
-    if (!record_run(w, info.name, "adaptive", tol, integrators::make_integrator(info.name, control))) break;  // tighter: longer still
+                                           .adaptive = true,
+                                           .rtol = tol,
+                                           .atol = tol * w.peak};
+    if (!record_run(w, info.name, "adaptive", tol, integrators::make_integrator(info.name, control)))
+      break;  // tighter: longer still
   }
 }
 
@@ -212,8 +215,8 @@ void print_summary(const CompareResults& results, double dt, std::ostream& log) 
     if (r.stable && r.err_max_mm <= 0.1 && (!cheapest || r.wall_s < cheapest->wall_s)) cheapest = &r;
   if (cheapest)
     log << format("\ncheapest run within 0.1 mm max error: %s (%s %g): %.4f s, %ld steps, max error %.4f mm\n",
-                  cheapest->integrator.c_str(), cheapest->mode.c_str(), cheapest->dt_or_tol, cheapest->wall_s,
-                  cheapest->steps, cheapest->err_max_mm);
+                  cheapest->integrator.c_str(), cheapest->mode.c_str(), cheapest->dt_or_tol, cheapest->wall_s, cheapest->steps,
+                  cheapest->err_max_mm);
   double trapezoid_step = 0;
   for (const auto& r : results.rows)
     if (r.integrator == "trapezoid" && r.mode == "fixed" && std::abs(r.dt_or_tol - dt) < 1e-12 * dt && r.steps > 0)
@@ -221,8 +224,8 @@ void print_summary(const CompareResults& results, double dt, std::ostream& log) 
   if (trapezoid_step <= 0) return;
   log << "cost per step relative to the trapezoidal rule at dt = " << dt << " s (same run; includes setup):\n";
   for (const auto& r : results.rows)
-    if (r.stable && r.steps > 0 && ((r.mode == "fixed" && std::abs(r.dt_or_tol - dt) < 1e-12 * dt) ||
-                                    (r.mode == "adaptive" && r.dt_or_tol == 1e-6)))
+    if (r.stable && r.steps > 0 &&
+        ((r.mode == "fixed" && std::abs(r.dt_or_tol - dt) < 1e-12 * dt) || (r.mode == "adaptive" && r.dt_or_tol == 1e-6)))
       log << format("  %-20s %-8s %8.2fx\n", r.integrator.c_str(), r.mode.c_str(),
                     r.wall_s / static_cast<double>(r.steps) / trapezoid_step);
 }
@@ -233,7 +236,8 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
   check_output_directory(o.out);
   const auto built = simulation::build_scenario_model(sc);
   const model::SecondOrderSystem& system = built->system();
-  const double t_end = o.t_end > 0 ? std::min(o.t_end, sc.dt * static_cast<double>(sc.steps)) : sc.dt * static_cast<double>(sc.steps);
+  const double t_end =
+      o.t_end > 0 ? std::min(o.t_end, sc.dt * static_cast<double>(sc.steps)) : sc.dt * static_cast<double>(sc.steps);
   const long outputs = std::lround(t_end / sc.dt);
   if (outputs < 1) throw InputError("compare: --t-end must cover at least one output step of " + number_text(sc.dt) + " s");
   std::vector<std::string> names = o.integrators.empty() ? integrators::integrator_names() : o.integrators;
@@ -246,8 +250,8 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
   w.results.omega_max = model::highest_frequency(system);  // Lanczos: the same figure at any size
   log << format("compare: %s, %lld dofs, t_end = %g s on an output grid of %g s; exact modal reference in %.1f s\n",
                 sc.file.c_str(), static_cast<long long>(system.size()), t_end, sc.dt, clock.seconds());
-  log << format("  lowest w = %.3f rad/s, highest w = %.1f rad/s, alpha = %g 1/s\n", modal.frequencies()[0],
-                w.results.omega_max, modal.alpha());
+  log << format("  lowest w = %.3f rad/s, highest w = %.1f rad/s, alpha = %g 1/s\n", modal.frequencies()[0], w.results.omega_max,
+                modal.alpha());
 
   for (const auto& name : names) {
     const integrators::IntegratorInfo& info = integrators::integrator_info(name);

@@ -3,16 +3,16 @@
 #include <algorithm>
 #include <cstdio>
 #include <numeric>
-#include <set>
 #include <ostream>
+#include <set>
 
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
 #include "common/number_text.hpp"
 #include "common/timer.hpp"
-#include "fem/static_solve.hpp"
 #include "condensation/reduced_model.hpp"
 #include "experiments/roi_error.hpp"
+#include "fem/static_solve.hpp"
 #include "integrators/trapezoid.hpp"
 #include "io/csv.hpp"
 #include "io/displacement_field.hpp"
@@ -90,8 +90,9 @@ void print_reductions(const PaperResults& r, std::ostream& log) {
   log << format("  %-7s %-18s %5s %6s %15s %17s %11s %9s %9s\n", "setup", "reduction", "dofs", "extra", "peak max (mm)",
                 "steady mean (mm)", "step (ms)", "vs static", "peak /");
   for (const auto& row : r.reductions) {
-    const auto& plain = *std::find_if(r.reductions.begin(), r.reductions.end(),
-                                      [&](const ReductionRow& x) { return x.setup == row.setup && x.kind == condensation::ReductionKind::static_condensation; });
+    const auto& plain = *std::find_if(r.reductions.begin(), r.reductions.end(), [&](const ReductionRow& x) {
+      return x.setup == row.setup && x.kind == condensation::ReductionKind::static_condensation;
+    });
     log << format("  %-7s %-18s %5lld %6lld %15.4f %17.5f %11.4f %8.2fx %8.1fx\n", row.setup.c_str(), row.reduction.c_str(),
                   static_cast<long long>(row.dofs), static_cast<long long>(row.extra_dofs), row.peak_max_mm, row.steady_mean_mm,
                   row.step_s_median * 1e3, row.step_s_median / plain.step_s_median, plain.peak_max_mm / row.peak_max_mm);
@@ -106,8 +107,9 @@ void print_findings(const PaperOptions& o, const PaperResults& r, std::ostream& 
   for (const auto& c : r.curves) {
     const double steady = steady_mean(c);
     steady_ok = steady_ok && steady < 0.2;
-    log << format("  %-8s ramp %.1f s: peak max error %6.3f mm, peak mean error %6.3f mm, steady mean error (steps > 100) %.4f mm\n",
-                  c.setup.c_str(), c.ramp_s, peak(c), *std::max_element(c.mean_mm.begin(), c.mean_mm.end()), steady);
+    log << format(
+        "  %-8s ramp %.1f s: peak max error %6.3f mm, peak mean error %6.3f mm, steady mean error (steps > 100) %.4f mm\n",
+        c.setup.c_str(), c.ramp_s, peak(c), *std::max_element(c.mean_mm.begin(), c.mean_mm.end()), steady);
   }
   log << format("  [%s] steady-state mean error below 0.2 mm for every ramp and setup\n", steady_ok ? "yes" : "NO");
   bool ramp_order = true, setup_order = true;
@@ -135,18 +137,16 @@ double paper_step_s(const std::string& model) {
 
 void print_table2(const PaperResults& r, std::ostream& log) {
   log << "\nTable 2: time per step (trapezoidal rule, dt = 0.05 s; real time at 20 Hz needs < 50 ms)\n";
-  log << format("  %-8s %6s %6s %12s %14s %11s %14s %10s\n", "model", "nodes", "dofs", "1998 (s)", "roifem (ms)",
-                "p99 (ms)", "frame rate", "vs full");
+  log << format("  %-8s %6s %6s %12s %14s %11s %14s %10s\n", "model", "nodes", "dofs", "1998 (s)", "roifem (ms)", "p99 (ms)",
+                "frame rate", "vs full");
   for (std::size_t k = 0; k < r.timing.size(); ++k) {
     const auto& t = r.timing[k];
-    log << format("  %-8s %6lld %6lld %12.3f %14.4f %11.4f %11.0f Hz %9.2fx\n", t.model.c_str(),
-                  static_cast<long long>(t.nodes), static_cast<long long>(t.dofs), paper_step_s(t.model),
-                  t.step_s_median * 1e3, t.step_s_p99 * 1e3, 1.0 / t.step_s_median,
-                  r.timing[0].step_s_median / t.step_s_median);
+    log << format("  %-8s %6lld %6lld %12.3f %14.4f %11.4f %11.0f Hz %9.2fx\n", t.model.c_str(), static_cast<long long>(t.nodes),
+                  static_cast<long long>(t.dofs), paper_step_s(t.model), t.step_s_median * 1e3, t.step_s_p99 * 1e3,
+                  1.0 / t.step_s_median, r.timing[0].step_s_median / t.step_s_median);
   }
   log << "  (1998: the paper's figures on its hardware; roifem: medians of per-step wall time on this machine)\n";
 }
-
 
 /// The full model with the opening's forces, scaled so that the static opening widens by opening_mm.
 struct PaperModel {
@@ -184,11 +184,12 @@ std::vector<Setup> build_setups(const PaperOptions& o, const PaperModel& m, Pape
   const fem::DofMap& dofs = *m.full.dofs;
   std::vector<Setup> setups;
   for (std::size_t k = 0; k < o.setup_nodes.size(); ++k) {
-    const roi::RoiSpec spec{.kind = roi::RoiSpec::Kind::nearest, .center = o.roi_target_mm * mm, .radius = 0,
-                            .count = o.setup_nodes[k], .set = {}};
+    const roi::RoiSpec spec{
+        .kind = roi::RoiSpec::Kind::nearest, .center = o.roi_target_mm * mm, .radius = 0, .count = o.setup_nodes[k], .set = {}};
     const auto partition = roi::partition_dofs(m.full.system.K, dofs, roi::select_roi_nodes(m.mesh, dofs, spec));
     std::set<int> interface_nodes;
-    for (Index i : partition.interface) interface_nodes.insert(static_cast<int>(dofs.full_dof(partition.d[static_cast<std::size_t>(i)]) / 3));
+    for (Index i : partition.interface)
+      interface_nodes.insert(static_cast<int>(dofs.full_dof(partition.d[static_cast<std::size_t>(i)]) / 3));
     results.interface_nodes.push_back(static_cast<Index>(interface_nodes.size()));
     log << format("  setup%zu: ROI = %s: %zu dofs, %zu interface nodes, %zu static dofs\n", k + 1, spec.describe().c_str(),
                   partition.d.size(), interface_nodes.size(), partition.s.size());
@@ -199,11 +200,12 @@ std::vector<Setup> build_setups(const PaperOptions& o, const PaperModel& m, Pape
       s.label = reduction.label();
       Stopwatch clock;
       // A POD basis learns from the paper's own step and length.
-      s.condensation = std::make_unique<condensation::ReducedModel>(m.full.system, partition, dofs, reduction.trained_on(o.dt, o.steps));
+      s.condensation =
+          std::make_unique<condensation::ReducedModel>(m.full.system, partition, dofs, reduction.trained_on(o.dt, o.steps));
       s.setup_s = clock.seconds();
       s.node_dofs = roi_node_dofs(partition, dofs);
-      log << format("    %-18s %4lld dofs, reduced in %.3f s", s.label.c_str(), static_cast<long long>(s.condensation->system().size()),
-                    s.setup_s);
+      log << format("    %-18s %4lld dofs, reduced in %.3f s", s.label.c_str(),
+                    static_cast<long long>(s.condensation->system().size()), s.setup_s);
       if (s.condensation->num_modes() > 0)
         log << format(" (fixed-interface modes %.2f to %.2f rad/s)", s.condensation->mode_frequencies()[0],
                       s.condensation->mode_frequencies()[s.condensation->num_modes() - 1]);
@@ -239,7 +241,8 @@ std::vector<Vector> run_reference(const PaperOptions& o, const PaperModel& m, do
                     if (ramp == o.ramps_s.front() && k % o.field_every == 0)
                       record.add(record.full_series, format("fields/full/displacement_mm_%04ld", k), s,
                                  io::displacement_field_mm(*m.full.dofs, s.u));
-                  }}, format("full model, ramp %.1f s", ramp));
+                  }},
+                  format("full model, ramp %.1f s", ramp));
   return reference;
 }
 
@@ -248,7 +251,8 @@ PaperCurve run_setup(const PaperOptions& o, const PaperModel& m, const Setup& se
                      const std::vector<Vector>& reference, bool record_fields, FieldRecord& record) {
   model::SecondOrderSystem reduced = setup.condensation->system();
   reduced.load = reduced.load.with_ramp(model::Ramp{ramp});
-  PaperCurve curve{.setup = setup.name, .kind = setup.reduction.kind, .reduction = setup.label, .ramp_s = ramp, .mean_mm = {}, .max_mm = {}};
+  PaperCurve curve{
+      .setup = setup.name, .kind = setup.reduction.kind, .reduction = setup.label, .ramp_s = ramp, .mean_mm = {}, .max_mm = {}};
   integrators::Trapezoid trapezoid(o.dt);
   model::State state = model::State::at_rest(reduced.size());
   trapezoid.reset(reduced, state);
@@ -259,7 +263,8 @@ PaperCurve run_setup(const PaperOptions& o, const PaperModel& m, const Setup& se
                     if (record_fields && k % o.field_every == 0)
                       record.add(record.roi_series, format("fields/setup1/displacement_mm_%04ld", k), s,
                                  io::displacement_field_mm(*m.full.dofs, setup.condensation->expand(s.u, s.t)));
-                  }}, format("%s %s, ramp %.1f s", setup.name.c_str(), setup.label.c_str(), ramp));
+                  }},
+                  format("%s %s, ramp %.1f s", setup.name.c_str(), setup.label.c_str(), ramp));
   return curve;
 }
 
@@ -299,10 +304,15 @@ void measure_speed(const PaperOptions& o, const PaperModel& m, const std::vector
     const auto& curve = *std::find_if(results.reduction_curves.begin(), results.reduction_curves.end(), [&](const PaperCurve& c) {
       return c.setup == setup.name && c.reduction == setup.label && c.ramp_s == o.ramps_s.front();
     });
-    results.reductions.push_back({.setup = setup.name, .reduction = setup.label, .kind = setup.reduction.kind,
-                                  .dofs = setup.condensation->system().size(), .extra_dofs = setup.condensation->num_modes(),
-                                  .ramp_s = curve.ramp_s, .peak_max_mm = *std::max_element(curve.max_mm.begin(), curve.max_mm.end()),
-                                  .steady_mean_mm = steady_mean(curve), .step_s_median = simulation::median(seconds),
+    results.reductions.push_back({.setup = setup.name,
+                                  .reduction = setup.label,
+                                  .kind = setup.reduction.kind,
+                                  .dofs = setup.condensation->system().size(),
+                                  .extra_dofs = setup.condensation->num_modes(),
+                                  .ramp_s = curve.ramp_s,
+                                  .peak_max_mm = *std::max_element(curve.max_mm.begin(), curve.max_mm.end()),
+                                  .steady_mean_mm = steady_mean(curve),
+                                  .step_s_median = simulation::median(seconds),
                                   .setup_s = setup.setup_s});
   }
 }
@@ -320,15 +330,16 @@ void write_tables(const PaperOptions& o, const PaperResults& results) {
     io::CsvWriter csv(o.out / "reductions.csv",
                       "setup,reduction,dofs,extra_dofs,ramp_s,peak_max_mm,steady_mean_mm,step_s_median,setup_s");
     for (const auto& r : results.reductions)
-      csv.row(format("%s,%s,%lld,%lld,%g,%.9g,%.9g,%.6e,%.6e", r.setup.c_str(), r.reduction.c_str(), static_cast<long long>(r.dofs),
-                     static_cast<long long>(r.extra_dofs), r.ramp_s, r.peak_max_mm, r.steady_mean_mm, r.step_s_median, r.setup_s));
+      csv.row(format("%s,%s,%lld,%lld,%g,%.9g,%.9g,%.6e,%.6e", r.setup.c_str(), r.reduction.c_str(),
+                     static_cast<long long>(r.dofs), static_cast<long long>(r.extra_dofs), r.ramp_s, r.peak_max_mm,
+                     r.steady_mean_mm, r.step_s_median, r.setup_s));
     csv.close();
   }
   {
     io::CsvWriter csv(o.out / "timing.csv", "model,nodes,dofs,step_s_median,frame_rate_hz");
     for (const auto& t : results.timing)
-      csv.row(format("%s,%lld,%lld,%.6e,%.1f", t.model.c_str(), static_cast<long long>(t.nodes),
-                     static_cast<long long>(t.dofs), t.step_s_median, 1.0 / t.step_s_median));
+      csv.row(format("%s,%lld,%lld,%.6e,%.1f", t.model.c_str(), static_cast<long long>(t.nodes), static_cast<long long>(t.dofs),
+                     t.step_s_median, 1.0 / t.step_s_median));
     csv.close();
   }
 }
@@ -407,8 +418,8 @@ PaperResults run_paper_experiment(const PaperOptions& o, std::ostream& log) {
     log << "\nplots: " << (o.out / "mean_error.png").string() << ", " << (o.out / "max_error.png").string() << ", "
         << (o.out / "step_time.png").string() << ", " << (o.out / "reductions.png").string() << '\n';
   log << "results: " << (o.out / "errors.csv").string() << ", " << (o.out / "timing.csv").string() << ", "
-      << (o.out / "reductions.csv").string() << ", "
-      << (o.out / "results.h5").string() << " (ParaView: results.xdmf, results_setup1.xdmf)\n";
+      << (o.out / "reductions.csv").string() << ", " << (o.out / "results.h5").string()
+      << " (ParaView: results.xdmf, results_setup1.xdmf)\n";
   return results;
 }
 

@@ -19,25 +19,26 @@
 namespace roifem::experiments {
 
 struct PaperOptions {
-  std::filesystem::path mesh;          ///< the 800-node brain (meshes/brain-800.msh)
-  std::filesystem::path out;           ///< output directory
-  std::string material = "paper";      ///< preset
-  double opening_mm = 4.0;             ///< static widening of the opening the force is chosen for
-  double dt = 0.05;                    ///< s
+  std::filesystem::path mesh;      ///< the 800-node brain (meshes/brain-800.msh)
+  std::filesystem::path out;       ///< output directory
+  std::string material = "paper";  ///< preset
+  double opening_mm = 4.0;         ///< static widening of the opening the force is chosen for
+  double dt = 0.05;                ///< s
   long steps = 200;
   std::vector<double> ramps_s{0.5, 1.0, 2.0};
   std::vector<Index> setup_nodes{306, 228};
-  Vec3 roi_target_mm{0, 0, 40};        ///< centre of the opening (slit from z = 30 to 50 mm)
+  Vec3 roi_target_mm{0, 0, 40};  ///< centre of the opening (slit from z = 30 to 50 mm)
   long timing_steps = 1000;
-  long field_every = 10;               ///< full displacement field in results.h5 every k steps
+  long field_every = 10;  ///< full displacement field in results.h5 every k steps
   bool plots = true;
   /// Reductions of the static part compared (the first is the paper's, static condensation).
-  std::vector<condensation::Reduction> reductions{
-      {}, {.kind = condensation::ReductionKind::guyan}, {.kind = condensation::ReductionKind::craig_bampton, .modes = 5},
-      {.kind = condensation::ReductionKind::craig_bampton, .modes = 10},
-      {.kind = condensation::ReductionKind::craig_bampton, .modes = 20},
-      {.kind = condensation::ReductionKind::craig_bampton, .modes = 200},
-      {.kind = condensation::ReductionKind::pod, .modes = 40}};
+  std::vector<condensation::Reduction> reductions{{},
+                                                  {.kind = condensation::ReductionKind::guyan},
+                                                  {.kind = condensation::ReductionKind::craig_bampton, .modes = 5},
+                                                  {.kind = condensation::ReductionKind::craig_bampton, .modes = 10},
+                                                  {.kind = condensation::ReductionKind::craig_bampton, .modes = 20},
+                                                  {.kind = condensation::ReductionKind::craig_bampton, .modes = 200},
+                                                  {.kind = condensation::ReductionKind::pod, .modes = 40}};
 };
 
 struct PaperCurve {  ///< one setup, one reduction, one ramp
@@ -54,22 +55,22 @@ struct PaperTiming {
   double step_s_median = 0, step_s_p99 = 0, setup_s = 0;
 };
 
-struct ReductionRow {  ///< one setup, one reduction, at the fastest (first) ramp
+struct ReductionRow {            ///< one setup, one reduction, at the fastest (first) ramp
   std::string setup, reduction;  ///< reduction: its label
   condensation::ReductionKind kind = condensation::ReductionKind::static_condensation;
-  Index dofs = 0, extra_dofs = 0;   ///< of the reduced system; beyond the ROI's own
+  Index dofs = 0, extra_dofs = 0;  ///< of the reduced system; beyond the ROI's own
   double ramp_s = 0, peak_max_mm = 0, steady_mean_mm = 0;
   double step_s_median = 0, setup_s = 0;
 };
 
 struct PaperResults {
-  double force_N = 0;                 ///< per wall
-  double opening_mm = 0;              ///< static widening it gives
-  std::vector<PaperCurve> curves;     ///< static condensation (the paper's), setup-major
+  double force_N = 0;                        ///< per wall
+  double opening_mm = 0;                     ///< static widening it gives
+  std::vector<PaperCurve> curves;            ///< static condensation (the paper's), setup-major
   std::vector<PaperCurve> reduction_curves;  ///< every reduction (static included), every setup and ramp
   std::vector<ReductionRow> reductions;
-  std::vector<PaperTiming> timing;    ///< full first, then the setups
-  std::vector<Index> interface_nodes; ///< per setup
+  std::vector<PaperTiming> timing;     ///< full first, then the setups
+  std::vector<Index> interface_nodes;  ///< per setup
 };
 
 /// Runs the experiment, writes errors.csv, timing.csv, results.h5, results.xdmf and (if asked and

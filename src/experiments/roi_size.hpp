@@ -24,24 +24,24 @@ namespace roifem::experiments {
 struct RoiSizeOptions {
   std::filesystem::path scenario;
   double max_error_mm = 0.5;
-  std::vector<condensation::Reduction> reductions{{}, {.kind = condensation::ReductionKind::guyan},
-                                                  {.kind = condensation::ReductionKind::craig_bampton, .modes = 10}};
+  std::vector<condensation::Reduction> reductions{
+      {}, {.kind = condensation::ReductionKind::guyan}, {.kind = condensation::ReductionKind::craig_bampton, .modes = 10}};
   Index start_nodes = 1;
-  double resolution = 0.02;   ///< relative spacing of the N tried beyond 50 nodes
+  double resolution = 0.02;  ///< relative spacing of the N tried beyond 50 nodes
   long timing_steps = 300;
   std::filesystem::path out;  ///< optional: DIR/roi_size.csv
 };
 
 struct RoiSizeRow {
   std::string reduction;
-  bool found = false;        ///< false: even the largest ROI tried misses the budget
+  bool found = false;  ///< false: even the largest ROI tried misses the budget
   Index nodes = 0, dofs = 0;
   double peak_max_mm = 0, step_s_median = 0;
-  int evaluations = 0;       ///< reduced models built and run
+  int evaluations = 0;  ///< reduced models built and run
 };
 
 struct RoiSizeResults {
-  Vec3 target;               ///< m
+  Vec3 target;  ///< m
   Index free_nodes = 0;
   double full_step_s_median = 0;
   std::vector<RoiSizeRow> rows;

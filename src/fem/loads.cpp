@@ -12,8 +12,7 @@ Vector set_force(const mesh::TetMesh& mesh, const std::string& set_name, const V
   Vector weight = Vector::Zero(mesh.num_nodes());
   if (!set.triangles.empty()) {
     for (const auto& tri : set.triangles) {
-      const double area =
-          0.5 * (mesh.node(tri[1]) - mesh.node(tri[0])).cross(mesh.node(tri[2]) - mesh.node(tri[0])).norm();
+      const double area = 0.5 * (mesh.node(tri[1]) - mesh.node(tri[0])).cross(mesh.node(tri[2]) - mesh.node(tri[0])).norm();
       for (int a : tri) weight[a] += area / 3.0;
     }
   } else if (!set.tets.empty()) {

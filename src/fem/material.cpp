@@ -40,8 +40,8 @@ void Material::validate() const {
   if (!(mu > 0)) throw InputError("material: shear modulus mu = " + str(mu) + " Pa must be positive");
   // nu in (-1, 0.5) <=> mu > 0 and 3 lambda + 2 mu > 0 (positive bulk modulus); nu -> 0.5 as lambda -> inf.
   if (!(3 * lambda + 2 * mu > 0))
-    throw InputError("material: Poisson's ratio nu = " + str(poisson()) +
-                     " must lie in (-1, 0.5) (lambda = " + str(lambda) + " Pa is too negative)");
+    throw InputError("material: Poisson's ratio nu = " + str(poisson()) + " must lie in (-1, 0.5) (lambda = " + str(lambda) +
+                     " Pa is too negative)");
   if (!(rho > 0)) throw InputError("material: density rho = " + str(rho) + " kg/m^3 must be positive");
   if (!(alpha >= 0)) throw InputError("material: damping alpha = " + str(alpha) + " 1/s must be >= 0");
 }

@@ -11,7 +11,7 @@
 namespace roifem::fem {
 
 struct Tet4Geometry {
-  double volume = 0;              ///< signed; positive for a correctly oriented element
+  double volume = 0;                 ///< signed; positive for a correctly oriented element
   Eigen::Matrix<double, 4, 3> grad;  ///< row a = gradient of N_a
 };
 

@@ -7,8 +7,7 @@
 
 namespace roifem::io {
 
-CsvWriter::CsvWriter(const std::filesystem::path& path, const std::string& header)
-    : file_(path), out_(file_.temporary_path()) {
+CsvWriter::CsvWriter(const std::filesystem::path& path, const std::string& header) : file_(path), out_(file_.temporary_path()) {
   if (!out_) throw InputError(path.string() + ": cannot create file");
   out_ << header << '\n';
 }

@@ -59,8 +59,7 @@ AppendableDataset::AppendableDataset(hid_t file, const std::string& name, const 
   H5Pset_fletcher32(dcpl.get());
   Handle lcpl(H5Pcreate(H5P_LINK_CREATE), H5Pclose);
   H5Pset_create_intermediate_group(lcpl.get(), 1);
-  set_ = Handle(H5Dcreate2(file, name.c_str(), H5T_NATIVE_DOUBLE, space.get(), lcpl.get(), dcpl.get(), H5P_DEFAULT),
-                H5Dclose);
+  set_ = Handle(H5Dcreate2(file, name.c_str(), H5T_NATIVE_DOUBLE, space.get(), lcpl.get(), dcpl.get(), H5P_DEFAULT), H5Dclose);
   if (set_.get() < 0) throw InputError(where_ + ": cannot create");
 }
 

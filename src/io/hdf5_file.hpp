@@ -46,8 +46,8 @@ class Handle {
 class AppendableDataset {
  public:
   /// `record_shape`: the shape of one record ({} for a scalar series, {n, 3} for a field).
-  AppendableDataset(hid_t file, const std::string& name, const std::vector<hsize_t>& record_shape,
-                    hsize_t records_per_chunk, const std::string& file_name);
+  AppendableDataset(hid_t file, const std::string& name, const std::vector<hsize_t>& record_shape, hsize_t records_per_chunk,
+                    const std::string& file_name);
   /// Appends one record of prod(record_shape) doubles.
   void append(const double* record);
   hsize_t records() const { return records_; }

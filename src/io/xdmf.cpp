@@ -23,8 +23,8 @@ void write_xdmf(const std::filesystem::path& path, const XdmfSeries& s) {
           << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << s.h5_name << ":" << s.nodes_dataset
           << "</DataItem>\n    </Geometry>\n"
           << "    <Attribute Name=\"displacement_mm\" AttributeType=\"Vector\" Center=\"Node\">\n"
-          << "     <DataItem Dimensions=\"" << s.nodes << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">"
-          << s.h5_name << ":" << s.fields[k] << "</DataItem>\n    </Attribute>\n   </Grid>\n";
+          << "     <DataItem Dimensions=\"" << s.nodes << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << s.h5_name
+          << ":" << s.fields[k] << "</DataItem>\n    </Attribute>\n   </Grid>\n";
     }
     out << "  </Grid>\n </Domain>\n</Xdmf>\n";
     if (!out.flush()) throw InputError(path.string() + ": cannot write XDMF file");

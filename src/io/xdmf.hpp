@@ -8,7 +8,7 @@
 namespace roifem::io {
 
 struct XdmfSeries {
-  std::string h5_name;              ///< the HDF5 file's name relative to the .xdmf
+  std::string h5_name;  ///< the HDF5 file's name relative to the .xdmf
   long nodes = 0, tets = 0;
   std::string nodes_dataset = "/mesh/nodes_mm", tets_dataset = "/mesh/tets";
   std::vector<double> times;        ///< s

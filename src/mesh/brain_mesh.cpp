@@ -3,9 +3,9 @@
 #include <gmsh.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cmath>
 #include <numbers>
 
 #include "common/atomic_file.hpp"
@@ -33,8 +33,8 @@ void build_geometry(const BrainShape& s) {
   const int ellipsoid = occ::addSphere(0, 0, 0, 1);
   occ::dilate({{3, ellipsoid}}, 0, 0, 0, s.semi_axis_x, s.semi_axis_y, s.semi_axis_z);
   const double top = s.semi_axis_z;
-  const int slit = occ::addBox(-s.slit_width / 2, -s.slit_length / 2, top - s.slit_depth, s.slit_width, s.slit_length,
-                               2 * s.slit_depth);
+  const int slit =
+      occ::addBox(-s.slit_width / 2, -s.slit_length / 2, top - s.slit_depth, s.slit_width, s.slit_length, 2 * s.slit_depth);
   gmsh::vectorpair cut, fragments;
   std::vector<gmsh::vectorpair> map;
   occ::cut({{3, ellipsoid}}, {{3, slit}}, cut, map);
@@ -77,9 +77,12 @@ void build_geometry(const BrainShape& s) {
     double x, y, z;
     occ::getCenterOfMass(dim, tag, x, y, z);
     if (std::abs(y) > hl + eps || z < z_floor - eps) continue;
-    if (std::abs(x + hw) < eps) left.push_back(tag);
-    else if (std::abs(x - hw) < eps) right.push_back(tag);
-    else if (std::abs(z - z_floor) < eps && std::abs(x) < hw) floor.push_back(tag);
+    if (std::abs(x + hw) < eps)
+      left.push_back(tag);
+    else if (std::abs(x - hw) < eps)
+      right.push_back(tag);
+    else if (std::abs(z - z_floor) < eps && std::abs(x) < hw)
+      floor.push_back(tag);
   }
   auto name_surfaces = [](const std::vector<int>& tags, const char* name) {
     if (tags.size() != 1) throw Error(std::string("internal: expected one surface for ") + name);

@@ -29,7 +29,7 @@ struct BrainMesh {
 /// Meshes the brain with `target_nodes` nodes within +-tolerance (relative), adjusting the element
 /// size by a secant on log(nodes) against log(size). Writes the mesh (MSH 4.1, millimetres) to
 /// `output` when it is not empty, atomically. Throws InputError for an impossible request.
-BrainMesh generate_brain_mesh(Index target_nodes, const std::filesystem::path& output = {},
-                              const BrainShape& shape = {}, double tolerance = 0.03);
+BrainMesh generate_brain_mesh(Index target_nodes, const std::filesystem::path& output = {}, const BrainShape& shape = {},
+                              double tolerance = 0.03);
 
 }  // namespace roifem::mesh

@@ -15,8 +15,7 @@ namespace {
 std::string describe_tet(const TetMesh& mesh, Index e) {
   const Tet& t = mesh.tets[static_cast<std::size_t>(e)];
   std::ostringstream s;
-  s << mesh.source << ": tetrahedron " << e << " (nodes " << t[0] << ", " << t[1] << ", " << t[2] << ", " << t[3]
-    << ", 0-based)";
+  s << mesh.source << ": tetrahedron " << e << " (nodes " << t[0] << ", " << t[1] << ", " << t[2] << ", " << t[3] << ", 0-based)";
   return s.str();
 }
 /// Two nodes closer than 1e-10 of the bounding box's diagonal are one point given twice: a seam
@@ -50,8 +49,8 @@ void check_no_coincident_nodes(const TetMesh& mesh) {
             if ((mesh.nodes.col(n) - mesh.nodes.col(other)).cwiseAbs().maxCoeff() <= tolerance) {
               std::ostringstream s;
               s.precision(9);
-              s << mesh.source << ": nodes " << other << " and " << n << " (0-based) coincide at ("
-                << 1e3 * mesh.nodes(0, n) << ", " << 1e3 * mesh.nodes(1, n) << ", " << 1e3 * mesh.nodes(2, n)
+              s << mesh.source << ": nodes " << other << " and " << n << " (0-based) coincide at (" << 1e3 * mesh.nodes(0, n)
+                << ", " << 1e3 * mesh.nodes(1, n) << ", " << 1e3 * mesh.nodes(2, n)
                 << ") mm: a seam that leaves the two sides unconnected (merge duplicate nodes, e.g. Gmsh's Coherence)";
               throw InputError(s.str());
             }

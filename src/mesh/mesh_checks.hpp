@@ -7,7 +7,7 @@ namespace roifem::mesh {
 
 struct MeshStatistics {
   Index nodes = 0, tets = 0;
-  double volume = 0;                ///< m^3
+  double volume = 0;  ///< m^3
   double quality_min = 0, quality_median = 0;
   Vec3 box_min = Vec3::Zero(), box_max = Vec3::Zero();  ///< m
 };

@@ -11,8 +11,8 @@ const NamedSet& TetMesh::set(const std::string& name) const {
   if (auto it = sets.find(name); it != sets.end()) return it->second;
   std::string known;
   for (const auto& [n, s] : sets) known += (known.empty() ? "" : ", ") + n;
-  throw InputError(source + ": no named set '" + name + "' (the mesh has: " +
-                   (known.empty() ? "no physical groups" : known) + ")");
+  throw InputError(source + ": no named set '" + name + "' (the mesh has: " + (known.empty() ? "no physical groups" : known) +
+                   ")");
 }
 
 double signed_volume(const TetMesh& mesh, Index e) {

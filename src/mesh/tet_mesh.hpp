@@ -17,17 +17,17 @@ using Tet = std::array<int, 4>;
 using Triangle = std::array<int, 3>;
 
 struct NamedSet {
-  int dim = 0;                       ///< 0..3, the Gmsh physical group's dimension
-  std::vector<int> nodes;            ///< sorted, unique
-  std::vector<int> tets;             ///< indices into TetMesh::tets (dim 3)
-  std::vector<Triangle> triangles;   ///< boundary facets (dim 2)
+  int dim = 0;                      ///< 0..3, the Gmsh physical group's dimension
+  std::vector<int> nodes;           ///< sorted, unique
+  std::vector<int> tets;            ///< indices into TetMesh::tets (dim 3)
+  std::vector<Triangle> triangles;  ///< boundary facets (dim 2)
 };
 
 struct TetMesh {
-  Eigen::Matrix3Xd nodes;                   ///< 3 x #N, metres
-  std::vector<Tet> tets;                    ///< #E x 4
-  std::map<std::string, NamedSet> sets;     ///< by physical name
-  std::string source = "<memory>";          ///< file it came from, for messages
+  Eigen::Matrix3Xd nodes;                ///< 3 x #N, metres
+  std::vector<Tet> tets;                 ///< #E x 4
+  std::map<std::string, NamedSet> sets;  ///< by physical name
+  std::string source = "<memory>";       ///< file it came from, for messages
 
   Index num_nodes() const { return nodes.cols(); }
   Index num_tets() const { return static_cast<Index>(tets.size()); }

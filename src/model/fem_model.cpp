@@ -6,8 +6,8 @@
 
 namespace roifem::model {
 
-FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::Material& material,
-                         const std::vector<std::string>& fixed_sets, const std::vector<SetLoad>& loads) {
+FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::Material& material, const std::vector<std::string>& fixed_sets,
+                         const std::vector<SetLoad>& loads) {
   material.validate();
   FemModel model;
   model.mesh = &mesh;

@@ -30,7 +30,7 @@ struct FemModel {
 };
 
 /// Builds the full model. Throws InputError for a missing set and ModelError when nothing is fixed.
-FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::Material& material,
-                         const std::vector<std::string>& fixed_sets, const std::vector<SetLoad>& loads);
+FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::Material& material, const std::vector<std::string>& fixed_sets,
+                         const std::vector<SetLoad>& loads);
 
 }  // namespace roifem::model

@@ -78,8 +78,8 @@ Vector ModalReference::modal(double t, bool d) const {
     double value = free_response(w, alpha_, q0_[i], v0_[i], tau, d);
     for (Index k = 0; k < load_.cols(); ++k) {
       const double T = ramp_duration_[static_cast<std::size_t>(k)];
-      const double response = T > 0 ? (forced(w, alpha_, t, true, d) - forced(w, alpha_, t - T, true, d)) / T
-                                    : forced(w, alpha_, t, false, d);
+      const double response =
+          T > 0 ? (forced(w, alpha_, t, true, d) - forced(w, alpha_, t - T, true, d)) / T : forced(w, alpha_, t, false, d);
       value += load_(i, k) * response;
     }
     q[i] = value;

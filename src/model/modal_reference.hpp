@@ -24,9 +24,9 @@ class ModalReference {
  private:
   double t0_ = 0, alpha_ = 0;
   Vector omega_;
-  DenseMatrix modes_;                 ///< phi (M-orthonormal), n x n
-  Vector q0_, v0_;                    ///< modal initial state
-  DenseMatrix load_;                  ///< phi^T p_k, n x terms
+  DenseMatrix modes_;  ///< phi (M-orthonormal), n x n
+  Vector q0_, v0_;     ///< modal initial state
+  DenseMatrix load_;   ///< phi^T p_k, n x terms
   std::vector<double> ramp_duration_;
   Vector modal(double t, bool derivative) const;
 };

@@ -44,11 +44,11 @@ struct ModalBlock {
 };
 
 struct SecondOrderSystem {
-  SparseMatrix M, C, K;      ///< in full, for factorizations
+  SparseMatrix M, C, K;  ///< in full, for factorizations
   LoadHistory load;
-  SplitMatrix K_split;       ///< optional: the same K, split, for products
-  SplitMatrix M_split;       ///< optional: the same M, split (Guyan, Craig-Bampton)
-  Damping damping;           ///< what C is (general unless declared)
+  SplitMatrix K_split;              ///< optional: the same K, split, for products
+  SplitMatrix M_split;              ///< optional: the same M, split (Guyan, Craig-Bampton)
+  Damping damping;                  ///< what C is (general unless declared)
   std::optional<ModalBlock> modal;  ///< set by reductions with modal coordinates
   Index size() const { return K.rows(); }
   /// y = K x, through K_split when there is one.

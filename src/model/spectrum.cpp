@@ -122,7 +122,8 @@ Modes modes_below(const Vector& mass_diagonal, const SolveK& solve_K, double cut
 
 Modes lowest_modes(const Vector& mass_diagonal, solvers::Cholesky& K_factor, Index count, double tolerance) {
   if (mass_diagonal.size() != K_factor.size()) throw Error("internal: lowest_modes: M and K differ in size");
-  return lowest_modes(mass_diagonal, [&](const Vector& b, Vector& x) { K_factor.solve(b, x); }, count, tolerance);
+  return lowest_modes(
+      mass_diagonal, [&](const Vector& b, Vector& x) { K_factor.solve(b, x); }, count, tolerance);
 }
 
 double highest_frequency(const SecondOrderSystem& system, double tolerance) {
@@ -143,15 +144,16 @@ double highest_frequency(const SecondOrderSystem& system, double tolerance) {
   const Vector scale = Vector(M.diagonal()).cwiseSqrt().cwiseInverse();
   if (n <= 20) {  // too small for a Krylov space: dense
     const DenseMatrix A = scale.asDiagonal() * DenseMatrix(system.K) * scale.asDiagonal();
-    return std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<DenseMatrix>(A, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff()));
+    return std::sqrt(
+        std::max(0.0, Eigen::SelfAdjointEigenSolver<DenseMatrix>(A, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff()));
   }
   Scaled op([&](const Vector& x, Vector& y) { system.apply_stiffness(x, y); }, scale);
   Spectra::SymEigsSolver<Scaled> lanczos(op, 1, std::min<Index>(n, 20));
   lanczos.init();
   lanczos.compute(Spectra::SortRule::LargestAlge, 1000, tolerance);
   if (lanczos.info() != Spectra::CompInfo::Successful)
-    throw SolverError("highest frequency: Lanczos did not converge in 1000 restarts (" + std::to_string(lanczos.num_operations()) +
-                      " products with K)");
+    throw SolverError("highest frequency: Lanczos did not converge in 1000 restarts (" +
+                      std::to_string(lanczos.num_operations()) + " products with K)");
   return std::sqrt(std::max(0.0, lanczos.eigenvalues()[0]));
 }
 

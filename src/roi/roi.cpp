@@ -12,7 +12,9 @@ namespace roifem::roi {
 std::string RoiSpec::describe() const {
   std::ostringstream s;
   switch (kind) {
-    case Kind::all: s << "all nodes"; break;
+    case Kind::all:
+      s << "all nodes";
+      break;
     case Kind::ball:
       s << "ball of radius " << radius / mm << " mm around (" << center.x() / mm << ", " << center.y() / mm << ", "
         << center.z() / mm << ") mm";
@@ -20,7 +22,9 @@ std::string RoiSpec::describe() const {
     case Kind::nearest:
       s << count << " nodes nearest (" << center.x() / mm << ", " << center.y() / mm << ", " << center.z() / mm << ") mm";
       break;
-    case Kind::set: s << "named set '" << set << "'"; break;
+    case Kind::set:
+      s << "named set '" << set << "'";
+      break;
   }
   return s.str();
 }
@@ -36,7 +40,9 @@ std::vector<int> select_roi_nodes(const mesh::TetMesh& mesh, const fem::DofMap& 
   const std::vector<int> free = free_nodes(mesh, dofs);
   std::vector<int> roi;
   switch (spec.kind) {
-    case RoiSpec::Kind::all: roi = free; break;
+    case RoiSpec::Kind::all:
+      roi = free;
+      break;
     case RoiSpec::Kind::ball:
       if (!(spec.radius > 0)) throw InputError("ROI ball radius " + number_text(spec.radius / mm) + " mm must be positive");
       for (int n : free)
@@ -52,14 +58,13 @@ std::vector<int> select_roi_nodes(const mesh::TetMesh& mesh, const fem::DofMap& 
       const Vec3 low = mesh.nodes.rowwise().minCoeff(), high = mesh.nodes.rowwise().maxCoeff();
       if ((spec.center.array() < low.array()).any() || (spec.center.array() > high.array()).any())
         throw ModelError("ROI target (" + spec.describe() + ") lies outside the mesh " + mesh.source + ", whose box is (" +
-                         number_text(low.x() / mm) + ", " + number_text(low.y() / mm) + ", " +
-                         number_text(low.z() / mm) + ") to (" + number_text(high.x() / mm) + ", " +
-                         number_text(high.y() / mm) + ", " + number_text(high.z() / mm) + ") mm");
+                         number_text(low.x() / mm) + ", " + number_text(low.y() / mm) + ", " + number_text(low.z() / mm) +
+                         ") to (" + number_text(high.x() / mm) + ", " + number_text(high.y() / mm) + ", " +
+                         number_text(high.z() / mm) + ") mm");
       roi = free;
       auto distance = [&](int n) { return (mesh.node(n) - spec.center).squaredNorm(); };
-      std::nth_element(roi.begin(), roi.begin() + spec.count - 1, roi.end(), [&](int a, int b) {
-        return distance(a) < distance(b) || (distance(a) == distance(b) && a < b);
-      });
+      std::nth_element(roi.begin(), roi.begin() + spec.count - 1, roi.end(),
+                       [&](int a, int b) { return distance(a) < distance(b) || (distance(a) == distance(b) && a < b); });
       roi.resize(static_cast<std::size_t>(spec.count));
       break;
     }

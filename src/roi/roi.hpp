@@ -31,10 +31,10 @@ std::vector<int> free_nodes(const mesh::TetMesh& mesh, const fem::DofMap& dofs);
 std::vector<int> select_roi_nodes(const mesh::TetMesh& mesh, const fem::DofMap& dofs, const RoiSpec& spec);
 
 struct Partition {
-  std::vector<int> roi_nodes;   ///< sorted
-  std::vector<Index> d;         ///< free dof indices of the ROI, ascending
-  std::vector<Index> s;         ///< free dof indices of the static part, ascending
-  std::vector<Index> interface; ///< positions in d (0..#d-1) of dofs coupled to s, ascending
+  std::vector<int> roi_nodes;    ///< sorted
+  std::vector<Index> d;          ///< free dof indices of the ROI, ascending
+  std::vector<Index> s;          ///< free dof indices of the static part, ascending
+  std::vector<Index> interface;  ///< positions in d (0..#d-1) of dofs coupled to s, ascending
   Index roi_size() const { return static_cast<Index>(d.size()); }
   Index static_size() const { return static_cast<Index>(s.size()); }
 };

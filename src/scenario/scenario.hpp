@@ -14,18 +14,18 @@
 namespace roifem::scenario {
 
 struct Scenario {
-  std::filesystem::path file;                 ///< where it was read from
-  std::filesystem::path mesh;                 ///< resolved against the scenario's directory
-  std::string material_name = "paper";        ///< preset, or "custom"
+  std::filesystem::path file;           ///< where it was read from
+  std::filesystem::path mesh;           ///< resolved against the scenario's directory
+  std::string material_name = "paper";  ///< preset, or "custom"
   fem::Material material;
   std::vector<std::string> fixed_sets{"base"};
   std::vector<model::SetLoad> loads;
-  std::optional<roi::RoiSpec> roi;            ///< none: the full dynamic model
-  condensation::Reduction reduction;          ///< of the static part, with an ROI
+  std::optional<roi::RoiSpec> roi;    ///< none: the full dynamic model
+  condensation::Reduction reduction;  ///< of the static part, with an ROI
   std::string integrator = "trapezoid";
-  double dt = 0.05;                           ///< s
+  double dt = 0.05;  ///< s
   long steps = 200;
-  long field_every = 10;                      ///< full displacement field every k steps (0: none)
+  long field_every = 10;  ///< full displacement field every k steps (0: none)
   /// The scenario as resolved (defaults filled in), as TOML text: stored with the results.
   std::string resolved_toml() const;
 };

@@ -191,10 +191,12 @@ condensation::Reduction read_reduction(StrictTable& t) {
   if (cutoff != 0 && !row->takes_cutoff)
     throw InputError(t.source() + ": key 'roi.cutoff_rad_s' belongs to reduction = " +
                      condensation::quoted_keys(&condensation::ReductionInfo::takes_cutoff));
-  if (modes && *modes <= 0) throw InputError(t.source() + ": key 'roi.modes' must be positive (got " + std::to_string(*modes) + ")");
+  if (modes && *modes <= 0)
+    throw InputError(t.source() + ": key 'roi.modes' must be positive (got " + std::to_string(*modes) + ")");
   if (cutoff < 0) throw InputError(t.source() + ": key 'roi.cutoff_rad_s' must be positive");
   if (!modes && !(cutoff > 0))
-    throw InputError(t.source() + ": " + named + (row->takes_cutoff ? " needs key 'roi.modes' or 'roi.cutoff_rad_s'" : " needs a positive key 'roi.modes'"));
+    throw InputError(t.source() + ": " + named +
+                     (row->takes_cutoff ? " needs key 'roi.modes' or 'roi.cutoff_rad_s'" : " needs a positive key 'roi.modes'"));
   r.modes = modes.value_or(0);
   r.cutoff_rad_s = modes ? 0.0 : cutoff;
   return r;
@@ -242,7 +244,6 @@ std::string toml_number(double v) {
 
 }  // namespace
 
-
 Scenario parse_scenario(std::string_view text, const std::string& source, const std::filesystem::path& directory) {
   check_toml_text(text, source);
   toml::table root;
@@ -250,8 +251,8 @@ Scenario parse_scenario(std::string_view text, const std::string& source, const 
     root = toml::parse(text, source);
   } catch (const toml::parse_error& e) {
     const auto& b = e.source().begin;
-    throw InputError(source + ":" + std::to_string(b.line) + ":" + std::to_string(b.column) + ": TOML syntax error: " +
-                     std::string(e.description()));
+    throw InputError(source + ":" + std::to_string(b.line) + ":" + std::to_string(b.column) +
+                     ": TOML syntax error: " + std::string(e.description()));
   }
   Scenario s;
   s.file = source;
@@ -337,23 +338,27 @@ std::string Scenario::resolved_toml() const {
       o << "\n[[load]]\ngravity_m_s2 = [" << toml_number(l.gravity->x()) << ", " << toml_number(l.gravity->y()) << ", "
         << toml_number(l.gravity->z()) << "]";
     else
-      o << "\n[[load]]\nset = \"" << l.set << "\"\nforce_N = [" << toml_number(l.force.x()) << ", "
-        << toml_number(l.force.y()) << ", " << toml_number(l.force.z()) << "]";
+      o << "\n[[load]]\nset = \"" << l.set << "\"\nforce_N = [" << toml_number(l.force.x()) << ", " << toml_number(l.force.y())
+        << ", " << toml_number(l.force.z()) << "]";
     o << "\nramp_s = " << toml_number(l.ramp.duration) << "\n";
   }
   if (roi) {
     o << "\n[roi]\n";
     switch (roi->kind) {
-      case roi::RoiSpec::Kind::all: o << "kind = \"all\"\n"; break;
+      case roi::RoiSpec::Kind::all:
+        o << "kind = \"all\"\n";
+        break;
       case roi::RoiSpec::Kind::ball:
         o << "kind = \"ball\"\ncenter_mm = [" << toml_number(roi->center.x() / mm) << ", " << toml_number(roi->center.y() / mm)
           << ", " << toml_number(roi->center.z() / mm) << "]\nradius_mm = " << toml_number(roi->radius / mm) << "\n";
         break;
       case roi::RoiSpec::Kind::nearest:
-        o << "kind = \"nearest\"\ntarget_mm = [" << toml_number(roi->center.x() / mm) << ", "
-          << toml_number(roi->center.y() / mm) << ", " << toml_number(roi->center.z() / mm) << "]\nnodes = " << roi->count << "\n";
+        o << "kind = \"nearest\"\ntarget_mm = [" << toml_number(roi->center.x() / mm) << ", " << toml_number(roi->center.y() / mm)
+          << ", " << toml_number(roi->center.z() / mm) << "]\nnodes = " << roi->count << "\n";
         break;
-      case roi::RoiSpec::Kind::set: o << "kind = \"set\"\nset = \"" << roi->set << "\"\n"; break;
+      case roi::RoiSpec::Kind::set:
+        o << "kind = \"set\"\nset = \"" << roi->set << "\"\n";
+        break;
     }
     o << "reduction = \"" << reduction.info().key << "\"\n";
     if (reduction.modes > 0)

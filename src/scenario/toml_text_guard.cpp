@@ -25,13 +25,21 @@ class TomlTextGuard {
       const char c = text_[i_];
       ++column_;
       switch (in_) {
-        case In::code: code(c); break;
-        case In::comment: if (c == '\n') in_ = In::code, new_line(); break;
-        case In::basic: basic(c); break;
+        case In::code:
+          code(c);
+          break;
+        case In::comment:
+          if (c == '\n') in_ = In::code, new_line();
+          break;
+        case In::basic:
+          basic(c);
+          break;
         case In::literal:
           if (c == '\'' || c == '\n') in_ = In::code, after_value(c);
           break;
-        case In::multi_basic: multi_basic(c); break;
+        case In::multi_basic:
+          multi_basic(c);
+          break;
         case In::multi_literal:
           if (c == '\n') new_line();
           if (starts(i_, "'''")) in_ = In::code, skip(2), after_value('\'');
@@ -76,8 +84,7 @@ class TomlTextGuard {
       return;
     }
     // A key, a table header, or what follows a value.
-    if ((c == '"' || c == '\'') && std::string_view("\n.[{,").find(previous_) != std::string_view::npos)
-      return open_string(c);
+    if ((c == '"' || c == '\'') && std::string_view("\n.[{,").find(previous_) != std::string_view::npos) return open_string(c);
     if (c == '=') value_expected_ = true;
     if (c == ',' && !nesting_.empty() && nesting_.back() == '[') value_expected_ = true;
     if ((c == ']' || c == '}') && !nesting_.empty() && nesting_.back() == (c == ']' ? '[' : '{')) nesting_.pop_back();
@@ -116,8 +123,10 @@ class TomlTextGuard {
     // first character after them like code.
     long column = 0;  // text_[j] is the line break, which resets it
     while (j < text_.size() && (is_blank(text_[j]) || text_[j] == '\n')) {
-      if (text_[j] == '\n') ++line_, column = 0;
-      else ++column;
+      if (text_[j] == '\n')
+        ++line_, column = 0;
+      else
+        ++column;
       ++j;
     }
     column_ = column;

@@ -19,7 +19,8 @@ class InterruptGuard {
   static int signal_received();
 
  private:
-  struct sigaction previous_int_ {}, previous_term_ {};
+  struct sigaction previous_int_ {
+  }, previous_term_{};
 };
 
 }  // namespace roifem::simulation

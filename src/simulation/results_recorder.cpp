@@ -68,9 +68,10 @@ void ResultsRecorder::record(long k, const model::State& s, double seconds) {
 }
 
 void ResultsRecorder::finish(const integrators::Stats& st) {
-  h5_.attribute("counters", io::format("steps=%ld rhs_evals=%ld jac_evals=%ld lin_setups=%ld lin_solves=%ld lin_iterations=%ld failed_steps=%ld",
-                                       st.steps, st.rhs_evals, st.jac_evals, st.lin_setups, st.lin_solves, st.lin_iterations,
-                                       st.failed_steps));
+  h5_.attribute(
+      "counters",
+      io::format("steps=%ld rhs_evals=%ld jac_evals=%ld lin_setups=%ld lin_solves=%ld lin_iterations=%ld failed_steps=%ld",
+                 st.steps, st.rhs_evals, st.jac_evals, st.lin_setups, st.lin_solves, st.lin_iterations, st.failed_steps));
   h5_.attribute("status", "complete");
   h5_.close();
   file_.commit();

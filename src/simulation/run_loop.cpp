@@ -30,8 +30,9 @@ RunSummary run(integrators::Integrator& integrator, model::State& state, double 
     for (const auto& observe : observers) observe(k, state, seconds);
     if (progress) progress->update(k);
     if (const int signal_number = InterruptGuard::signal_received())
-      throw Interrupted(signal_number, "interrupted by signal " + std::to_string(signal_number) + " after step " + std::to_string(k) +
-                                           " of " + std::to_string(steps) + " (t = " + std::to_string(state.t) + " s)");
+      throw Interrupted(signal_number, "interrupted by signal " + std::to_string(signal_number) + " after step " +
+                                           std::to_string(k) + " of " + std::to_string(steps) +
+                                           " (t = " + std::to_string(state.t) + " s)");
   }
   summary.stats = integrator.stats();
   return summary;

@@ -24,8 +24,8 @@ namespace {
 using io::format;
 
 void print_start(const scenario::Scenario& sc, const ScenarioModel& built, double setup_s, std::ostream& log) {
-  log << format("%s: %lld nodes, %s model with %lld dofs (%s), %s, dt = %g s, %ld steps; set up in %.2f s\n",
-                sc.file.c_str(), static_cast<long long>(built.mesh.num_nodes()), built.condensation ? "condensed ROI" : "full",
+  log << format("%s: %lld nodes, %s model with %lld dofs (%s), %s, dt = %g s, %ld steps; set up in %.2f s\n", sc.file.c_str(),
+                static_cast<long long>(built.mesh.num_nodes()), built.condensation ? "condensed ROI" : "full",
                 static_cast<long long>(built.system().size()), sc.roi ? sc.roi->describe().c_str() : "no ROI",
                 sc.integrator.c_str(), sc.dt, sc.steps, setup_s);
 }

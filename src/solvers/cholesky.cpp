@@ -26,10 +26,9 @@ constexpr double one_thread_solve_below = 5e6;
 }  // namespace
 
 NotPositiveDefinite::NotPositiveDefinite(Index col, double rc)
-    : std::runtime_error(col >= 0 ? "matrix is not positive definite (factorization stopped at column " +
-                                        std::to_string(col) + ")"
-                                  : "matrix is singular to working precision (reciprocal condition " +
-                                        number_text(rc) + ")"),
+    : std::runtime_error(col >= 0
+                             ? "matrix is not positive definite (factorization stopped at column " + std::to_string(col) + ")"
+                             : "matrix is singular to working precision (reciprocal condition " + number_text(rc) + ")"),
       column(col),
       rcond(rc) {}
 
@@ -43,7 +42,7 @@ struct Cholesky::Impl {
 
   explicit Impl(Kind kind) {
     cholmod_start(&common);
-    common.supernodal = kind == Kind::simplicial    ? CHOLMOD_SIMPLICIAL
+    common.supernodal = kind == Kind::simplicial   ? CHOLMOD_SIMPLICIAL
                         : kind == Kind::supernodal ? CHOLMOD_SUPERNODAL
                                                    : CHOLMOD_AUTO;
     common.print = 0;
@@ -125,8 +124,7 @@ void Cholesky::solve(const Eigen::Ref<const Vector>& b, Eigen::Ref<Vector> x) {
   const BlasThreadsScope blas(small ? 1 : BlasThreadsScope::unchanged);
   cholmod_dense rhs = dense_view(b.data(), b.size(), 1);
   auto* common = &impl_->common;
-  const int ok = cholmod_solve2(CHOLMOD_A, impl_->factor, &rhs, nullptr, &impl_->x, nullptr, &impl_->y, &impl_->e,
-                                common);
+  const int ok = cholmod_solve2(CHOLMOD_A, impl_->factor, &rhs, nullptr, &impl_->x, nullptr, &impl_->y, &impl_->e, common);
   impl_->check(ok, "solve");
   std::memcpy(x.data(), impl_->x->x, sizeof(double) * static_cast<std::size_t>(b.size()));
 }
@@ -153,8 +151,6 @@ std::vector<Index> Cholesky::ordering() const {
 
 double Cholesky::factor_nonzeros() const { return impl_->common.lnz; }
 
-double Cholesky::rcond() {
-  return impl_->factor ? cholmod_rcond(impl_->factor, &impl_->common) : 0.0;
-}
+double Cholesky::rcond() { return impl_->factor ? cholmod_rcond(impl_->factor, &impl_->common) : 0.0; }
 
 }  // namespace roifem::solvers

@@ -22,8 +22,8 @@ void JacobiCg::compute(SparseMatrix A) {
   A_.makeCompressed();
   for (Index i = 0; i < inverse_diagonal_.size(); ++i) {
     if (!(inverse_diagonal_[i] > 0) || !std::isfinite(inverse_diagonal_[i]))
-      throw SolverError("conjugate gradients: the matrix is not positive definite (diagonal entry " + std::to_string(i) +
-                        " is " + number_text(inverse_diagonal_[i]) + ")");
+      throw SolverError("conjugate gradients: the matrix is not positive definite (diagonal entry " + std::to_string(i) + " is " +
+                        number_text(inverse_diagonal_[i]) + ")");
     inverse_diagonal_[i] = 1.0 / inverse_diagonal_[i];
   }
   const Index n = A_.rows();
@@ -57,7 +57,8 @@ long JacobiCg::solve(const Eigen::Ref<const Vector>& b, Eigen::Ref<Vector> x) {
                           number_text(settings_.tolerance) + ")");
       q_.noalias() = A_.selfadjointView<Eigen::Lower>() * p_;
       const double pq = p_.dot(q_);
-      if (!(pq > 0)) throw SolverError("conjugate gradients: the matrix is not positive definite (p^T A p = " + number_text(pq) + ")");
+      if (!(pq > 0))
+        throw SolverError("conjugate gradients: the matrix is not positive definite (p^T A p = " + number_text(pq) + ")");
       const double step = rz / pq;
       x += step * p_;
       r_ -= step * q_;

@@ -9,7 +9,6 @@
 
 namespace roifem::solvers {
 
-
 // CHOLMOD's 64-bit interface throughout (cholmod_l_*, SuiteSparse_long indices): the static part
 // of the 300k-node brain factors to more than 2^31 entries, beyond the 32-bit one.
 using Long = SuiteSparse_long;
@@ -18,7 +17,7 @@ struct PartialCholesky::Impl {
   cholmod_common common{};
   cholmod_factor* factor = nullptr;
   Index n = 0, n_leading = 0;
-  std::vector<Index> leading;      ///< A's leading indices, ascending
+  std::vector<Index> leading;       ///< A's leading indices, ascending
   std::vector<Long> leading_order;  ///< factor position k < n_leading -> position in `leading`
   double analysis_s = 0, factorization_s = 0;
   // Workspaces of cholmod_solve2, kept between solves.
@@ -42,8 +41,7 @@ struct PartialCholesky::Impl {
   void check(bool ok, const char* what) const { detail::check_status(common, ok, what); }
 };
 
-PartialCholesky::PartialCholesky(const SparseMatrix& A, const std::vector<Index>& trailing)
-    : impl_(std::make_unique<Impl>()) {
+PartialCholesky::PartialCholesky(const SparseMatrix& A, const std::vector<Index>& trailing) : impl_(std::make_unique<Impl>()) {
   auto& m = *impl_;
   if (A.rows() != A.cols()) throw Error("internal: PartialCholesky of a non-square matrix");
   m.n = A.rows();

@@ -43,8 +43,7 @@ TEST(ReducedModel, CondensedStaticAnswerEqualsTheFullOneOnTheRoi) {
   // The static part recovered from the ROI equals the full answer there too.
   const Vector u_s_full = roi::gather(u, p.s);
   EXPECT_LT((condensed.recover_static(u_d, t) - u_s_full).norm() / u_s_full.norm(), 1e-10);
-  std::printf("condensed vs full static: ROI %.2e, static part %.2e (relative)\n",
-              (u_d - u_d_full).norm() / u_d_full.norm(),
+  std::printf("condensed vs full static: ROI %.2e, static part %.2e (relative)\n", (u_d - u_d_full).norm() / u_d_full.norm(),
               (condensed.recover_static(u_d, t) - u_s_full).norm() / u_s_full.norm());
 }
 
@@ -89,7 +88,8 @@ TEST(ReducedModel, StaticPieceHeldByNothingIsAModelErrorNamingANodeOfIt) {
                          tet[3] + static_cast<int>(n_a)});
   both.sets = {{"x0", a.sets.at("x0")}};
   const model::FemModel model = model::build_fem_model(both, fem::material_preset("paper"), {"x0"}, {});
-  const roi::RoiSpec spec{.kind = roi::RoiSpec::Kind::nearest, .center = Vec3(0.01, 0.005, 0.005), .radius = 0, .count = 5, .set = {}};
+  const roi::RoiSpec spec{
+      .kind = roi::RoiSpec::Kind::nearest, .center = Vec3(0.01, 0.005, 0.005), .radius = 0, .count = 5, .set = {}};
   const auto p = roi::partition_dofs(model.system.K, *model.dofs, roi::select_roi_nodes(both, *model.dofs, spec));
   try {
     ReducedModel condensed(model.system, p, *model.dofs);

@@ -103,20 +103,22 @@ TEST(Reduction, PodReproducesTheRunItLearntFromAndBeatsCraigBamptonOnAnotherLoad
   ReducedModel replay(full, p, *beam.model.dofs, every);
   ASSERT_GT(replay.num_modes(), 5);
   const double replayed = error_against_full(replay, full, 30);
-  std::printf("POD with %lld vectors, the training run replayed: %.2e (relative)\n",
-              static_cast<long long>(replay.num_modes()), replayed);
+  std::printf("POD with %lld vectors, the training run replayed: %.2e (relative)\n", static_cast<long long>(replay.num_modes()),
+              replayed);
   EXPECT_LT(replayed, 1e-9);
 
   // The same 4 vectors learnt from the step, run under a 0.1 s ramp: closer to the full model than
   // 4 Craig-Bampton modes (the load history was never seen).
   model::SecondOrderSystem ramped = full;
   ramped.load = full.load.with_ramp(model::Ramp{0.1});
-  ReducedModel pod(ramped, p, *beam.model.dofs, {.kind = ReductionKind::pod, .modes = 4, .snapshot_dt_s = dt, .snapshot_steps = 30});
+  ReducedModel pod(ramped, p, *beam.model.dofs,
+                   {.kind = ReductionKind::pod, .modes = 4, .snapshot_dt_s = dt, .snapshot_steps = 30});
   ReducedModel cb(ramped, p, *beam.model.dofs, {.kind = ReductionKind::craig_bampton, .modes = 4});
   ReducedModel plain(ramped, p, *beam.model.dofs);
   const double e_pod = error_against_full(pod, ramped, 60), e_cb = error_against_full(cb, ramped, 60),
                e_plain = error_against_full(plain, ramped, 60);
-  std::printf("0.1 s ramp, 60 steps, max |u_r - u| / max |u|: static %.2e, craig-bampton-4 %.2e, pod-4 %.2e\n", e_plain, e_cb, e_pod);
+  std::printf("0.1 s ramp, 60 steps, max |u_r - u| / max |u|: static %.2e, craig-bampton-4 %.2e, pod-4 %.2e\n", e_plain, e_cb,
+              e_pod);
   EXPECT_LT(e_pod, e_cb);
   EXPECT_LT(e_pod, e_plain);
 }
@@ -151,7 +153,8 @@ TEST(Reduction, CraigBamptonWithEveryModeReproducesTheFullModel) {
     tb.step(b);
     worst = std::max(worst, (cb.expand(b.u, b.t) - a.u).norm() / a.u.norm());
   }
-  std::printf("Craig-Bampton with all %lld modes vs the full model, 100 steps: %.2e (relative)\n", static_cast<long long>(all), worst);
+  std::printf("Craig-Bampton with all %lld modes vs the full model, 100 steps: %.2e (relative)\n", static_cast<long long>(all),
+              worst);
   EXPECT_LT(worst, 1e-9);
 }
 
@@ -160,8 +163,7 @@ TEST(Reduction, CutOffKeepsExactlyTheModesBelowIt) {
   const auto p = beam.partition();
   ReducedModel ten(beam.model.system, p, *beam.model.dofs, {.kind = ReductionKind::craig_bampton, .modes = 10});
   const double cutoff = 0.5 * (ten.mode_frequencies()[5] + ten.mode_frequencies()[6]);
-  ReducedModel cut(beam.model.system, p, *beam.model.dofs,
-                               {.kind = ReductionKind::craig_bampton, .cutoff_rad_s = cutoff});
+  ReducedModel cut(beam.model.system, p, *beam.model.dofs, {.kind = ReductionKind::craig_bampton, .cutoff_rad_s = cutoff});
   EXPECT_EQ(cut.num_modes(), 6);
   EXPECT_LT((cut.mode_frequencies() - ten.mode_frequencies().head(6)).norm() / ten.mode_frequencies().head(6).norm(), 1e-9);
 }
@@ -188,7 +190,8 @@ TEST(Reduction, CraigBamptonWithoutModesOrCutOffIsAnInputError) {
     ReducedModel(beam.model.system, beam.partition(), *beam.model.dofs, {.kind = ReductionKind::craig_bampton});
     FAIL() << "expected an InputError";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("craig-bampton reduction: give a positive number of modes"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("craig-bampton reduction: give a positive number of modes"), std::string::npos)
+        << e.what();
   }
 }
 
@@ -301,8 +304,7 @@ TEST(Reduction, TheEnergyLedgerOfAReducedModelReadsItsSplitMatricesRight) {
   // assembled matrices give the same energies, and the trapezoidal rule's discrete balance
   // E_n + D_n - W_n = E_0 holds with the Craig-Bampton model's full, damped mass.
   const Beam beam;
-  ReducedModel cb(beam.model.system, beam.partition(), *beam.model.dofs,
-                              {.kind = ReductionKind::craig_bampton, .modes = 5});
+  ReducedModel cb(beam.model.system, beam.partition(), *beam.model.dofs, {.kind = ReductionKind::craig_bampton, .modes = 5});
   const auto& sys = cb.system();
   ASSERT_FALSE(sys.M_split.empty());
   model::State s = model::State::at_rest(sys.size());

@@ -55,8 +55,9 @@ TEST(Compare, MeasuresOrdersStabilityLimitsAndKeepsDivergedRunsFreeOfNumbers) {
   std::ifstream csv(dir / "compare.csv");
   std::string line;
   std::getline(csv, line);
-  EXPECT_EQ(line, "integrator,mode,dt_or_tol,steps,rhs_evals,jac_evals,lin_setups,lin_solves,wall_s,err_max_mm,"
-                  "err_rms_mm,stable,energy_drift");
+  EXPECT_EQ(line,
+            "integrator,mode,dt_or_tol,steps,rhs_evals,jac_evals,lin_setups,lin_solves,wall_s,err_max_mm,"
+            "err_rms_mm,stable,energy_drift");
   std::size_t rows = 0;
   while (std::getline(csv, line)) {
     ++rows;

@@ -105,8 +105,8 @@ TEST(ShippedBrain, StiffnessWithBaseFixedIsPositiveDefiniteAndPaperModesAreSlow)
   const Eigen::SelfAdjointEigenSolver<DenseMatrix> eig(A, Eigen::EigenvaluesOnly);
   ASSERT_GT(eig.eigenvalues()[0], 0);
   const Vector w = eig.eigenvalues().cwiseSqrt();
-  std::printf("paper preset, brain-800, base fixed: lowest w = %.3f %.3f %.3f %.3f %.3f %.3f rad/s, highest %.1f rad/s\n",
-              w[0], w[1], w[2], w[3], w[4], w[5], w[w.size() - 1]);
+  std::printf("paper preset, brain-800, base fixed: lowest w = %.3f %.3f %.3f %.3f %.3f %.3f rad/s, highest %.1f rad/s\n", w[0],
+              w[1], w[2], w[3], w[4], w[5], w[w.size() - 1]);
   // The paper's error curves settle in about 50 steps of 0.05 s: lowest modes near 2 rad/s.
   EXPECT_GT(w[0], 0.5);
   EXPECT_LT(w[0], 4.0);

@@ -40,8 +40,8 @@ TEST(UniaxialBar, ElongationAndLateralContractionMatchTheory) {
   ASSERT_GE(corner, 0);
   EXPECT_NEAR(u[3 * corner] / elongation, 1.0, 1e-10);
   EXPECT_NEAR(-(u[3 * corner + 1] / a) / (u[3 * corner] / L), nu, 1e-10);
-  std::printf("bar: u_x(L) = %.12e m (F L / E A = %.12e), relative error %.2e; lateral ratio %.12f\n",
-              u[3 * corner], elongation, worst / elongation, -(u[3 * corner + 1] / a) / (u[3 * corner] / L));
+  std::printf("bar: u_x(L) = %.12e m (F L / E A = %.12e), relative error %.2e; lateral ratio %.12f\n", u[3 * corner], elongation,
+              worst / elongation, -(u[3 * corner + 1] / a) / (u[3 * corner] / L));
 }
 
 }  // namespace

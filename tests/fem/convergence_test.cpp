@@ -20,9 +20,9 @@ double phi(const Vec3& x) { return 64 * p(x.x()) * p(x.y()) * p(x.z()); }
 Vec3 exact(const Vec3& x) { return amplitude * phi(x); }
 
 Vec3 body_force(const Vec3& x, const Material& m) {
-  const Vec3 v(p(x.x()), p(x.y()), p(x.z()));                      // p
-  const Vec3 d(1 - 2 * x.x(), 1 - 2 * x.y(), 1 - 2 * x.z());        // p'
-  Mat3 H;                                                          // p'' = -2
+  const Vec3 v(p(x.x()), p(x.y()), p(x.z()));                 // p
+  const Vec3 d(1 - 2 * x.x(), 1 - 2 * x.y(), 1 - 2 * x.z());  // p'
+  Mat3 H;                                                     // p'' = -2
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
       const int k = 3 - i - j;

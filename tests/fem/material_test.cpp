@@ -46,8 +46,7 @@ TEST(Material, RejectsNonPhysicalParametersByName) {
   expect_input_error([] { Material{.lambda = 1, .mu = 0, .rho = 1, .alpha = 0}.validate(); }, "mu");
   expect_input_error([] { Material{.lambda = -10, .mu = 1, .rho = 1, .alpha = 0}.validate(); }, "Poisson");
   expect_input_error([] { Material{.lambda = std::nan(""), .mu = 1, .rho = 1, .alpha = 0}.validate(); }, "lambda");
-  expect_input_error(
-      [] { Material::from_young_poisson(std::numeric_limits<double>::infinity(), 0.3, 1, 0); }, "Young");
+  expect_input_error([] { Material::from_young_poisson(std::numeric_limits<double>::infinity(), 0.3, 1, 0); }, "Young");
   expect_input_error([] { material_preset("jelly"); }, "valid: paper, brain");
 }
 

@@ -42,8 +42,7 @@ TEST(PatchTest, AffineBoundaryDisplacementIsReproducedInsideWithConstantStrain) 
   const Vector u = dofs.expand(solve_static(assembler.stiffness(material), assembler.prescribed_load(material), dofs));
 
   double worst = 0;
-  for (int n = 0; n < mesh.num_nodes(); ++n)
-    worst = std::max(worst, (u.segment<3>(3 * n) - (A * mesh.node(n) + b)).norm());
+  for (int n = 0; n < mesh.num_nodes(); ++n) worst = std::max(worst, (u.segment<3>(3 * n) - (A * mesh.node(n) + b)).norm());
   EXPECT_LT(worst / A.norm(), 1e-10);
   RecordProperty("patch_displacement_error", std::to_string(worst / A.norm()));
   std::printf("patch test: %d interior nodes, max |u - (A x + b)| / |A| = %.3e\n", interior, worst / A.norm());

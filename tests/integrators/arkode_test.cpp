@@ -26,7 +26,8 @@ TEST(Arkode, TrapezoidButcherTableEqualsTheHandWrittenRule) {
   const Cantilever c(1e-3, 0.3);
   Trapezoid hand(0.01);
   const Vector a = run(hand, c.sys(), c.rest(), 0.5);
-  for (const char* name : {"arkode-trapezoid", "arkode-trapezoid-schur", "arkode-trapezoid-mass", "arkode-trapezoid-mass-schur"}) {
+  for (const char* name :
+       {"arkode-trapezoid", "arkode-trapezoid-schur", "arkode-trapezoid-mass", "arkode-trapezoid-mass-schur"}) {
     auto table = make_integrator(name, 0.01);
     const Vector b = run(*table, c.sys(), c.rest(), 0.5);
     std::printf("hand-written vs %s: relative difference %.2e\n", name, (a - b).norm() / a.norm());
@@ -37,7 +38,8 @@ TEST(Arkode, TrapezoidButcherTableEqualsTheHandWrittenRule) {
 // The same on a condensed paper model (split stiffness, dense interface block), over 200 steps
 // at the paper's dt: the Schur solver's elimination and the K u cache change nothing.
 TEST(Arkode, TrapezoidTableEqualsTheHandWrittenRuleOnTheCondensedPaperModel) {
-  const auto model = simulation::build_scenario_model(scenario::read_scenario(std::string(ROIFEM_SCENARIO_DIR) + "/paper-setup1.toml"));
+  const auto model =
+      simulation::build_scenario_model(scenario::read_scenario(std::string(ROIFEM_SCENARIO_DIR) + "/paper-setup1.toml"));
   const auto& sys = model->system();
   const model::State rest = model::State::at_rest(sys.size());
   Trapezoid hand(0.05);
@@ -58,8 +60,8 @@ TEST(Arkode, MassMatrixVariantAgreesWithTheLumpedInverse) {
   EXPECT_LT((a - b).norm() / a.norm(), 1e-9);
 }
 
-const char* const methods[] = {"arkode-erk2",   "arkode-erk3",    "arkode-erk4",    "arkode-erk5",     "arkode-sdirk2",
-                               "arkode-ark3",   "arkode-esdirk4", "arkode-esdirk5", "arkode-trapezoid", "trapezoid"};
+const char* const methods[] = {"arkode-erk2", "arkode-erk3",    "arkode-erk4",    "arkode-erk5",      "arkode-sdirk2",
+                               "arkode-ark3", "arkode-esdirk4", "arkode-esdirk5", "arkode-trapezoid", "trapezoid"};
 
 TEST(Arkode, EveryMethodShowsItsOrderOnADampedOscillator) {
   const model::SecondOrderSystem s = test_problems::damped_oscillator();
@@ -84,7 +86,7 @@ TEST(Arkode, EveryMethodShowsItsOrderOnAMeshAgainstTheModalSolution) {
   const double w_max = std::sqrt(eig.eigenvalues().maxCoeff());
   const model::State start{0, u0 / u0.norm() * 1e-3, Vector::Zero(u0.size())};
   const double dt = std::pow(2.0, std::floor(std::log2(0.25 / w_max)));  // 4 dt <= 1 / w_max
-  const double T = 1024 * dt;                                              // on every grid
+  const double T = 1024 * dt;                                            // on every grid
   const Vector exact = model::ModalReference(c.sys(), start).displacement(T);
   std::printf("w_max = %.0f rad/s, dt = %.2e s, T = %.3f s\n", w_max, dt, T);
   for (const char* method : methods) {

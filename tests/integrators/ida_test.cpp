@@ -30,7 +30,7 @@ TEST(Ida, MeetsItsToleranceAgainstTheModalSolution) {
       std::printf("%s rtol %.0e: relative error %.2e, %ld steps, %ld residuals, %ld setups\n", name, rtol, err, st.steps,
                   st.rhs_evals, st.lin_setups);
       EXPECT_LT(err, 200 * rtol) << name << " rtol " << rtol;  // global error ~ tolerance times a modest factor
-      EXPECT_LT(err, previous);                                 // tighter tolerance, smaller error
+      EXPECT_LT(err, previous);                                // tighter tolerance, smaller error
       previous = err;
     }
   }
@@ -44,13 +44,10 @@ TEST(IdaRoiDae, TrajectoryEqualsTheCondensedModelToTheTolerance) {
   const auto model = model::build_fem_model(
       mesh, fem::material_preset("paper"), {"base"},
       {{"opening_left", Vec3(-0.016, 0, 0), model::Ramp{0.5}}, {"opening_right", Vec3(0.016, 0, 0), model::Ramp{0.5}}});
-  const roi::RoiSpec spec{.kind = roi::RoiSpec::Kind::nearest, .center = Vec3(0, 0, 0.040), .radius = 0, .count = 228,
-                          .set = {}};
-  const auto partition =
-      roi::partition_dofs(model.system.K, *model.dofs, roi::select_roi_nodes(mesh, *model.dofs, spec));
+  const roi::RoiSpec spec{.kind = roi::RoiSpec::Kind::nearest, .center = Vec3(0, 0, 0.040), .radius = 0, .count = 228, .set = {}};
+  const auto partition = roi::partition_dofs(model.system.K, *model.dofs, roi::select_roi_nodes(mesh, *model.dofs, spec));
   condensation::ReducedModel condensed(model.system, partition, *model.dofs);
-  const model::ModalReference exact(
-      condensed.system(), model::State::at_rest(condensed.system().size()));
+  const model::ModalReference exact(condensed.system(), model::State::at_rest(condensed.system().size()));
 
   IdaRoiDae dae(model.system, partition, StepControl{.dt = 1e-4, .adaptive = true, .rtol = 1e-8, .atol = 1e-12});
   dae.reset(0.0);
@@ -64,8 +61,7 @@ TEST(IdaRoiDae, TrajectoryEqualsTheCondensedModelToTheTolerance) {
     worst_s = std::max(worst_s, (u_s - s).norm() / s.norm());
   }
   const auto st = dae.stats();
-  std::printf("IDA DAE vs exact condensed: ROI %.2e, static part %.2e (relative), %ld steps\n", worst_d, worst_s,
-              st.steps);
+  std::printf("IDA DAE vs exact condensed: ROI %.2e, static part %.2e (relative), %ld steps\n", worst_d, worst_s, st.steps);
   EXPECT_LT(worst_d, 1e-5);
   EXPECT_LT(worst_s, 1e-5);
 }

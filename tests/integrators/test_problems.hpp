@@ -44,7 +44,7 @@ inline model::State oscillator_start() { return {0, Vector::Constant(1, 1e-3), V
 
 /// Observed order between the last two step sizes, against an exact reference.
 inline double observed_order(const std::string& method, const model::SecondOrderSystem& sys, const model::State& start,
-                      const Vector& exact, double T, std::initializer_list<double> dts) {
+                             const Vector& exact, double T, std::initializer_list<double> dts) {
   std::vector<double> errors;
   for (double dt : dts) {
     auto integrator = make_integrator(method, dt);

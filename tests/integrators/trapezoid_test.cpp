@@ -56,8 +56,8 @@ TEST(Trapezoid, EnergyBalanceHoldsWithDampingAndLoad) {
     worst = std::max(worst, std::abs(ledger.balance_residual()) / ledger.external_work());
   }
   EXPECT_GT(ledger.dissipated(), 0.01 * ledger.external_work());  // damping did real work
-  std::printf("damped, loaded: max |E + D - W - E0| / W = %.3e (W = %.3e J, D = %.3e J)\n", worst,
-              ledger.external_work(), ledger.dissipated());
+  std::printf("damped, loaded: max |E + D - W - E0| / W = %.3e (W = %.3e J, D = %.3e J)\n", worst, ledger.external_work(),
+              ledger.dissipated());
   EXPECT_LT(worst, 1e-8);
 }
 
@@ -88,8 +88,8 @@ TEST(Trapezoid, IsSecondOrderAgainstTheExactModalSolution) {
   const Cantilever c(0.8, 0.0, 0.0);
   const Modes modes(c.sys());
   const Vector u0 = 1e-3 * (modes.mode(0) + 0.5 * modes.mode(1) + 0.25 * modes.mode(2)) / modes.mode(0).norm();
-  std::printf("lowest w = %.3f %.3f %.3f rad/s\n", std::sqrt(modes.eig.eigenvalues()[0]),
-              std::sqrt(modes.eig.eigenvalues()[1]), std::sqrt(modes.eig.eigenvalues()[2]));
+  std::printf("lowest w = %.3f %.3f %.3f rad/s\n", std::sqrt(modes.eig.eigenvalues()[0]), std::sqrt(modes.eig.eigenvalues()[1]),
+              std::sqrt(modes.eig.eigenvalues()[2]));
   const double T = 1.0;
   const Vector exact = modes.free_vibration(0.8, u0, T);
   double previous = 0;
@@ -120,14 +120,13 @@ TEST(Trapezoid, RejectsNonPositiveTimeStepAndOffGridTimes) {
   EXPECT_THROW(trapezoid.advance_to(0.07, s), InputError);
 }
 
-
 TEST(Trapezoid, ConjugateGradientsGiveTheDirectSolvesAnswerOverThePaperRun) {
   // The paper's full model (shipped brain, nearly incompressible material, walls pulled over
   // 0.5 s), 200 steps of dt = 0.05 s by both solves of K_eff.
   const mesh::TetMesh mesh = mesh::read_mesh(std::string(ROIFEM_MESH_DIR) + "/brain-800.msh");
-  const auto model = model::build_fem_model(mesh, fem::material_preset("paper"), {"base"},
-                                            {{"opening_left", Vec3(-0.016, 0, 0), model::Ramp{0.5}},
-                                             {"opening_right", Vec3(0.016, 0, 0), model::Ramp{0.5}}});
+  const auto model = model::build_fem_model(
+      mesh, fem::material_preset("paper"), {"base"},
+      {{"opening_left", Vec3(-0.016, 0, 0), model::Ramp{0.5}}, {"opening_right", Vec3(0.016, 0, 0), model::Ramp{0.5}}});
   const auto& sys = model.system;
   model::State direct_state = model::State::at_rest(sys.size());
   model::State cg_state = direct_state;

@@ -77,7 +77,8 @@ TEST_F(VectorOps, FusedOperationsEqualTheLibrarysAndClonesInheritThem) {
   N_VLinearCombination(2, c, stock_in_place, stock_z.get());
   N_VLinearCombination(2, c, fast_in_place, fast_z.get());
   EXPECT_LT(difference(), 1e-14);
-  N_Vector stock_out[1] = {stock_z.get()}, fast_out[1] = {fast_z.get()}, stock_in[1] = {stock_y.get()}, fast_in[1] = {fast_y.get()};
+  N_Vector stock_out[1] = {stock_z.get()}, fast_out[1] = {fast_z.get()}, stock_in[1] = {stock_y.get()},
+           fast_in[1] = {fast_y.get()};
   N_VScaleAddMulti(1, c + 2, stock_x.get(), stock_in, stock_out);
   N_VScaleAddMulti(1, c + 2, fast_x.get(), fast_in, fast_out);
   EXPECT_LT(difference(), 1e-15);

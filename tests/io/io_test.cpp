@@ -92,7 +92,8 @@ TEST(Xdmf, DescribesOneGridPerTimePointingAtTheFieldsAndTheMesh) {
   write_xdmf(path, {.h5_name = "results.h5", .nodes = 7, .tets = 3, .times = {0.5, 1.0}, .fields = {"/fields/u0", "/fields/u1"}});
   const std::string xml = read_text(path);
   std::size_t grids = 0;
-  for (std::size_t at = xml.find("GridType=\"Uniform\""); at != std::string::npos; at = xml.find("GridType=\"Uniform\"", at + 1)) ++grids;
+  for (std::size_t at = xml.find("GridType=\"Uniform\""); at != std::string::npos; at = xml.find("GridType=\"Uniform\"", at + 1))
+    ++grids;
   EXPECT_EQ(grids, 2u);
   EXPECT_NE(xml.find("<Time Value=\"0.5\"/>"), std::string::npos) << xml;
   EXPECT_NE(xml.find("Dimensions=\"7 3\""), std::string::npos) << xml;

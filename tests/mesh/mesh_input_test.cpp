@@ -118,8 +118,7 @@ TEST(MeshChecks, InvertedTetrahedronIsNamedByIndex) {
 
 TEST(MeshChecks, ZeroVolumeTetrahedronIsNamedByIndex) {
   TempDir dir;
-  const auto file =
-      write_file(dir / "flat.msh", test::single_tet_msh("1 0 0 0\n2 1 0 0\n3 0 1 0\n4 1 1 0\n", "1 2 3 4"));
+  const auto file = write_file(dir / "flat.msh", test::single_tet_msh("1 0 0 0\n2 1 0 0\n3 0 1 0\n4 1 1 0\n", "1 2 3 4"));
   const TetMesh mesh = read_mesh(file);
   const std::string msg = error_of([&] { check_mesh(mesh); });
   EXPECT_NE(msg.find("tetrahedron 0"), std::string::npos) << msg;

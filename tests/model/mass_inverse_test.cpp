@@ -22,7 +22,8 @@ TEST(MassInverse, SparseProductOfABlockDiagonalMassHasThePatternItImpliesAndTheD
   // B: a tridiagonal band.
   std::vector<Eigen::Triplet<double>> t;
   for (Index i = 0; i < n; ++i)
-    for (Index j = std::max<Index>(0, i - 1); j <= std::min<Index>(n - 1, i + 1); ++j) t.emplace_back(i, j, 1.0 + static_cast<double>(i + 2 * j));
+    for (Index j = std::max<Index>(0, i - 1); j <= std::min<Index>(n - 1, i + 1); ++j)
+      t.emplace_back(i, j, 1.0 + static_cast<double>(i + 2 * j));
   SparseMatrix B(n, n);
   B.setFromTriplets(t.begin(), t.end());
 

@@ -21,12 +21,14 @@ TEST(Spectrum, LanczosEqualsTheDenseEigensolverOnABox) {
   const auto mesh = mesh::structured_box_mesh(4, 2, 2, 0.04, 0.02, 0.02);
   const auto m = build_fem_model(mesh, fem::Material::from_young_poisson(3000, 0.45, 1000, 0.8), {"x0"}, {});
   const double lanczos = highest_frequency(m.system), dense = dense_highest(m.system);
-  std::printf("box, %lld dofs: w_max Lanczos %.10g, dense %.10g rad/s\n", static_cast<long long>(m.system.size()), lanczos, dense);
+  std::printf("box, %lld dofs: w_max Lanczos %.10g, dense %.10g rad/s\n", static_cast<long long>(m.system.size()), lanczos,
+              dense);
   EXPECT_NEAR(lanczos / dense, 1.0, 1e-9);
 }
 
 TEST(Spectrum, LanczosEqualsTheDenseEigensolverOnTheCondensedPaperModel) {
-  const auto model = simulation::build_scenario_model(scenario::read_scenario(std::string(ROIFEM_SCENARIO_DIR) + "/paper-setup1.toml"));
+  const auto model =
+      simulation::build_scenario_model(scenario::read_scenario(std::string(ROIFEM_SCENARIO_DIR) + "/paper-setup1.toml"));
   const double lanczos = highest_frequency(model->system()), dense = dense_highest(model->system());
   std::printf("setup 1: w_max Lanczos %.10g, dense %.10g rad/s\n", lanczos, dense);
   EXPECT_NEAR(lanczos / dense, 1.0, 1e-9);

@@ -78,8 +78,8 @@ TEST(ScenarioReader, ResolvedTomlReadsBackToTheSameScenario) {
 
 TEST(ScenarioReader, ReadsTheReductionOfTheStaticPart) {
   EXPECT_EQ(parse_scenario(valid, "s.toml", "/data").reduction.kind, condensation::ReductionKind::static_condensation);
-  const Scenario cb = parse_scenario(replaced(valid, "radius_mm = 25", "radius_mm = 25\nreduction = \"craig-bampton\"\nmodes = 10"),
-                                     "s.toml", "/data");
+  const Scenario cb = parse_scenario(
+      replaced(valid, "radius_mm = 25", "radius_mm = 25\nreduction = \"craig-bampton\"\nmodes = 10"), "s.toml", "/data");
   EXPECT_EQ(cb.reduction.kind, condensation::ReductionKind::craig_bampton);
   EXPECT_EQ(cb.reduction.modes, 10);
   const Scenario again = parse_scenario(cb.resolved_toml(), "resolved.toml", "/data");
@@ -88,10 +88,11 @@ TEST(ScenarioReader, ReadsTheReductionOfTheStaticPart) {
       replaced(valid, "radius_mm = 25", "radius_mm = 25\nreduction = \"craig-bampton\"\ncutoff_rad_s = 40.0"), "s.toml", "/data");
   EXPECT_EQ(cut.reduction.cutoff_rad_s, 40.0);
   EXPECT_EQ(parse_scenario(cut.resolved_toml(), "r.toml", "/data").reduction.cutoff_rad_s, 40.0);
-  EXPECT_EQ(parse_scenario(replaced(valid, "radius_mm = 25", "radius_mm = 25\nreduction = \"guyan\""), "s.toml", "/data").reduction.kind,
+  EXPECT_EQ(parse_scenario(replaced(valid, "radius_mm = 25", "radius_mm = 25\nreduction = \"guyan\""), "s.toml", "/data")
+                .reduction.kind,
             condensation::ReductionKind::guyan);
-  const Scenario pod = parse_scenario(replaced(valid, "radius_mm = 25", "radius_mm = 25\nreduction = \"pod\"\nmodes = 40"),
-                                      "s.toml", "/data");
+  const Scenario pod =
+      parse_scenario(replaced(valid, "radius_mm = 25", "radius_mm = 25\nreduction = \"pod\"\nmodes = 40"), "s.toml", "/data");
   EXPECT_EQ(pod.reduction.label(), "pod-40");
   EXPECT_EQ(pod.reduction.snapshot_dt_s, pod.dt);  // trained on the run's own step and length
   EXPECT_EQ(pod.reduction.snapshot_steps, pod.steps);
@@ -99,16 +100,20 @@ TEST(ScenarioReader, ReadsTheReductionOfTheStaticPart) {
 }
 
 TEST(ScenarioReader, BadReductionsAreNamed) {
-  EXPECT_NE(error_of(replaced(valid, "radius_mm = 25", "radius_mm = 25\nreduction = \"modal\"")).find("'roi.reduction' must be one of"),
-            std::string::npos);
-  EXPECT_NE(error_of(replaced(valid, "radius_mm = 25", "radius_mm = 25\nreduction = \"craig-bampton\"")).find("needs key 'roi.modes'"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of(replaced(valid, "radius_mm = 25", "radius_mm = 25\nreduction = \"modal\"")).find("'roi.reduction' must be one of"),
+      std::string::npos);
+  EXPECT_NE(
+      error_of(replaced(valid, "radius_mm = 25", "radius_mm = 25\nreduction = \"craig-bampton\"")).find("needs key 'roi.modes'"),
+      std::string::npos);
   EXPECT_NE(error_of(replaced(valid, "radius_mm = 25", "radius_mm = 25\nreduction = \"craig-bampton\"\nmodes = 0"))
                 .find("'roi.modes' must be positive"),
             std::string::npos);
-  EXPECT_NE(error_of(replaced(valid, "radius_mm = 25", "radius_mm = 25\nmodes = 5")).find("belong to reduction"), std::string::npos);
-  EXPECT_NE(error_of(replaced(valid, "radius_mm = 25", "radius_mm = 25\nreduction = \"pod\"")).find("needs a positive key 'roi.modes'"),
+  EXPECT_NE(error_of(replaced(valid, "radius_mm = 25", "radius_mm = 25\nmodes = 5")).find("belong to reduction"),
             std::string::npos);
+  EXPECT_NE(
+      error_of(replaced(valid, "radius_mm = 25", "radius_mm = 25\nreduction = \"pod\"")).find("needs a positive key 'roi.modes'"),
+      std::string::npos);
   EXPECT_NE(error_of(replaced(valid, "radius_mm = 25", "radius_mm = 25\nreduction = \"pod\"\nmodes = 4\ncutoff_rad_s = 9"))
                 .find("'roi.cutoff_rad_s' belongs to reduction = \"craig-bampton\""),
             std::string::npos);
@@ -125,7 +130,8 @@ TEST(ScenarioReader, NonAsciiOutsideStringsAndCommentsIsNamedAndInsideIsFine) {
   EXPECT_NE(error_of("m = \"\"\"a\\\n  \xCF\x9A\"\"\"\n").find("right after a line-ending backslash"), std::string::npos)
       << error_of("m = \"\"\"a\\\n  \xCF\x9A\"\"\"\n");
   // A non-ASCII character after a backslash (and blanks) in a string: fuzzing found `\` then U+03DA.
-  for (const std::string bad : {"m = \"\"\"hehif-\n\\\xCF\x9A(yo\"\"\"\n", "m = \"\"\"a\\  \xCF\x9A\"\"\"\n", "m = \"a\\\xC3\xA9\"\n"})
+  for (const std::string bad :
+       {"m = \"\"\"hehif-\n\\\xCF\x9A(yo\"\"\"\n", "m = \"\"\"a\\  \xCF\x9A\"\"\"\n", "m = \"a\\\xC3\xA9\"\n"})
     EXPECT_NE(error_of(bad).find("non-ASCII character after a backslash"), std::string::npos) << error_of(bad);
   EXPECT_NE(error_of("m = \"a\\\xC3\xA9\"\n").find("s.toml:1:8:"), std::string::npos) << error_of("m = \"a\\\xC3\xA9\"\n");
   // toml++ scans a bare value to its end (whitespace, ']', '}', ',' or '#') before refusing it:
@@ -136,8 +142,9 @@ TEST(ScenarioReader, NonAsciiOutsideStringsAndCommentsIsNamedAndInsideIsFine) {
     EXPECT_NE(error_of(text).find("s.toml:1:" + column + ": non-ASCII character outside"), std::string::npos) << error_of(text);
   }
   // Where TOML lets a key or a value begin, a quote opens a string, over lines in an array.
-  const std::string strings = "a.\"\xC3\xA9\" = 1\n[ \"\xC3\xA9\" ]\nx = [ # \xC3\xA9\n  1, \"\xC3\xA9\",\n  '\xC3\xA9',\n]\n"
-                              "y = { \"\xC3\xA9\" = '''\xC3\xA9''', b = [\"\xC3\xA9\"] }\n";
+  const std::string strings =
+      "a.\"\xC3\xA9\" = 1\n[ \"\xC3\xA9\" ]\nx = [ # \xC3\xA9\n  1, \"\xC3\xA9\",\n  '\xC3\xA9',\n]\n"
+      "y = { \"\xC3\xA9\" = '''\xC3\xA9''', b = [\"\xC3\xA9\"] }\n";
   EXPECT_EQ(error_of(strings).find("non-ASCII"), std::string::npos) << error_of(strings);
   const std::string fine = "\xEF\xBB\xBF# caf\xC3\xA9 \xC2\xB5m\n" + replaced(valid, "brain.msh", "caf\xC3\xA9/brain.msh");
   EXPECT_EQ(parse_scenario(fine, "s.toml", "/data").mesh, std::filesystem::path("/data/caf\xC3\xA9/brain.msh"));
@@ -161,8 +168,9 @@ TEST(ScenarioReader, UnknownKeysAreErrorsNamingFileLineAndKey) {
 TEST(ScenarioReader, WrongTypesAreErrorsNamingTheKey) {
   EXPECT_NE(error_of(replaced(valid, "dt_s = 0.01", "dt_s = \"fast\"")).find("'time.dt_s' must be a number"), std::string::npos);
   EXPECT_NE(error_of(replaced(valid, "steps = 30", "steps = 30.5")).find("'time.steps' must be an integer"), std::string::npos);
-  EXPECT_NE(error_of(replaced(valid, "force_N = [-0.01, 0, 0]", "force_N = [1, 2]")).find("'load.force_N' must be an array of three"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of(replaced(valid, "force_N = [-0.01, 0, 0]", "force_N = [1, 2]")).find("'load.force_N' must be an array of three"),
+      std::string::npos);
   EXPECT_NE(error_of(replaced(valid, "fixed = [\"base\"]", "fixed = \"base\"")).find("'boundary.fixed' must be an array"),
             std::string::npos);
 }

@@ -39,7 +39,8 @@ ramp_s = 0.5
 set = "opening_right"
 force_N = [0.02, 0, 0]
 ramp_s = 0.5
-)" + roi_block + "[time]\ndt_s = 0.05\nsteps = " + std::to_string(steps) + "\n[output]\nfield_every = 10\n";
+)" + roi_block +
+                           "[time]\ndt_s = 0.05\nsteps = " + std::to_string(steps) + "\n[output]\nfield_every = 10\n";
   return scenario::parse_scenario(text, "test.toml", ".");
 }
 

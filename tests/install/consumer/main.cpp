@@ -19,8 +19,8 @@ int main() {
   const fem::DofMap dofs(constraints);
   const auto material = fem::Material::from_young_poisson(1e4, 0.3, 1000, 0);
   const fem::StiffnessAssembler assembler(mesh, dofs);
-  const Vector u = dofs.expand(fem::solve_static(assembler.stiffness(material),
-                                                 dofs.restrict_to_free(fem::set_force(mesh, "x1", Vec3(1, 0, 0))), dofs));
+  const Vector u = dofs.expand(
+      fem::solve_static(assembler.stiffness(material), dofs.restrict_to_free(fem::set_force(mesh, "x1", Vec3(1, 0, 0))), dofs));
   const double expected = 1.0 * 0.1 / (1e4 * 1e-4);
   const double error = std::abs(u.maxCoeff() - expected) / expected;
   std::printf("installed roifem: bar elongation %.6e m, relative error %.2e\n", u.maxCoeff(), error);
