@@ -12,6 +12,7 @@
 #include "experiments/roi_error.hpp"
 #include "integrators/factory.hpp"
 #include "io/csv.hpp"
+#include "simulation/progress.hpp"
 #include "simulation/run_loop.hpp"
 #include "simulation/scenario_model.hpp"
 
@@ -21,83 +22,54 @@ namespace {
 
 using io::format;
 
-class Search {
+/// The full model's run, and the peak error of reduced models against it at the evaluated nodes.
+class ErrorProbe {
  public:
-  Search(const RoiSizeOptions& o, const scenario::Scenario& sc, const simulation::ScenarioModel& full, std::ostream& log)
-      : o_(o),
-        sc_(sc),
+  ErrorProbe(const scenario::Scenario& sc, std::string integrator, const simulation::ScenarioModel& full)
+      : sc_(sc),
+        integrator_(std::move(integrator)),
         full_(full),
-        log_(log),
         evaluated_(full_node_dofs(roi::select_roi_nodes(full.mesh, *full.full.dofs, *sc.roi), *full.full.dofs)) {
-    auto integrator = integrators::make_integrator(sc.integrator, sc.dt);
+    auto integrator_run = integrators::make_integrator(integrator_, sc.dt);
     model::State state = model::State::at_rest(full.system().size());
-    integrator->reset(full.system(), state);
+    integrator_run->reset(full.system(), state);
     for (long k = 1; k <= sc.steps; ++k) {
-      integrator->advance_to(static_cast<double>(k) * sc.dt, state);
+      integrator_run->advance_to(static_cast<double>(k) * sc.dt, state);
       reference_.push_back(state.u);
     }
   }
 
-  /// Peak over steps and the evaluated nodes (the scenario's own ROI) of the distance to the full
-  /// model (mm), for an ROI of the n nodes nearest the target (the static part recovered where the
-  /// evaluated nodes lie outside it).
-  double peak_error_mm(Index n, const condensation::Reduction& reduction) {
-    const auto reduced = reduce(n, reduction);
-    auto integrator = integrators::make_integrator(sc_.integrator, sc_.dt);
-    const auto& system = reduced->system();
+  /// Peak over steps and the evaluated nodes of the distance to the full model (mm).
+  double peak_error_mm(condensation::ReducedModel& reduced) const {
+    auto integrator = integrators::make_integrator(integrator_, sc_.dt);
+    const auto& system = reduced.system();
     model::State state = model::State::at_rest(system.size());
     integrator->reset(system, state);
     double peak = 0;
     for (long k = 1; k <= sc_.steps; ++k) {
       integrator->advance_to(static_cast<double>(k) * sc_.dt, state);
-      peak = std::max(peak,
-                      roi_error(evaluated_, reduced->expand(state.u, state.t), reference_[static_cast<std::size_t>(k - 1)]).max);
+      peak = std::max(peak, roi_error(evaluated_, reduced.expand(state.u, state.t), reference_[static_cast<std::size_t>(k - 1)]).max);
     }
     return peak / mm;
   }
 
-  std::unique_ptr<condensation::ReducedModel> reduce(Index n, const condensation::Reduction& reduction) const {
-    const roi::RoiSpec spec{.kind = roi::RoiSpec::Kind::nearest, .center = sc_.roi->center, .radius = 0, .count = n, .set = {}};
+  /// The reduced model of the ROI `spec` (a POD basis learns from the scenario's own step and length).
+  std::unique_ptr<condensation::ReducedModel> reduce(const roi::RoiSpec& spec, const condensation::Reduction& reduction) const {
     const fem::DofMap& dofs = *full_.full.dofs;
     const auto partition = roi::partition_dofs(full_.system().K, dofs, roi::select_roi_nodes(full_.mesh, dofs, spec));
-    // A POD basis learns from the scenario's own step and length.
     return std::make_unique<condensation::ReducedModel>(full_.system(), partition, dofs, reduction.trained_on(sc_.dt, sc_.steps));
   }
-
-  RoiSizeRow find(const condensation::Reduction& reduction, Index free_nodes) {
-    RoiSizeRow row{.reduction = reduction.label()};
-    auto holds = [&](Index n) {
-      const double peak = peak_error_mm(n, reduction);
-      ++row.evaluations;
-      log_ << format("  %-18s %6lld nodes: peak max error %.4f mm %s %g mm\n", row.reduction.c_str(), static_cast<long long>(n),
-                     peak, peak <= o_.max_error_mm ? "<=" : "> ", o_.max_error_mm);
-      if (peak <= o_.max_error_mm && (!row.found || n < row.nodes)) {
-        row.found = true;
-        row.nodes = n;
-        row.peak_max_mm = peak;
-      }
-      return peak <= o_.max_error_mm;
-    };
-    // Ascending scan: the error is not monotone in N (the ROI boundary crossing the loaded walls or
-    // a stiff region moves it up and down), so bisection could step over the smallest answer.
-    for (Index n = std::min(o_.start_nodes, free_nodes);;
-         n = std::min<Index>(free_nodes, std::max<Index>(n + 1, static_cast<Index>(std::ceil((1 + o_.resolution) * n))))) {
-      if (holds(n)) break;
-      if (n == free_nodes) return row;
-    }
-    // Step cost of the answer.
-    const auto reduced = reduce(row.nodes, reduction);
-    row.dofs = reduced->system().size();
-    row.step_s_median = step_median(reduced->system());
-    return row;
+  std::unique_ptr<condensation::ReducedModel> reduce(Index nodes, const condensation::Reduction& reduction) const {
+    return reduce({.kind = roi::RoiSpec::Kind::nearest, .center = sc_.roi->center, .radius = 0, .count = nodes, .set = {}},
+                  reduction);
   }
 
-  double step_median(const model::SecondOrderSystem& system) const {
-    auto integrator = integrators::make_integrator(sc_.integrator, sc_.dt);
+  double step_median(const model::SecondOrderSystem& system, long steps) const {
+    auto integrator = integrators::make_integrator(integrator_, sc_.dt);
     model::State state = model::State::at_rest(system.size());
     integrator->reset(system, state);
     std::vector<double> seconds;
-    for (long k = 1; k <= o_.timing_steps; ++k) {
+    for (long k = 1; k <= steps; ++k) {
       const Stopwatch clock;
       integrator->advance_to(static_cast<double>(k) * sc_.dt, state);
       seconds.push_back(clock.seconds());
@@ -106,63 +78,191 @@ class Search {
   }
 
  private:
-  const RoiSizeOptions& o_;
   const scenario::Scenario& sc_;
+  std::string integrator_;
   const simulation::ScenarioModel& full_;
-  std::ostream& log_;
   RoiNodeDofs evaluated_;  // the nodes where the error is measured
   std::vector<Vector> reference_;
 };
 
+/// The two result tables, rewritten (atomically) after every run, so that a search stopped early
+/// keeps what it found.
+void write_files(const std::filesystem::path& out, const RoiSizeResults& results, const RoiSizeRow* current, double budget) {
+  if (out.empty()) return;
+  io::CsvWriter runs(out / "roi_size_runs.csv", "reduction,nodes,peak_max_mm,within_budget");
+  auto probes = [&](const RoiSizeRow& row) {
+    for (const auto& p : row.probes)
+      runs.row(format("%s,%lld,%.9g,%d", row.reduction.c_str(), static_cast<long long>(p.nodes), p.peak_max_mm, p.holds(budget)));
+  };
+  for (const auto& row : results.rows) probes(row);
+  if (current) probes(*current);
+  runs.close();
+  io::CsvWriter csv(out / "roi_size.csv",
+                    "reduction,found,nodes,dofs,peak_max_mm,step_s_median,evaluations,max_error_mm,misses_from,misses_to,holds_below");
+  for (const auto& r : results.rows)
+    csv.row(format("%s,%d,%lld,%lld,%.9g,%.6e,%zu,%g,%lld,%lld,%lld", r.reduction.c_str(), r.found ? 1 : 0,
+                   static_cast<long long>(r.nodes), static_cast<long long>(r.dofs), r.peak_max_mm, r.step_s_median, r.probes.size(),
+                   budget, static_cast<long long>(r.missing_from), static_cast<long long>(r.missing_to),
+                   static_cast<long long>(r.holds_below)));
+  csv.close();
+}
+
+/// The answer from the probes: the smallest size tried above every miss, and the stretch below.
+void conclude(RoiSizeRow& row, double budget) {
+  std::vector<RoiSizeProbe> sorted = row.probes;
+  std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.nodes < b.nodes; });
+  const auto last_miss = std::find_if(sorted.rbegin(), sorted.rend(), [&](const auto& p) { return !p.holds(budget); });
+  const auto answer = last_miss.base();  // first size after the largest miss
+  row.found = answer != sorted.end();
+  if (row.found) {
+    row.nodes = answer->nodes;
+    row.peak_max_mm = answer->peak_max_mm;
+  }
+  if (last_miss == sorted.rend()) return;
+  row.missing_to = last_miss->nodes;
+  const auto first_miss = std::find_if(sorted.begin(), sorted.end(), [&](const auto& p) { return !p.holds(budget); });
+  row.missing_from = first_miss->nodes;
+  if (first_miss != sorted.begin()) row.holds_below = std::prev(first_miss)->nodes;
+}
+
+class Search {
+ public:
+  Search(const RoiSizeOptions& o, const ErrorProbe& probe, Index free_nodes, RoiSizeResults& results)
+      : o_(o),
+        probe_(probe),
+        coarse_(geometric_sizes(std::min(o.start_nodes, free_nodes), free_nodes, o.coarse)),
+        progress_("roi-size", static_cast<long>(o.reductions.size() * (coarse_.size() + fine_estimate())), 0.5, "runs"),
+        results_(results) {}
+
+  RoiSizeRow find(const condensation::Reduction& reduction) {
+    RoiSizeRow row{.reduction = reduction.label()};
+    auto holds = [&](Index n) {
+      const auto reduced = probe_.reduce(n, reduction);
+      row.probes.push_back({n, probe_.peak_error_mm(*reduced)});
+      write_files(o_.out, results_, &row, o_.max_error_mm);
+      progress_.update(++runs_, format("%s: %lld nodes %.4f mm", row.reduction.c_str(), static_cast<long long>(n),
+                                        row.probes.back().peak_max_mm));
+      return row.probes.back().holds(o_.max_error_mm);
+    };
+    // The whole coarse grid, largest first (the end that must hold: an ROI of every node is the full model).
+    Index largest_miss = 0;
+    for (auto n = coarse_.rbegin(); n != coarse_.rend(); ++n)
+      if (!holds(*n)) largest_miss = std::max(largest_miss, *n);
+    // Between the largest miss and the next coarse size, the fine grid downwards to the first miss.
+    if (largest_miss > 0 && largest_miss < coarse_.back()) {
+      const Index next = *std::upper_bound(coarse_.begin(), coarse_.end(), largest_miss);
+      const auto fine = geometric_sizes(largest_miss, next, o_.resolution);
+      for (auto n = fine.rbegin(); n != fine.rend(); ++n)
+        if (*n != next && *n != largest_miss && !holds(*n)) break;
+    }
+    conclude(row, o_.max_error_mm);
+    if (row.found) {
+      const auto reduced = probe_.reduce(row.nodes, reduction);
+      row.dofs = reduced->system().size();
+      row.step_s_median = probe_.step_median(reduced->system(), o_.timing_steps);
+    }
+    return row;
+  }
+
+ private:
+  std::size_t fine_estimate() const {
+    return static_cast<std::size_t>(std::ceil(std::log1p(o_.coarse) / std::log1p(o_.resolution)));
+  }
+  const RoiSizeOptions& o_;
+  const ErrorProbe& probe_;
+  std::vector<Index> coarse_;
+  simulation::ProgressReporter progress_;
+  long runs_ = 0;
+  RoiSizeResults& results_;
+};
+
+std::string row_text(const RoiSizeRow& r, double budget) {
+  if (!r.found) return format("  %-18s misses the budget even with every node in the ROI\n", r.reduction.c_str());
+  std::string text = format("  %-18s from %lld nodes on, every ROI tried holds (%.4f mm there)", r.reduction.c_str(),
+                            static_cast<long long>(r.nodes), r.peak_max_mm);
+  if (r.missing_to > 0)
+    text += format("; misses at %lld-%lld nodes", static_cast<long long>(r.missing_from), static_cast<long long>(r.missing_to));
+  if (r.holds_below > 0)
+    text += format("; holds again at %lld nodes and below (the error is not monotone in the ROI size)",
+                   static_cast<long long>(r.holds_below));
+  (void)budget;
+  return text + "\n";
+}
+
+void print_summary(const RoiSizeResults& results, double budget, std::ostream& log) {
+  log << format("\nROI size for max error <= %g mm: the size from which every larger ROI tried holds\n", budget);
+  log << format("(full model: %lld free nodes, %.4f ms per step)\n", static_cast<long long>(results.free_nodes),
+                results.full_step_s_median * 1e3);
+  log << format("  %-18s %7s %6s %15s %11s %9s %6s  %s\n", "reduction", "nodes", "dofs", "peak max (mm)", "step (ms)", "vs full",
+                "runs", "misses at (nodes)");
+  for (const auto& r : results.rows) {
+    if (!r.found) {
+      log << format("  %-18s   none within the mesh\n", r.reduction.c_str());
+      continue;
+    }
+    const std::string misses = r.missing_to > 0 ? format("%lld-%lld", static_cast<long long>(r.missing_from),
+                                                         static_cast<long long>(r.missing_to))
+                                                : "none";
+    log << format("  %-18s %7lld %6lld %15.4f %11.4f %8.2fx %6zu  %s\n", r.reduction.c_str(), static_cast<long long>(r.nodes),
+                  static_cast<long long>(r.dofs), r.peak_max_mm, r.step_s_median * 1e3,
+                  r.step_s_median / results.full_step_s_median, r.probes.size(), misses.c_str());
+  }
+}
+
 }  // namespace
+
+std::vector<Index> geometric_sizes(Index start, Index last, double ratio) {
+  std::vector<Index> sizes;
+  for (Index n = std::max<Index>(1, start); n < last;
+       n = std::max<Index>(n + 1, static_cast<Index>(std::ceil((1 + ratio) * static_cast<double>(n)))))
+    sizes.push_back(n);
+  sizes.push_back(last);
+  return sizes;
+}
 
 RoiSizeResults run_roi_size(const RoiSizeOptions& o, std::ostream& log) {
   if (!(o.max_error_mm > 0) || !std::isfinite(o.max_error_mm))
     throw InputError("roi-size: --max-error-mm must be positive (got " + number_text(o.max_error_mm) + ")");
   if (o.reductions.empty()) throw InputError("roi-size: no reduction to size");
-  scenario::Scenario sc = scenario::read_scenario(o.scenario);
+  if (!(o.coarse > 0) || !(o.resolution > 0) || o.resolution > o.coarse)
+    throw InputError("roi-size: --coarse and --resolution must be positive, the resolution the finer (got " + number_text(o.coarse) +
+                     " and " + number_text(o.resolution) + ")");
+  integrators::integrator_info(o.integrator);  // an unknown name stops here, listing the valid ones
+  const scenario::Scenario sc = scenario::read_scenario(o.scenario);
   if (!sc.roi || (sc.roi->kind != roi::RoiSpec::Kind::ball && sc.roi->kind != roi::RoiSpec::Kind::nearest))
     throw InputError(sc.file.string() +
                      ": roi-size needs an ROI target: [roi] kind = \"nearest\" (target_mm) or \"ball\" (center_mm)");
-  const Vec3 target = sc.roi->center;
   if (!o.out.empty()) check_output_directory(o.out);
   scenario::Scenario full_scenario = sc;
   full_scenario.roi.reset();
   const auto full = simulation::build_scenario_model(full_scenario);
 
   RoiSizeResults results;
-  results.target = target;
+  results.target = sc.roi->center;
   results.free_nodes = static_cast<Index>(roi::free_nodes(full->mesh, *full->full.dofs).size());
-  log << format(
-      "roi-size: %s, %lld free nodes; ROI = the N nodes nearest (%g, %g, %g) mm; budget: max error <= %g mm at the "
-      "scenario's ROI (%s) over %ld steps of %s at dt = %g s\n",
-      sc.file.c_str(), static_cast<long long>(results.free_nodes), target.x() / mm, target.y() / mm, target.z() / mm,
-      o.max_error_mm, sc.roi->describe().c_str(), sc.steps, sc.integrator.c_str(), sc.dt);
-  Search search(o, sc, *full, log);
-  results.full_step_s_median = search.step_median(full->system());
-  for (const auto& reduction : o.reductions) results.rows.push_back(search.find(reduction, results.free_nodes));
-
-  log << format("\nSmallest ROI with max error <= %g mm (full model: %lld free nodes, %.4f ms per step)\n", o.max_error_mm,
-                static_cast<long long>(results.free_nodes), results.full_step_s_median * 1e3);
-  log << format("  %-18s %7s %6s %15s %11s %9s %6s\n", "reduction", "nodes", "dofs", "peak max (mm)", "step (ms)", "vs full",
-                "runs");
-  for (const auto& r : results.rows) {
-    if (!r.found) {
-      log << format("  %-18s   none within the mesh\n", r.reduction.c_str());
-      continue;
-    }
-    log << format("  %-18s %7lld %6lld %15.4f %11.4f %8.2fx %6d\n", r.reduction.c_str(), static_cast<long long>(r.nodes),
-                  static_cast<long long>(r.dofs), r.peak_max_mm, r.step_s_median * 1e3,
-                  r.step_s_median / results.full_step_s_median, r.evaluations);
+  log << format("roi-size: %s, %lld free nodes; ROI = the N nodes nearest (%g, %g, %g) mm; budget: max error <= %g mm at the "
+                "scenario's ROI (%s) over %ld steps of %s at dt = %g s (full model and ROI models alike)\n",
+                sc.file.c_str(), static_cast<long long>(results.free_nodes), results.target.x() / mm, results.target.y() / mm,
+                results.target.z() / mm, o.max_error_mm, sc.roi->describe().c_str(), sc.steps, o.integrator.c_str(), sc.dt);
+  const ErrorProbe probe(sc, o.integrator, *full);
+  results.full_step_s_median = probe.step_median(full->system(), o.timing_steps);
+  {  // the scenario's own ROI, as it stands
+    const auto own = probe.reduce(*sc.roi, sc.reduction);
+    results.scenario_roi = sc.roi->describe() + ", " + sc.reduction.label();
+    results.scenario_roi_nodes = static_cast<Index>(own->partition().roi_nodes.size());
+    results.scenario_peak_max_mm = probe.peak_error_mm(*own);
+    log << format("the scenario's own ROI (%s: %lld nodes) peaks at %.4f mm: %s the %g mm budget\n", results.scenario_roi.c_str(),
+                  static_cast<long long>(results.scenario_roi_nodes), results.scenario_peak_max_mm,
+                  results.scenario_peak_max_mm <= o.max_error_mm ? "within" : "OVER", o.max_error_mm);
   }
-  if (!o.out.empty()) {
-    io::CsvWriter csv(o.out / "roi_size.csv", "reduction,found,nodes,dofs,peak_max_mm,step_s_median,evaluations,max_error_mm");
-    for (const auto& r : results.rows)
-      csv.row(format("%s,%d,%lld,%lld,%.9g,%.6e,%d,%g", r.reduction.c_str(), r.found ? 1 : 0, static_cast<long long>(r.nodes),
-                     static_cast<long long>(r.dofs), r.peak_max_mm, r.step_s_median, r.evaluations, o.max_error_mm));
-    csv.close();
-    log << "results: " << (o.out / "roi_size.csv").string() << '\n';
+  Search search(o, probe, results.free_nodes, results);
+  for (const auto& reduction : o.reductions) {
+    results.rows.push_back(search.find(reduction));
+    write_files(o.out, results, nullptr, o.max_error_mm);
+    log << row_text(results.rows.back(), o.max_error_mm) << std::flush;
   }
+  print_summary(results, o.max_error_mm, log);
+  if (!o.out.empty()) log << "results: " << (o.out / "roi_size.csv").string() << ", " << (o.out / "roi_size_runs.csv").string() << '\n';
   return results;
 }
 

@@ -6,14 +6,18 @@
 
 namespace roifem::simulation {
 
-ProgressReporter::ProgressReporter(std::string label, long total, double delay_s)
-    : label_(std::move(label)), total_(total), delay_s_(delay_s), enabled_(::isatty(STDERR_FILENO) != 0) {}
+ProgressReporter::ProgressReporter(std::string label, long total, double delay_s, std::string unit)
+    : label_(std::move(label)),
+      unit_(std::move(unit)),
+      total_(total),
+      delay_s_(delay_s),
+      enabled_(::isatty(STDERR_FILENO) != 0) {}
 
 ProgressReporter::~ProgressReporter() {
   if (drawn_) std::fprintf(stderr, "\r\033[K");
 }
 
-void ProgressReporter::update(long done) {
+void ProgressReporter::update(long done, const std::string& detail) {
   if (!enabled_) return;
   const double t = clock_.seconds();
   if (t < delay_s_ || (t - last_draw_ < 0.2 && done < total_)) return;
@@ -21,7 +25,8 @@ void ProgressReporter::update(long done) {
   drawn_ = true;
   const double fraction = total_ > 0 ? static_cast<double>(done) / static_cast<double>(total_) : 1.0;
   const double eta = fraction > 0 ? t * (1 - fraction) / fraction : 0.0;
-  std::fprintf(stderr, "\r\033[K%s  %ld/%ld steps  %3.0f%%  eta %.0f s", label_.c_str(), done, total_, 100 * fraction, eta);
+  std::fprintf(stderr, "\r\033[K%s  %ld/%ld %s  %3.0f%%  eta %.0f s%s%s", label_.c_str(), done, total_, unit_.c_str(),
+               100 * fraction, eta, detail.empty() ? "" : "  ", detail.c_str());
   std::fflush(stderr);
 }
 

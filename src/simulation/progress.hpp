@@ -1,6 +1,6 @@
 #pragma once
 /// A progress line on a terminal for long runs (after `delay_s` seconds), redrawn at most every
-/// 0.2 s on stderr: "label  120/200 steps  60%  eta 3 s". Silent when stderr is not a terminal.
+/// 0.2 s on stderr: "label  120/200 steps  60%  eta 3 s  detail". Silent when stderr is not a terminal.
 #include <string>
 
 #include "common/timer.hpp"
@@ -9,14 +9,15 @@ namespace roifem::simulation {
 
 class ProgressReporter {
  public:
-  ProgressReporter(std::string label, long total, double delay_s = 2.0);
+  ProgressReporter(std::string label, long total, double delay_s = 2.0, std::string unit = "steps");
   ~ProgressReporter();
   ProgressReporter(const ProgressReporter&) = delete;
   ProgressReporter& operator=(const ProgressReporter&) = delete;
-  void update(long done);
+  /// `detail`: what is being done now, shown after the estimate.
+  void update(long done, const std::string& detail = {});
 
  private:
-  std::string label_;
+  std::string label_, unit_;
   long total_;
   double delay_s_, last_draw_ = -1;
   bool enabled_, drawn_ = false;

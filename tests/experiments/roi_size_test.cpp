@@ -1,6 +1,8 @@
-// roi-size against answers known without it: a budget the purely static answer (a 1-node ROI)
-// already meets gives 1 node; a budget only the exact model meets gives every free node (an ROI of
-// all nodes is the full model, error 0).
+// roi-size against answers known without it: a budget every ROI meets gives the smallest size
+// tried; a budget only the exact model meets gives every free node (an ROI of all nodes is the full
+// model, error 0); for a budget in between, every size tried from the answer up holds and the one
+// below misses, the peaks are those the same sizes gave in another search, and the scenario's own
+// ROI errs as the same ROI found by size.
 #include "experiments/roi_size.hpp"
 
 #include <gtest/gtest.h>
@@ -41,6 +43,7 @@ TEST(RoiSize, ALooseBudgetNeedsOneNodeAndAnExactOneEveryNode) {
   ASSERT_EQ(loose.rows.size(), 1u);
   EXPECT_TRUE(loose.rows[0].found);
   EXPECT_EQ(loose.rows[0].nodes, 1);
+  EXPECT_EQ(loose.rows[0].missing_to, 0);
   o.max_error_mm = 1e-9;  // only the full model itself
   o.start_nodes = loose.free_nodes - 3;
   const auto exact = run_roi_size(o, log);
@@ -62,6 +65,9 @@ TEST(RoiSize, ThePaperErrorScaleScenarioScalesTheErrorByItsForceToThePapersSixMi
     std::ostringstream log;
     const auto result = run_roi_size(o, log);
     EXPECT_EQ(result.rows.at(0).nodes, 306);
+    // The scenario's own ROI is the same 306 nodes with the same reduction: the same error.
+    EXPECT_EQ(result.scenario_roi_nodes, 306);
+    EXPECT_EQ(result.scenario_peak_max_mm, result.rows.at(0).peak_max_mm);
     return result.rows.at(0).peak_max_mm;
   };
   const double base = peak_at_306("paper-setup1.toml"), paper_scale = peak_at_306("paper-setup1-paper-errors.toml");
@@ -71,12 +77,61 @@ TEST(RoiSize, ThePaperErrorScaleScenarioScalesTheErrorByItsForceToThePapersSixMi
   EXPECT_NEAR(paper_scale, 6.0, 0.1);
 }
 
+TEST(RoiSize, EveryRoiTriedFromTheAnswerUpHoldsAndTheOneBelowMisses) {
+  const test::TempDir dir;
+  RoiSizeOptions o;
+  o.scenario = short_paper_scenario(dir);
+  o.timing_steps = 5;
+  o.reductions = {{}};
+  o.max_error_mm = 100;  // every size holds: the peaks of the whole coarse grid
+  std::ostringstream log;
+  const auto all = run_roi_size(o, log).rows.at(0).probes;
+  ASSERT_GT(all.size(), 20u);
+  // A budget between the peaks: the median of the sizes above 20 nodes.
+  std::vector<double> peaks;
+  for (const auto& p : all)
+    if (p.nodes > 20 && p.peak_max_mm > 0) peaks.push_back(p.peak_max_mm);
+  std::nth_element(peaks.begin(), peaks.begin() + peaks.size() / 2, peaks.end());
+  o.max_error_mm = peaks[peaks.size() / 2];
+  o.out = dir / "out";
+  const auto row = run_roi_size(o, log).rows.at(0);
+  ASSERT_TRUE(row.found);
+  std::printf("budget %.4f mm: from %lld nodes (%.4f mm), misses at %lld-%lld, holds below at %lld; %zu runs\n", o.max_error_mm,
+              static_cast<long long>(row.nodes), row.peak_max_mm, static_cast<long long>(row.missing_from),
+              static_cast<long long>(row.missing_to), static_cast<long long>(row.holds_below), row.probes.size());
+  Index below = 0;
+  for (const auto& p : row.probes) {
+    if (p.nodes >= row.nodes) EXPECT_LE(p.peak_max_mm, o.max_error_mm) << p.nodes << " nodes";
+    if (p.nodes < row.nodes) below = std::max(below, p.nodes);
+    // The same size in the first search: the same error.
+    for (const auto& q : all)
+      if (q.nodes == p.nodes) EXPECT_EQ(q.peak_max_mm, p.peak_max_mm) << p.nodes << " nodes";
+  }
+  ASSERT_GT(below, 0);
+  EXPECT_EQ(below, row.missing_to);
+  // The tables were written, one line per run.
+  std::ifstream runs(o.out / "roi_size_runs.csv");
+  std::string line;
+  std::size_t lines = 0;
+  while (std::getline(runs, line)) ++lines;
+  EXPECT_EQ(lines, row.probes.size() + 1);
+}
+
+TEST(RoiSize, GeometricSizesGrowByTheRatioAndEndAtTheLast) {
+  EXPECT_EQ(geometric_sizes(1, 10, 0.25), (std::vector<Index>{1, 2, 3, 4, 5, 7, 9, 10}));
+  EXPECT_EQ(geometric_sizes(100, 110, 0.02), (std::vector<Index>{100, 102, 105, 108, 110}));
+  EXPECT_EQ(geometric_sizes(5, 5, 0.25), (std::vector<Index>{5}));
+}
+
 TEST(RoiSize, ScenarioWithoutATargetOrABadBudgetIsAnInputError) {
   const test::TempDir dir;
   RoiSizeOptions o;
   o.scenario = short_paper_scenario(dir);
   o.max_error_mm = -1;
   std::ostringstream log;
+  EXPECT_THROW(run_roi_size(o, log), InputError);
+  o.max_error_mm = 1;
+  o.integrator = "trapezium";
   EXPECT_THROW(run_roi_size(o, log), InputError);
   EXPECT_THROW(condensation::parse_reduction("craig-bampton-x"), InputError);
   EXPECT_EQ(condensation::parse_reduction("craig-bampton-12").modes, 12);
