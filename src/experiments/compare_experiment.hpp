@@ -19,7 +19,7 @@ namespace roifem::experiments {
 struct CompareOptions {
   std::filesystem::path out;
   std::vector<std::string> integrators;  ///< empty: all
-  double t_end = 2.0;                    ///< s of simulated time (0: the scenario's dt * steps)
+  double t_end = 0;                      ///< s of simulated time (0: the scenario's dt * steps)
   int fixed_levels = 5;                  ///< dt = T/2^0 .. T/2^(levels-1), T the scenario's dt
   std::vector<double> tolerances{1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8};
   long max_steps = 200000;  ///< fixed-step runs needing more are skipped

@@ -23,8 +23,12 @@ struct Scenario {
   std::optional<roi::RoiSpec> roi;    ///< none: the full dynamic model
   condensation::Reduction reduction;  ///< of the static part, with an ROI
   std::string integrator = "trapezoid";
-  double dt = 0.05;  ///< s
+  double dt = 0.05;  ///< s: the step, or with rtol the output interval (and first step)
   long steps = 200;
+  std::optional<double> rtol;  ///< set: error-controlled steps (adaptive integrators), relative tolerance
+  std::optional<double> atol;  ///< m (and m/s); default rtol x 1 mm
+  /// The absolute tolerance in force: atol, or rtol x 1 mm.
+  double absolute_tolerance() const { return atol.value_or(rtol.value_or(0) * 1e-3); }
   long field_every = 10;  ///< full displacement field every k steps (0: none)
   /// The scenario as resolved (defaults filled in), as TOML text: stored with the results.
   std::string resolved_toml() const;

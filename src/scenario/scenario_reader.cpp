@@ -303,7 +303,13 @@ Scenario parse_scenario(std::string_view text, const std::string& source, const 
     s.integrator = time.string("integrator").value_or(s.integrator);
     s.dt = time.number("dt_s", s.dt);
     s.steps = time.integer("steps").value_or(s.steps);
+    s.rtol = time.number("rtol");
+    s.atol = time.number("atol");
     time.close();
+    if (s.rtol && !(*s.rtol > 0 && *s.rtol < 1))
+      throw InputError(source + ": key 'time.rtol' must lie in (0, 1) (got " + number_text(*s.rtol) + ")");
+    if (s.atol && !(*s.atol > 0)) throw InputError(source + ": key 'time.atol' must be positive (got " + number_text(*s.atol) + ")");
+    if (s.atol && !s.rtol) throw InputError(source + ": key 'time.atol' needs key 'time.rtol' (error-controlled steps)");
     if (!(s.dt > 0)) throw InputError(source + ": key 'time.dt_s' must be positive (got " + number_text(s.dt) + ")");
     if (s.steps <= 0) throw InputError(source + ": key 'time.steps' must be positive (got " + std::to_string(s.steps) + ")");
   }
@@ -366,8 +372,9 @@ std::string Scenario::resolved_toml() const {
     else if (reduction.cutoff_rad_s > 0)
       o << "cutoff_rad_s = " << toml_number(reduction.cutoff_rad_s) << "\n";
   }
-  o << "\n[time]\nintegrator = \"" << integrator << "\"\ndt_s = " << toml_number(dt) << "\nsteps = " << steps
-    << "\n\n[output]\nfield_every = " << field_every << "\n";
+  o << "\n[time]\nintegrator = \"" << integrator << "\"\ndt_s = " << toml_number(dt) << "\nsteps = " << steps << "\n";
+  if (rtol) o << "rtol = " << toml_number(*rtol) << "\natol = " << toml_number(absolute_tolerance()) << "\n";
+  o << "\n[output]\nfield_every = " << field_every << "\n";
   return o.str();
 }
 

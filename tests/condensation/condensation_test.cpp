@@ -7,24 +7,13 @@
 #include "mesh/box_mesh.hpp"
 #include "mesh/gmsh_reader.hpp"
 #include "model/fem_model.hpp"
+#include "test_models.hpp"
 
 namespace roifem::condensation {
 namespace {
 
-/// The shipped brain, base fixed, the opening's walls pulled apart.
-struct PaperBrain {
-  mesh::TetMesh mesh = mesh::read_mesh(std::string(ROIFEM_MESH_DIR) + "/brain-800.msh");
-  model::FemModel model = model::build_fem_model(
-      mesh, fem::material_preset("paper"), {"base"},
-      {{"opening_left", Vec3(-1e-3, 0, 0), model::Ramp{0.5}}, {"opening_right", Vec3(1e-3, 0, 0), model::Ramp{0.5}}});
-  roi::Partition partition(const roi::RoiSpec& spec) const {
-    return roi::partition_dofs(model.system.K, *model.dofs, roi::select_roi_nodes(mesh, *model.dofs, spec));
-  }
-};
-
-roi::RoiSpec nearest(Index count) {
-  return {.kind = roi::RoiSpec::Kind::nearest, .center = Vec3(0, 0, 0.040), .count = count, .set = {}};
-}
+using test::nearest;
+using test::PaperBrain;
 
 TEST(ReducedModel, CondensedStaticAnswerEqualsTheFullOneOnTheRoi) {
   const PaperBrain brain;

@@ -11,19 +11,12 @@
 #include "mesh/box_mesh.hpp"
 #include "model/fem_model.hpp"
 #include "model/spectrum.hpp"
+#include "test_models.hpp"
 
 namespace roifem::condensation {
 namespace {
 
-struct Beam {
-  mesh::TetMesh mesh = mesh::structured_box_mesh(6, 2, 2, 0.06, 0.02, 0.02);
-  model::FemModel model = model::build_fem_model(mesh, fem::Material::from_young_poisson(3000, 0.45, 1000, 0.8), {"x0"},
-                                                 {{"x1", Vec3(0, 0, 1e-3), model::Ramp{0.2}}});
-  roi::Partition partition() const {
-    const roi::RoiSpec spec{.kind = roi::RoiSpec::Kind::nearest, .center = Vec3(0.06, 0.01, 0.01), .count = 27, .set = {}};
-    return roi::partition_dofs(model.system.K, *model.dofs, roi::select_roi_nodes(mesh, *model.dofs, spec));
-  }
-};
+using test::Beam;
 
 /// T: the full free displacement of each reduced unit vector (at t = 0 the ramped loads are zero).
 DenseMatrix transformation(ReducedModel& r) {

@@ -12,20 +12,16 @@
 #include "mesh/box_mesh.hpp"
 #include "model/average_acceleration.hpp"
 #include "model/fem_model.hpp"
+#include "test_models.hpp"
 
 namespace roifem::integrators {
 namespace {
 
+/// The test beam's Craig-Bampton model with 6 modal coordinates.
 struct ReducedBeam {
-  mesh::TetMesh mesh = mesh::structured_box_mesh(6, 2, 2, 0.06, 0.02, 0.02);
-  model::FemModel model = model::build_fem_model(mesh, fem::Material::from_young_poisson(3000, 0.45, 1000, 0.8), {"x0"},
-                                                 {{"x1", Vec3(0, 0, 1e-3), model::Ramp{0.2}}});
-  condensation::ReducedModel reduced{
-      model.system, partition(), *model.dofs, {.kind = condensation::ReductionKind::craig_bampton, .modes = 6}};
-  roi::Partition partition() const {
-    const roi::RoiSpec spec{.kind = roi::RoiSpec::Kind::nearest, .center = Vec3(0.06, 0.01, 0.01), .count = 27, .set = {}};
-    return roi::partition_dofs(model.system.K, *model.dofs, roi::select_roi_nodes(mesh, *model.dofs, spec));
-  }
+  test::Beam beam;
+  condensation::ReducedModel reduced{beam.model.system, beam.partition(), *beam.model.dofs,
+                                     {.kind = condensation::ReductionKind::craig_bampton, .modes = 6}};
 };
 
 /// x = (K + 2/dt C + 4/dt^2 M)^-1 (f + M w) by a dense Cholesky factor, from the matrices alone.
@@ -62,7 +58,7 @@ TEST(EffectiveStiffness, EveryStrategySolvesTheSameSystemAsADenseFactor) {
 
 TEST(AverageAcceleration, ConsistentAccelerationSatisfiesTheEquationOfMotion) {
   const ReducedBeam beam;
-  const model::SecondOrderSystem& s = beam.model.system;
+  const model::SecondOrderSystem& s = beam.beam.model.system;
   const model::State state{0.1, Vector::LinSpaced(s.size(), 0, 1e-4), Vector::LinSpaced(s.size(), 1e-3, 0)};
   const Vector a = model::AverageAcceleration::consistent_acceleration(s, state);
   const Vector residual = s.M * a + s.C * state.v + s.K * state.u - s.load.at(state.t);

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -73,6 +75,27 @@ TEST(IntegratorTable, TheReadmeListsEveryIntegrator) {
         break;
       }
     EXPECT_NE(readme.find("`" + base + "`"), std::string::npos) << "README.md does not list " << info.name;
+  }
+}
+
+// scenarios/README.md lists every base name too, on a line that says how it steps as the table does.
+TEST(IntegratorTable, TheScenarioGuideListsEveryIntegratorWithItsStepping) {
+  std::ifstream file(std::string(ROIFEM_SCENARIO_DIR) + "/README.md");
+  ASSERT_TRUE(file) << "scenarios/README.md";
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(file, line);) lines.push_back(line);
+  for (const auto& info : integrator_table()) {
+    std::string base = info.name;
+    for (const char* suffix : {"-mass-schur", "-schur", "-mass"})
+      if (base.ends_with(suffix) && base != "trapezoid") {
+        base.resize(base.size() - std::string(suffix).size());
+        break;
+      }
+    const auto line = std::find_if(lines.begin(), lines.end(), [&](const std::string& l) { return l.find("`" + base + "`") != std::string::npos; });
+    ASSERT_NE(line, lines.end()) << "scenarios/README.md does not list " << info.name;
+    const std::string steps = line->substr(line->rfind('|', line->size() - 2));
+    EXPECT_EQ(steps.find("fixed") != std::string::npos, info.fixed_step) << *line;
+    EXPECT_EQ(steps.find("adaptive") != std::string::npos, info.adaptive) << *line;
   }
 }
 

@@ -11,20 +11,13 @@
 #include "mesh/gmsh_reader.hpp"
 #include "model/fem_model.hpp"
 #include "roi/node_dofs.hpp"
+#include "test_models.hpp"
 
 namespace roifem::roi {
 namespace {
 
-/// The shipped brain, base fixed, the opening's walls pulled apart.
-struct PaperBrain {
-  mesh::TetMesh mesh = mesh::read_mesh(std::string(ROIFEM_MESH_DIR) + "/brain-800.msh");
-  model::FemModel model = model::build_fem_model(
-      mesh, fem::material_preset("paper"), {"base"},
-      {{"opening_left", Vec3(-1e-3, 0, 0), model::Ramp{0.5}}, {"opening_right", Vec3(1e-3, 0, 0), model::Ramp{0.5}}});
-  const fem::DofMap& dofs() const { return *model.dofs; }
-};
-
-RoiSpec nearest(Index count) { return {.kind = RoiSpec::Kind::nearest, .center = Vec3(0, 0, 0.040), .count = count, .set = {}}; }
+using test::nearest;
+using test::PaperBrain;
 
 TEST(RoiSelection, EmptyRoiIsAModelErrorNamingTheRoi) {
   const PaperBrain brain;

@@ -160,7 +160,7 @@ TEST(ScenarioReader, UnknownKeysAreErrorsNamingFileLineAndKey) {
   std::string msg = error_of(replaced(valid, "steps = 30", "steps = 30\nstpes = 3"));
   EXPECT_NE(msg.find("s.toml:21:"), std::string::npos) << msg;
   EXPECT_NE(msg.find("unknown key 'time.stpes'"), std::string::npos) << msg;
-  EXPECT_NE(msg.find("valid: dt_s, integrator, steps"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("valid: atol, dt_s, integrator, rtol, steps"), std::string::npos) << msg;
   msg = error_of("colour = \"red\"\n" + valid);
   EXPECT_NE(msg.find("unknown key 'colour'"), std::string::npos) << msg;
 }

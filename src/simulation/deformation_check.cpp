@@ -1,0 +1,78 @@
+#include "simulation/deformation_check.hpp"
+
+#include <Eigen/Dense>
+#include <cmath>
+
+#include "io/csv.hpp"
+
+namespace roifem::simulation {
+
+void PeakDisplacement::observe(long step, const model::State& s) {
+  double largest = 0;
+  for (const auto& node : nodes_) {
+    double squared = 0;
+    for (const Index i : node)
+      if (i >= 0) squared += s.u[i] * s.u[i];
+    largest = std::max(largest, squared);
+  }
+  if (std::sqrt(largest) > peak_) {
+    peak_ = std::sqrt(largest);
+    step_ = step;
+    state_ = s;
+  }
+}
+
+namespace {
+
+double mean_edge_length(const mesh::TetMesh& mesh) {
+  double sum = 0;
+  for (const auto& t : mesh.tets)
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b) sum += (mesh.node(t[a]) - mesh.node(t[b])).norm();
+  return mesh.tets.empty() ? 0 : sum / (6.0 * static_cast<double>(mesh.tets.size()));
+}
+
+}  // namespace
+
+DeformationReport check_deformation(ScenarioModel& model, const PeakDisplacement& peak) {
+  using io::format;
+  DeformationReport r;
+  const mesh::TetMesh& mesh = model.mesh;
+  const Vec3 extent = mesh.nodes.rowwise().maxCoeff() - mesh.nodes.rowwise().minCoeff();
+  r.smallest_extent_m = extent.minCoeff();
+  r.mean_edge_m = mean_edge_length(mesh);
+  if (peak.state().u.size() == 0) return r;
+  const model::State& s = peak.state();
+  const Vector u_free = model.condensation ? model.condensation->expand(s.u, s.t) : s.u;
+  const Vector u = model.full.dofs->expand(u_free);  // 3 per node, prescribed values included
+  for (int n = 0; n < mesh.num_nodes(); ++n) {
+    const double d = u.segment<3>(3 * static_cast<Index>(n)).norm();
+    if (d > r.peak_m) {
+      r.peak_m = d;
+      r.peak_node = n;
+    }
+  }
+  for (Index e = 0; e < mesh.num_tets(); ++e) {
+    const auto& t = mesh.tets[static_cast<std::size_t>(e)];
+    auto x = [&](int a) -> Vec3 { return mesh.node(t[a]) + u.segment<3>(3 * static_cast<Index>(t[a])); };
+    const Vec3 p0 = x(0);
+    if ((x(1) - p0).cross(x(2) - p0).dot(x(3) - p0) <= 0) {
+      if (r.inverted++ == 0) r.first_inverted = e;
+    }
+  }
+  if (r.peak_m > 0.1 * r.smallest_extent_m)
+    r.warnings.push_back(format("the peak displacement %.3g mm exceeds a tenth of the mesh's smallest extent (%.3g mm): "
+                                "far beyond small deformations, where a linear model means little (check the forces' "
+                                "size and units: N)",
+                                r.peak_m / mm, r.smallest_extent_m / mm));
+  else if (r.peak_m > 3 * r.mean_edge_m)
+    r.warnings.push_back(format("the peak displacement %.3g mm exceeds three mean element edges (%.3g mm each)", r.peak_m / mm,
+                                r.mean_edge_m / mm));
+  if (r.inverted > 0)
+    r.warnings.push_back(format("the linear solution turns %lld tetrahedra inside out (the first: element %lld), "
+                                "physically impossible",
+                                static_cast<long long>(r.inverted), static_cast<long long>(r.first_inverted)));
+  return r;
+}
+
+}  // namespace roifem::simulation
