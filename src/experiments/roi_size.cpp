@@ -48,7 +48,8 @@ class ErrorProbe {
     double peak = 0;
     for (long k = 1; k <= sc_.steps; ++k) {
       integrator->advance_to(static_cast<double>(k) * sc_.dt, state);
-      peak = std::max(peak, roi_error(evaluated_, reduced.expand(state.u, state.t), reference_[static_cast<std::size_t>(k - 1)]).max);
+      peak = std::max(peak,
+                      roi_error(evaluated_, reduced.expand(state.u, state.t), reference_[static_cast<std::size_t>(k - 1)]).max);
     }
     return peak / mm;
   }
@@ -97,12 +98,13 @@ void write_files(const std::filesystem::path& out, const RoiSizeResults& results
   for (const auto& row : results.rows) probes(row);
   if (current) probes(*current);
   runs.close();
-  io::CsvWriter csv(out / "roi_size.csv",
-                    "reduction,found,nodes,dofs,peak_max_mm,step_s_median,evaluations,max_error_mm,misses_from,misses_to,holds_below");
+  io::CsvWriter csv(
+      out / "roi_size.csv",
+      "reduction,found,nodes,dofs,peak_max_mm,step_s_median,evaluations,max_error_mm,misses_from,misses_to,holds_below");
   for (const auto& r : results.rows)
     csv.row(format("%s,%d,%lld,%lld,%.9g,%.6e,%zu,%g,%lld,%lld,%lld", r.reduction.c_str(), r.found ? 1 : 0,
-                   static_cast<long long>(r.nodes), static_cast<long long>(r.dofs), r.peak_max_mm, r.step_s_median, r.probes.size(),
-                   budget, static_cast<long long>(r.missing_from), static_cast<long long>(r.missing_to),
+                   static_cast<long long>(r.nodes), static_cast<long long>(r.dofs), r.peak_max_mm, r.step_s_median,
+                   r.probes.size(), budget, static_cast<long long>(r.missing_from), static_cast<long long>(r.missing_to),
                    static_cast<long long>(r.holds_below)));
   csv.close();
 }
@@ -141,7 +143,7 @@ class Search {
       row.probes.push_back({n, probe_.peak_error_mm(*reduced)});
       write_files(o_.out, results_, &row, o_.max_error_mm);
       progress_.update(++runs_, format("%s: %lld nodes %.4f mm", row.reduction.c_str(), static_cast<long long>(n),
-                                        row.probes.back().peak_max_mm));
+                                       row.probes.back().peak_max_mm));
       return row.probes.back().holds(o_.max_error_mm);
     };
     // The whole coarse grid, largest first (the end that must hold: an ROI of every node is the full model).
@@ -200,9 +202,9 @@ void print_summary(const RoiSizeResults& results, double budget, std::ostream& l
       log << format("  %-18s   none within the mesh\n", r.reduction.c_str());
       continue;
     }
-    const std::string misses = r.missing_to > 0 ? format("%lld-%lld", static_cast<long long>(r.missing_from),
-                                                         static_cast<long long>(r.missing_to))
-                                                : "none";
+    const std::string misses =
+        r.missing_to > 0 ? format("%lld-%lld", static_cast<long long>(r.missing_from), static_cast<long long>(r.missing_to))
+                         : "none";
     log << format("  %-18s %7lld %6lld %15.4f %11.4f %8.2fx %6zu  %s\n", r.reduction.c_str(), static_cast<long long>(r.nodes),
                   static_cast<long long>(r.dofs), r.peak_max_mm, r.step_s_median * 1e3,
                   r.step_s_median / results.full_step_s_median, r.probes.size(), misses.c_str());
@@ -225,8 +227,8 @@ RoiSizeResults run_roi_size(const RoiSizeOptions& o, std::ostream& log) {
     throw InputError("roi-size: --max-error-mm must be positive (got " + number_text(o.max_error_mm) + ")");
   if (o.reductions.empty()) throw InputError("roi-size: no reduction to size");
   if (!(o.coarse > 0) || !(o.resolution > 0) || o.resolution > o.coarse)
-    throw InputError("roi-size: --coarse and --resolution must be positive, the resolution the finer (got " + number_text(o.coarse) +
-                     " and " + number_text(o.resolution) + ")");
+    throw InputError("roi-size: --coarse and --resolution must be positive, the resolution the finer (got " +
+                     number_text(o.coarse) + " and " + number_text(o.resolution) + ")");
   integrators::integrator_info(o.integrator);  // an unknown name stops here, listing the valid ones
   const scenario::Scenario sc = scenario::read_scenario(o.scenario);
   if (!sc.roi || (sc.roi->kind != roi::RoiSpec::Kind::ball && sc.roi->kind != roi::RoiSpec::Kind::nearest))
@@ -240,10 +242,11 @@ RoiSizeResults run_roi_size(const RoiSizeOptions& o, std::ostream& log) {
   RoiSizeResults results;
   results.target = sc.roi->center;
   results.free_nodes = static_cast<Index>(roi::free_nodes(full->mesh, *full->full.dofs).size());
-  log << format("roi-size: %s, %lld free nodes; ROI = the N nodes nearest (%g, %g, %g) mm; budget: max error <= %g mm at the "
-                "scenario's ROI (%s) over %ld steps of %s at dt = %g s (full model and ROI models alike)\n",
-                sc.file.c_str(), static_cast<long long>(results.free_nodes), results.target.x() / mm, results.target.y() / mm,
-                results.target.z() / mm, o.max_error_mm, sc.roi->describe().c_str(), sc.steps, o.integrator.c_str(), sc.dt);
+  log << format(
+      "roi-size: %s, %lld free nodes; ROI = the N nodes nearest (%g, %g, %g) mm; budget: max error <= %g mm at the "
+      "scenario's ROI (%s) over %ld steps of %s at dt = %g s (full model and ROI models alike)\n",
+      sc.file.c_str(), static_cast<long long>(results.free_nodes), results.target.x() / mm, results.target.y() / mm,
+      results.target.z() / mm, o.max_error_mm, sc.roi->describe().c_str(), sc.steps, o.integrator.c_str(), sc.dt);
   const ErrorProbe probe(sc, o.integrator, *full);
   results.full_step_s_median = probe.step_median(full->system(), o.timing_steps);
   {  // the scenario's own ROI, as it stands
@@ -262,7 +265,8 @@ RoiSizeResults run_roi_size(const RoiSizeOptions& o, std::ostream& log) {
     log << row_text(results.rows.back(), o.max_error_mm) << std::flush;
   }
   print_summary(results, o.max_error_mm, log);
-  if (!o.out.empty()) log << "results: " << (o.out / "roi_size.csv").string() << ", " << (o.out / "roi_size_runs.csv").string() << '\n';
+  if (!o.out.empty())
+    log << "results: " << (o.out / "roi_size.csv").string() << ", " << (o.out / "roi_size_runs.csv").string() << '\n';
   return results;
 }
 

@@ -48,7 +48,7 @@ struct RoiSizeProbe {
 
 struct RoiSizeRow {
   std::string reduction;
-  bool found = false;  ///< false: even the whole brain as ROI misses the budget (it cannot: error 0)
+  bool found = false;         ///< false: even the whole brain as ROI misses the budget (it cannot: error 0)
   Index nodes = 0, dofs = 0;  ///< the answer: every size tried from `nodes` up holds
   double peak_max_mm = 0, step_s_median = 0;
   Index missing_from = 0, missing_to = 0;  ///< the sizes tried that miss, smallest and largest (0: none)
@@ -60,7 +60,7 @@ struct RoiSizeResults {
   Vec3 target;  ///< m
   Index free_nodes = 0;
   double full_step_s_median = 0;
-  std::string scenario_roi;        ///< the scenario's own ROI, described
+  std::string scenario_roi;  ///< the scenario's own ROI, described
   Index scenario_roi_nodes = 0;
   double scenario_peak_max_mm = 0;  ///< its own error with its own reduction
   std::vector<RoiSizeRow> rows;

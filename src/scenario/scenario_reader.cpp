@@ -308,7 +308,8 @@ Scenario parse_scenario(std::string_view text, const std::string& source, const 
     time.close();
     if (s.rtol && !(*s.rtol > 0 && *s.rtol < 1))
       throw InputError(source + ": key 'time.rtol' must lie in (0, 1) (got " + number_text(*s.rtol) + ")");
-    if (s.atol && !(*s.atol > 0)) throw InputError(source + ": key 'time.atol' must be positive (got " + number_text(*s.atol) + ")");
+    if (s.atol && !(*s.atol > 0))
+      throw InputError(source + ": key 'time.atol' must be positive (got " + number_text(*s.atol) + ")");
     if (s.atol && !s.rtol) throw InputError(source + ": key 'time.atol' needs key 'time.rtol' (error-controlled steps)");
     if (!(s.dt > 0)) throw InputError(source + ": key 'time.dt_s' must be positive (got " + number_text(s.dt) + ")");
     if (s.steps <= 0) throw InputError(source + ": key 'time.steps' must be positive (got " + std::to_string(s.steps) + ")");

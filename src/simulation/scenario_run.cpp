@@ -25,8 +25,8 @@ namespace {
 using io::format;
 
 void print_start(const scenario::Scenario& sc, const ScenarioModel& built, double setup_s, std::ostream& log) {
-  const std::string stepping = sc.rtol ? format("%s error-controlled (rtol %g, atol %g m), output every %g s", sc.integrator.c_str(),
-                                                *sc.rtol, sc.absolute_tolerance(), sc.dt)
+  const std::string stepping = sc.rtol ? format("%s error-controlled (rtol %g, atol %g m), output every %g s",
+                                                sc.integrator.c_str(), *sc.rtol, sc.absolute_tolerance(), sc.dt)
                                        : format("%s, dt = %g s", sc.integrator.c_str(), sc.dt);
   log << format("%s: %lld nodes, %s model with %lld dofs (%s), %s, %ld steps; set up in %.2f s\n", sc.file.c_str(),
                 static_cast<long long>(built.mesh.num_nodes()), built.condensation ? "condensed ROI" : "full",
@@ -39,10 +39,11 @@ void print_deformation(const DeformationReport& r, const PeakDisplacement& peak,
     log << "peak displacement: none (nothing moved)\n";
     return;
   }
-  log << format("peak displacement %.4g mm at node %d (step %ld, t = %g s); mesh's smallest extent %.4g mm, mean element edge "
-                "%.3g mm\n",
-                r.peak_m / mm, r.peak_node, peak.step(), static_cast<double>(peak.step()) * dt, r.smallest_extent_m / mm,
-                r.mean_edge_m / mm);
+  log << format(
+      "peak displacement %.4g mm at node %d (step %ld, t = %g s); mesh's smallest extent %.4g mm, mean element edge "
+      "%.3g mm\n",
+      r.peak_m / mm, r.peak_node, peak.step(), static_cast<double>(peak.step()) * dt, r.smallest_extent_m / mm,
+      r.mean_edge_m / mm);
   for (const auto& w : r.warnings) log << "warning: " << w << '\n';
 }
 
@@ -72,7 +73,8 @@ ScenarioRunSummary run_scenario(const scenario::Scenario& sc, const std::filesys
   check_output_directory(out);
   // An unknown name, or tolerances for a fixed-step method, fail before any work.
   auto integrator = integrators::make_integrator(
-      sc.integrator, {.dt = sc.dt, .adaptive = sc.rtol.has_value(), .rtol = sc.rtol.value_or(1e-6), .atol = sc.absolute_tolerance()});
+      sc.integrator,
+      {.dt = sc.dt, .adaptive = sc.rtol.has_value(), .rtol = sc.rtol.value_or(1e-6), .atol = sc.absolute_tolerance()});
   ScenarioRunSummary summary;
   Stopwatch setup_clock;
   const auto built = build_scenario_model(sc);

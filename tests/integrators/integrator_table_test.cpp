@@ -91,7 +91,8 @@ TEST(IntegratorTable, TheScenarioGuideListsEveryIntegratorWithItsStepping) {
         base.resize(base.size() - std::string(suffix).size());
         break;
       }
-    const auto line = std::find_if(lines.begin(), lines.end(), [&](const std::string& l) { return l.find("`" + base + "`") != std::string::npos; });
+    const auto line = std::find_if(lines.begin(), lines.end(),
+                                   [&](const std::string& l) { return l.find("`" + base + "`") != std::string::npos; });
     ASSERT_NE(line, lines.end()) << "scenarios/README.md does not list " << info.name;
     const std::string steps = line->substr(line->rfind('|', line->size() - 2));
     EXPECT_EQ(steps.find("fixed") != std::string::npos, info.fixed_step) << *line;
