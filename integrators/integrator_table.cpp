@@ -6,6 +6,7 @@
 
 #include <cstdio>
 
+#include "common/did_you_mean.hpp"
 #include "common/errors.hpp"
 #include "integrators/arkode.hpp"
 #include "integrators/gsl_odeiv2.hpp"
@@ -192,7 +193,8 @@ std::span<const IntegratorInfo> integrator_table() {
 const IntegratorInfo& integrator_info(std::string_view name) {
   for (const auto& info : integrator_table())
     if (info.name == name) return info;
-  throw InputError("integrator '" + std::string(name) + "' is unknown (valid: " + integrator_name_list() + ")");
+  throw InputError("integrator '" + std::string(name) + "' is unknown" + did_you_mean(name, integrator_names()) +
+                   " (valid: " + integrator_name_list() + ")");
 }
 
 std::vector<std::string> integrator_names() {

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "app/commands.hpp"
+#include "app/misuse.hpp"
 #include "common/errors.hpp"
 
 namespace {
@@ -14,6 +15,10 @@ int run_cli(int argc, char** argv) {
       "A linear-elastic tetrahedral brain whose ROI is dynamic and whose rest is condensed statically.\n"
       "Start with:  roifem paper --out results/paper   (the Hansen & Larsen 1998 experiment)\n"
       "Lengths on the command line and in files are millimetres; inside, everything is SI."};
+  app.footer(
+      "Exit codes: 0 done; 1 an error in the input, the model or a solver (the message names the file, key,\n"
+      "node, element or step); 2 a command-line error; 130 / 143 stopped by Ctrl-C / SIGTERM (every completed\n"
+      "step kept).");
   app.require_subcommand(1);
   roifem::app::Action action;
   roifem::app::add_mesh_command(app, action);
@@ -22,13 +27,21 @@ int run_cli(int argc, char** argv) {
   roifem::app::add_compare_command(app, action);
   roifem::app::add_paper_command(app, action);
   roifem::app::add_roi_size_command(app, action);
+  roifem::app::add_help_command(app, action);
+  if (const std::string misuse = roifem::app::find_misuse(app, argc, argv); !misuse.empty()) {
+    std::cerr << "roifem: " << misuse << '\n';
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return app.exit(e) == 0 ? 0 : 2;  // --help is a success; every other parse error is misuse
   }
   try {
     action();
+  } catch (const CLI::ValidationError& e) {  // `roifem help NAME` with an unknown NAME
+    std::cerr << "roifem: " << e.what() << '\n';
+    return 2;
   } catch (const roifem::Interrupted& e) {
     std::cerr << "roifem: " << e.what() << '\n';
     return 128 + e.signal;

@@ -3,6 +3,7 @@
 #include <array>
 #include <cstdio>
 
+#include "common/did_you_mean.hpp"
 #include "common/errors.hpp"
 
 namespace roifem::condensation {
@@ -69,14 +70,20 @@ std::string Reduction::label() const {
 
 Reduction parse_reduction(const std::string& label) {
   std::string forms;
+  std::vector<std::string> keys;
   for (const auto& info : table) {
+    keys.push_back(std::string(info.key) + (info.counted ? "-K" : ""));
     if (!info.counted && label == info.key) return {.kind = info.kind};
     if (info.counted) {
       if (const Index count = positive_count_after(label, info.key); count > 0) return {.kind = info.kind, .modes = count};
     }
     forms += (forms.empty() ? "" : ", ") + std::string(info.key) + (info.counted ? "-K" : "");
   }
-  throw InputError("unknown reduction '" + label + "': use " + forms + " (K modes or POD vectors, K >= 1)");
+  // Compared as a form: "craig-bampten-10" as "craig-bampten-K".
+  const std::size_t digits = label.find_last_not_of("0123456789") + 1;
+  const std::string form = digits < label.size() ? label.substr(0, digits) + "K" : label;
+  throw InputError("unknown reduction '" + label + "'" + did_you_mean(form, keys) + ": use " + forms +
+                   " (K modes or POD vectors, K >= 1)");
 }
 
 }  // namespace roifem::condensation

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "common/did_you_mean.hpp"
 #include "common/errors.hpp"
 
 namespace {
@@ -63,7 +64,8 @@ Material material_preset(std::string_view name) {
     const double mu = 1000.0, nu = 0.45;
     return Material::from_young_poisson(2 * mu * (1 + nu), nu, 1040.0, 5.0);
   }
-  throw InputError("material preset '" + std::string(name) + "' is unknown (valid: paper, brain)");
+  throw InputError("material preset '" + std::string(name) + "' is unknown" + did_you_mean(name, {"paper", "brain"}) +
+                   " (valid: paper, brain)");
 }
 
 }  // namespace roifem::fem

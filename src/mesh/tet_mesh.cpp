@@ -1,5 +1,7 @@
 #include "mesh/tet_mesh.hpp"
 
+#include "common/did_you_mean.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -10,9 +12,13 @@ namespace roifem::mesh {
 const NamedSet& TetMesh::set(const std::string& name) const {
   if (auto it = sets.find(name); it != sets.end()) return it->second;
   std::string known;
-  for (const auto& [n, s] : sets) known += (known.empty() ? "" : ", ") + n;
-  throw InputError(source + ": no named set '" + name + "' (the mesh has: " + (known.empty() ? "no physical groups" : known) +
-                   ")");
+  std::vector<std::string> names;
+  for (const auto& [n, s] : sets) {
+    known += (known.empty() ? "" : ", ") + n;
+    names.push_back(n);
+  }
+  throw InputError(source + ": no named set '" + name + "'" + did_you_mean(name, names) +
+                   " (the mesh has: " + (known.empty() ? "no physical groups" : known) + ")");
 }
 
 double signed_volume(const TetMesh& mesh, Index e) {

@@ -74,7 +74,20 @@ std::vector<int> select_roi_nodes(const mesh::TetMesh& mesh, const fem::DofMap& 
       break;
   }
   std::sort(roi.begin(), roi.end());
-  if (roi.empty()) throw ModelError("the ROI (" + spec.describe() + ") contains no free node");
+  if (roi.empty()) {
+    std::string why;
+    if (spec.kind == RoiSpec::Kind::ball) {
+      const Vec3 low = mesh.nodes.rowwise().minCoeff(), high = mesh.nodes.rowwise().maxCoeff();
+      if ((spec.center.array() < low.array()).any() || (spec.center.array() > high.array()).any())
+        why = ": the centre lies outside the mesh's box, (" + number_text(low.x() / mm) + ", " + number_text(low.y() / mm) +
+              ", " + number_text(low.z() / mm) + ") to (" + number_text(high.x() / mm) + ", " + number_text(high.y() / mm) +
+              ", " + number_text(high.z() / mm) + ") mm";
+      else if (spec.radius < 1 * mm)
+        why = ": radius_mm is in millimetres, and " + number_text(spec.radius / mm) + " mm is smaller than any element (" +
+              mesh.source + ")";
+    }
+    throw ModelError("the ROI (" + spec.describe() + ") contains no free node" + why);
+  }
   return roi;
 }
 

@@ -6,6 +6,7 @@
 #include <set>
 #include <sstream>
 
+#include "common/did_you_mean.hpp"
 #include "common/errors.hpp"
 #include "common/number_text.hpp"
 #include "scenario/scenario.hpp"
@@ -31,8 +32,21 @@ class StrictTable {
     known_.insert(key);
     return table_.get(key);
   }
-  [[noreturn]] void missing(const std::string& key) const {
-    throw InputError(source_ + ": missing required key '" + key_name(key) + "'");
+  /// "file:line" of the table (its header, or the file for the top level).
+  std::string table_where() const {
+    const auto line = table_.source().begin.line;
+    return line > 0 && !name_.empty() ? source_ + ":" + std::to_string(line) : source_;
+  }
+  /// A missing required key, naming where its table starts and a present key that looks like a typo of it.
+  [[noreturn]] void missing(const std::string& key, const std::string& what = "") const {
+    std::string typo;
+    for (const auto& [k, node] : table_) {
+      const std::string present(k.str());
+      if (known_.count(present) || closest_name(present, {key}).empty()) continue;
+      typo = "; '" + present + "' at line " + std::to_string(k.source().begin.line) + " looks like a misspelling of it";
+      break;
+    }
+    throw InputError(table_where() + ": missing required key '" + key_name(key) + "'" + what + typo);
   }
   [[noreturn]] void wrong(const toml::node& node, const std::string& key, const std::string& what) const {
     throw InputError(where(node) + ": key '" + key_name(key) + "' " + what);
@@ -111,8 +125,9 @@ class StrictTable {
       std::string valid;
       for (const auto& name : known_) valid += (valid.empty() ? "" : ", ") + name;
       const auto& at = key.source().begin;  // the key's own position, not its value's
+      const std::string hint = did_you_mean(k, std::vector<std::string>(known_.begin(), known_.end()));
       throw InputError(source_ + ":" + std::to_string(at.line) + ":" + std::to_string(at.column) + ": unknown key '" +
-                       key_name(k) + "'" + (valid.empty() ? "" : " (valid: " + valid + ")"));
+                       key_name(k) + "'" + hint + (valid.empty() ? "" : " (valid: " + valid + ")"));
     }
   }
   const std::string& source() const { return source_; }
@@ -175,9 +190,12 @@ condensation::Reduction read_reduction(StrictTable& t) {
   const std::string kind = t.string("reduction").value_or("static");
   const auto table = condensation::reduction_table();
   const auto row = std::find_if(table.begin(), table.end(), [&](const auto& info) { return info.key == kind; });
-  if (row == table.end())
+  if (row == table.end()) {
+    std::vector<std::string> keys;
+    for (const auto& info : table) keys.emplace_back(info.key);
     throw InputError(t.source() + ": key 'roi.reduction' must be one of " + condensation::reduction_key_list() + " (got '" +
-                     kind + "')");
+                     kind + "')" + did_you_mean(kind, keys));
+  }
   r.kind = row->kind;
   const auto modes = t.integer("modes");
   const double cutoff = t.number("cutoff_rad_s", 0.0);
@@ -212,7 +230,8 @@ roi::RoiSpec read_roi(StrictTable& t) {
     spec.center = t.vec3("center_mm").value_or(Vec3::Constant(NAN)) * mm;
     spec.radius = t.number("radius_mm", NAN) * mm;
     if (!spec.center.allFinite()) t.missing("center_mm");
-    if (!(spec.radius > 0)) throw InputError(t.source() + ": key 'roi.radius_mm' must be given and positive");
+    if (std::isnan(spec.radius)) t.missing("radius_mm", " (the ball's radius in mm)");
+    if (!(spec.radius > 0)) throw InputError(t.source() + ": key 'roi.radius_mm' must be positive");
   } else if (kind == "nearest") {
     spec.kind = roi::RoiSpec::Kind::nearest;
     spec.center = t.vec3("target_mm").value_or(Vec3::Constant(NAN)) * mm;
