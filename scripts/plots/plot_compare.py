@@ -3,8 +3,10 @@
 
 usage: /usr/bin/python3 plot_compare.py DIR
 reads DIR/compare.csv; writes DIR/work_precision.png (max error against wall time, log-log, one
-line per integrator and mode) and DIR/error_vs_dt.png (fixed-step error against dt with the
-observed order of the last two stable points in the legend).
+line per integrator and mode) and DIR/error_vs_dt.png (fixed-step error against dt, with the
+observed order of the two smallest steps beside the method's own). Each integrator keeps one
+colour in both plots (solid: fixed steps, dashed: adaptive). Runs without figures are marked:
+x at the top of the plot for a run that diverged, a triangle for one stopped by --max-run-seconds.
 """
 import csv
 import math
@@ -15,42 +17,71 @@ from collections import defaultdict
 from plotting import plt, save
 
 
-def main(directory):
-    series = defaultdict(list)
+def read(directory):
+    finished, left_out, theory = defaultdict(list), defaultdict(list), {}
     with open(os.path.join(directory, "compare.csv")) as f:
         for row in csv.DictReader(f):
-            if row["stable"] != "1" or not row["err_max_mm"]:
-                continue
-            err = float(row["err_max_mm"])
-            if err <= 0:
-                continue
-            series[(row["integrator"], row["mode"])].append((float(row["dt_or_tol"]), float(row["wall_s"]), err))
+            key = (row["integrator"], row["mode"])
+            theory[row["integrator"]] = int(row["theoretical_order"])
+            if row["status"] == "ok" and row["stable"] == "1" and row["err_max_mm"] and float(row["err_max_mm"]) > 0:
+                finished[key].append((float(row["dt_or_tol"]), float(row["wall_s"]), float(row["err_max_mm"])))
+            else:
+                left_out[key].append((float(row["dt_or_tol"]), float(row["wall_s"]), row["status"]))
+    return finished, left_out, theory
+
+
+def colours(names):
+    palette = plt.cm.tab10.colors + plt.cm.Dark2.colors  # distinct hues first
+    return {name: palette[i % len(palette)] for i, name in enumerate(sorted(names))}
+
+
+def mark_left_out(ax, points, colour, x_of):
+    """Marks runs without figures at the top of the axes (x: diverged, triangle: stopped)."""
+    for p in points:
+        x = x_of(p)
+        if x and x > 0:
+            ax.plot([x], [0.97], "v" if p[2].startswith("stopped") else "x", color=colour, ms=7, mew=2,
+                    transform=ax.get_xaxis_transform(), clip_on=False)
+
+
+def main(directory):
+    finished, left_out, theory = read(directory)
+    colour = colours({name for name, _ in list(finished) + list(left_out)})
 
     fig, ax = plt.subplots(figsize=(8, 6))
-    ax.set_prop_cycle(color=plt.cm.tab20.colors)  # one colour per series (up to 20)
-    for (name, mode), points in sorted(series.items()):
+    for (name, mode), points in sorted(finished.items()):
         points.sort(key=lambda p: p[1])
         ax.plot([p[1] for p in points], [p[2] for p in points], "o-" if mode == "fixed" else "s--", ms=3,
-                label=f"{name} ({mode})")
+                color=colour[name], label=f"{name} ({mode})")
+    for (name, mode), points in sorted(left_out.items()):
+        mark_left_out(ax, points, colour[name], lambda p: p[1])
+        if (name, mode) not in finished:
+            ax.plot([], [], "v", color=colour[name], label=f"{name} ({mode}): no run finished")
     ax.axhline(0.1, color="k", lw=0.8, ls=":")
+    ax.annotate("0.1 mm", xy=(0.005, 0.1), xycoords=("axes fraction", "data"), va="bottom", fontsize=8)
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("wall time (s)")
+    ax.set_xlabel("wall time of the run (s)")
     ax.set_ylabel("max error against the exact modal solution (mm)")
-    ax.set_title("Work-precision")
+    ax.set_title("Work-precision (marks at the top: x diverged, v stopped by --max-run-seconds)")
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=6, ncol=2)
     save(fig, os.path.join(directory, "work_precision.png"))
 
     fig, ax = plt.subplots(figsize=(8, 6))
-    ax.set_prop_cycle(color=plt.cm.tab20.colors)
-    for (name, mode), points in sorted(series.items()):
+    for (name, mode), points in sorted(finished.items()):
         if mode != "fixed" or len(points) < 2:
             continue
         points.sort(key=lambda p: p[0])
         (dt1, _, e1), (dt2, _, e2) = points[0], points[1]
         order = math.log(e2 / e1) / math.log(dt2 / dt1) if dt2 != dt1 else float("nan")
-        ax.plot([p[0] for p in points], [p[2] for p in points], "o-", ms=3, label=f"{name}: order {order:.2f}")
+        ax.plot([p[0] for p in points], [p[2] for p in points], "o-", ms=3, color=colour[name],
+                label=f"{name}: order {order:.2f} (theory {theory[name]})")
+    for (name, mode), points in sorted(left_out.items()):
+        if mode == "fixed":
+            mark_left_out(ax, points, colour[name], lambda p: p[0])
+    ax.axhline(0.1, color="k", lw=0.8, ls=":")
+    ax.annotate("0.1 mm", xy=(0.005, 0.1), xycoords=("axes fraction", "data"), va="bottom", fontsize=8)
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("time step dt (s)")

@@ -123,13 +123,20 @@ bool record_run(Sweep& w, const std::string& name, const std::string& mode, doub
     row.err_rms_mm = e.rms_mm;
     row.energy_drift = e.energy_drift;
     // Growing without bound but still finite at the end of the window: unstable all the same.
-    if (e.max_mm > 10 * w.peak / mm) row.stable = false;
+    if (e.max_mm > 10 * w.peak / mm) {
+      row.stable = false;
+      row.status = "diverged: the error grew past 10x the exact peak displacement";
+    }
   } catch (const SolverError& err) {
     row.stable = false;
+    row.status = std::string("diverged: ") + err.what();
     w.log << "    " << err.what() << '\n';
   } catch (const OverBudget& stop) {
-    w.log << format("  %-20s %-8s %9.3g  stopped at t = %.3g s after %.0f s (--max-run-seconds); left out\n", name.c_str(),
-                    mode.c_str(), dt_or_tol, stop.t, run_clock.seconds());
+    row.stable = false;
+    row.wall_s = run_clock.seconds();
+    row.status = format("stopped at t = %.3g s after %.0f s (--max-run-seconds)", stop.t, row.wall_s);
+    w.log << format("  %-20s %-8s %9.3g  %s; no error figures\n", name.c_str(), mode.c_str(), dt_or_tol, row.status.c_str());
+    w.results.rows.push_back(row);
     return false;
   }
   row.wall_s = run_clock.seconds();
@@ -144,6 +151,27 @@ bool record_run(Sweep& w, const std::string& name, const std::string& mode, doub
         << std::flush;  // a sweep runs for minutes: show each run as it ends
   w.results.rows.push_back(row);
   return true;
+}
+
+/// The order observed between the two smallest fixed steps that ran, beside the method's own, with
+/// a word when they differ by more than a quarter.
+void report_observed_order(Sweep& w, const integrators::IntegratorInfo& info) {
+  std::vector<const CompareRow*> runs;
+  for (const auto& r : w.results.rows)
+    if (r.integrator == info.name && r.mode == "fixed" && r.finished() && r.stable && r.err_max_mm > 0) runs.push_back(&r);
+  if (runs.size() < 2) return;
+  std::sort(runs.begin(), runs.end(), [](const auto* a, const auto* b) { return a->dt_or_tol < b->dt_or_tol; });
+  const CompareRow &fine = *runs[0], &coarse = *runs[1];
+  const double order = std::log(coarse.err_max_mm / fine.err_max_mm) / std::log(coarse.dt_or_tol / fine.dt_or_tol);
+  std::string verdict = "as theory says";
+  if (order < info.order - 0.25)
+    verdict =
+        "below theory: the errors are not yet in the asymptotic range at these steps, or the load's kink (the end of "
+        "its ramp) or round-off limits them";
+  else if (order > info.order + 0.25)
+    verdict = "above theory: the steps are not in the asymptotic range (the error's constant changes)";
+  w.log << format("  %-20s observed order %.2f between dt = %.3g and %.3g s (theory %d): %s\n", info.name.c_str(), order,
+                  fine.dt_or_tol, coarse.dt_or_tol, info.order, verdict.c_str());
 }
 
 /// Fixed steps: around the stability limit for an explicit method, else dt, dt/2, ...
@@ -162,6 +190,7 @@ void sweep_fixed_steps(Sweep& w, const integrators::IntegratorInfo& info, double
     }
     if (!record_run(w, info.name, "fixed", dt, integrators::make_integrator(info.name, dt))) break;  // smaller dt: longer still
   }
+  report_observed_order(w, info);
 }
 
 void sweep_tolerances(Sweep& w, const integrators::IntegratorInfo& info, double limit) {
@@ -190,14 +219,22 @@ void search_stability_limit(Sweep& w, const integrators::IntegratorInfo& info, d
 
 void write_compare_files(const CompareOptions& o, const CompareResults& results) {
   {
+    // dt_or_tol: the fixed step in s, or the relative tolerance rtol (atol = rtol x the exact peak, m);
+    // energy_drift_rel: |E(t_end) - E_exact(t_end)| / E_exact(t_end); status: why a run has no figures.
     io::CsvWriter csv(o.out / "compare.csv",
-                      "integrator,mode,dt_or_tol,steps,rhs_evals,jac_evals,lin_setups,lin_solves,wall_s,err_max_mm,"
-                      "err_rms_mm,stable,energy_drift");
-    for (const auto& r : results.rows)
-      csv.row(format("%s,%s,%.6g,%ld,%ld,%ld,%ld,%ld,%.6g,%s,%s,%d,%s", r.integrator.c_str(), r.mode.c_str(), r.dt_or_tol,
-                     r.steps, r.rhs_evals, r.jac_evals, r.lin_setups, r.lin_solves, r.wall_s,
-                     r.stable ? format("%.6e", r.err_max_mm).c_str() : "", r.stable ? format("%.6e", r.err_rms_mm).c_str() : "",
-                     r.stable ? 1 : 0, r.stable ? format("%.6e", r.energy_drift).c_str() : ""));
+                      "integrator,mode,dt_or_tol,theoretical_order,steps,rhs_evals,jac_evals,lin_setups,lin_solves,wall_s,"
+                      "err_max_mm,err_rms_mm,stable,energy_drift_rel,status");
+    for (const auto& r : results.rows) {
+      const bool figures = r.finished() && r.stable;
+      std::string status = r.status;
+      std::replace(status.begin(), status.end(), '"', '\'');
+      csv.row(format("%s,%s,%.6g,%d,%ld,%ld,%ld,%ld,%ld,%.6g,%s,%s,%s,%s,\"%s\"", r.integrator.c_str(), r.mode.c_str(),
+                     r.dt_or_tol, integrators::integrator_info(r.integrator).order, r.steps, r.rhs_evals, r.jac_evals,
+                     r.lin_setups, r.lin_solves, r.wall_s, figures ? format("%.6e", r.err_max_mm).c_str() : "",
+                     figures ? format("%.6e", r.err_rms_mm).c_str() : "",
+                     r.status.starts_with("stopped") ? "" : (r.stable ? "1" : "0"),
+                     figures ? format("%.6e", r.energy_drift).c_str() : "", status.c_str()));
+    }
     csv.close();
   }
   {
@@ -222,7 +259,8 @@ void print_summary(const CompareResults& results, double dt, std::ostream& log) 
     if (r.integrator == "trapezoid" && r.mode == "fixed" && std::abs(r.dt_or_tol - dt) < 1e-12 * dt && r.steps > 0)
       trapezoid_step = r.wall_s / static_cast<double>(r.steps);
   if (trapezoid_step <= 0) return;
-  log << "cost per step relative to the trapezoidal rule at dt = " << dt << " s (same run; includes setup):\n";
+  log << "cost per step relative to the trapezoidal rule: wall time per step (the run's setup included), at dt = " << dt
+      << " s for fixed steps and at rtol 1e-6 for adaptive ones, from the same compare run:\n";
   for (const auto& r : results.rows)
     if (r.stable && r.steps > 0 &&
         ((r.mode == "fixed" && std::abs(r.dt_or_tol - dt) < 1e-12 * dt) || (r.mode == "adaptive" && r.dt_or_tol == 1e-6)))

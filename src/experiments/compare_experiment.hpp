@@ -23,7 +23,7 @@ struct CompareOptions {
   int fixed_levels = 5;                  ///< dt = T/2^0 .. T/2^(levels-1), T the scenario's dt
   std::vector<double> tolerances{1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8};
   long max_steps = 200000;  ///< fixed-step runs needing more are skipped
-  double max_run_s = 60;    ///< a run taking longer is stopped and left out (with the tighter ones)
+  double max_run_s = 60;    ///< a run taking longer is stopped: its row keeps the reason, no figures (tighter ones not run)
   bool plots = true;
 };
 
@@ -33,6 +33,10 @@ struct CompareRow {
   long steps = 0, rhs_evals = 0, jac_evals = 0, lin_setups = 0, lin_solves = 0;
   double wall_s = 0, err_max_mm = 0, err_rms_mm = 0, energy_drift = 0;
   bool stable = true;
+  /// "ok", "diverged: <the solver's message>" or "stopped at t = ... s after ... s (--max-run-seconds)":
+  /// a run that did not finish keeps its row, with this reason, and no error figures.
+  std::string status = "ok";
+  bool finished() const { return status == "ok"; }
 };
 
 struct StabilityRow {

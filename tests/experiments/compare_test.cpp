@@ -12,6 +12,31 @@
 namespace roifem::experiments {
 namespace {
 
+/// compare.csv's rows as fields (the header checked): 14 plain fields, then the quoted status.
+std::vector<std::vector<std::string>> read_rows(const std::filesystem::path& file) {
+  std::ifstream csv(file);
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line,
+            "integrator,mode,dt_or_tol,theoretical_order,steps,rhs_evals,jac_evals,lin_setups,lin_solves,wall_s,err_max_mm,"
+            "err_rms_mm,stable,energy_drift_rel,status");
+  std::vector<std::vector<std::string>> rows;
+  while (std::getline(csv, line)) {
+    EXPECT_EQ(line.find("nan"), std::string::npos) << line;
+    EXPECT_EQ(line.find("inf"), std::string::npos) << line;
+    std::vector<std::string> fields;
+    std::size_t start = 0;
+    for (int k = 0; k < 14; ++k) {
+      const std::size_t comma = line.find(',', start);
+      fields.push_back(line.substr(start, comma - start));
+      start = comma + 1;
+    }
+    fields.push_back(line.substr(start));
+    rows.push_back(fields);
+  }
+  return rows;
+}
+
 TEST(Compare, MeasuresOrdersStabilityLimitsAndKeepsDivergedRunsFreeOfNumbers) {
   test::TempDir dir;
   scenario::Scenario sc = scenario::read_scenario(std::string(ROIFEM_SCENARIO_DIR) + "/paper-setup2.toml");
@@ -32,6 +57,9 @@ TEST(Compare, MeasuresOrdersStabilityLimitsAndKeepsDivergedRunsFreeOfNumbers) {
   ASSERT_EQ(errors.size(), 4u);
   const double order = std::log2(errors[2] / errors[3]);
   EXPECT_NEAR(order, 2.0, 0.3) << log.str();
+  // The log puts the observed order beside the method's own.
+  EXPECT_NE(log.str().find("trapezoid            observed order"), std::string::npos) << log.str();
+  EXPECT_NE(log.str().find("(theory 2)"), std::string::npos) << log.str();
 
   // ERK4: the predicted limit holds in practice (bisection within a few percent), and the run just
   // above it is reported unstable.
@@ -51,28 +79,38 @@ TEST(Compare, MeasuresOrdersStabilityLimitsAndKeepsDivergedRunsFreeOfNumbers) {
     EXPECT_LT(e[1], e[0]) << name;
   }
 
-  // The CSV: header, one row per run, no NaN or inf anywhere, empty error fields where diverged.
-  std::ifstream csv(dir / "compare.csv");
-  std::string line;
-  std::getline(csv, line);
-  EXPECT_EQ(line,
-            "integrator,mode,dt_or_tol,steps,rhs_evals,jac_evals,lin_setups,lin_solves,wall_s,err_max_mm,"
-            "err_rms_mm,stable,energy_drift");
-  std::size_t rows = 0;
-  while (std::getline(csv, line)) {
-    ++rows;
-    EXPECT_EQ(line.find("nan"), std::string::npos) << line;
-    EXPECT_EQ(line.find("inf"), std::string::npos) << line;
-    std::vector<std::string> fields;
-    std::stringstream in(line);
-    for (std::string field; std::getline(in, field, ',');) fields.push_back(field);
-    if (line.back() == ',') fields.emplace_back();
-    ASSERT_EQ(fields.size(), 13u) << line;
-    if (fields[11] == "0") {  // diverged: no error figures at all
-      EXPECT_TRUE(fields[9].empty() && fields[10].empty() && fields[12].empty()) << line;
+  // The CSV: header, one row per run, no NaN or inf anywhere, empty error fields where diverged,
+  // and the reason in the last (quoted) field.
+  const auto rows = read_rows(dir / "compare.csv");
+  ASSERT_EQ(rows.size(), r.rows.size());
+  for (const auto& fields : rows) {
+    if (fields[12] == "0") {  // diverged: no error figures at all, and why
+      EXPECT_TRUE(fields[10].empty() && fields[11].empty() && fields[13].empty());
+      EXPECT_EQ(fields[14].rfind("\"diverged: ", 0), 0u) << fields[14];
+    } else {
+      EXPECT_EQ(fields[14], "\"ok\"");
     }
   }
-  EXPECT_EQ(rows, r.rows.size());
+}
+
+TEST(Compare, ARunStoppedByTheTimeBudgetKeepsItsRowAndItsReason) {
+  test::TempDir dir;
+  scenario::Scenario sc = scenario::read_scenario(std::string(ROIFEM_SCENARIO_DIR) + "/paper-setup2.toml");
+  CompareOptions o;
+  o.out = dir.path();
+  o.integrators = {"trapezoid"};
+  o.t_end = 0.5;
+  o.fixed_levels = 2;
+  o.max_run_s = 0;  // every run is over budget at its first output
+  o.plots = false;
+  std::ostringstream log;
+  const CompareResults r = run_compare(sc, o, log);
+  ASSERT_EQ(r.rows.size(), 1u);  // the sweep stops at the first run over budget (a smaller dt runs longer)
+  EXPECT_EQ(r.rows[0].status.rfind("stopped at t = 0.05 s after", 0), 0u) << r.rows[0].status;
+  const auto rows = read_rows(dir / "compare.csv");
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_TRUE(rows[0][10].empty() && rows[0][12].empty()) << "no error figures, stability unknown";
+  EXPECT_NE(rows[0][14].find("--max-run-seconds"), std::string::npos) << rows[0][14];
 }
 
 }  // namespace
