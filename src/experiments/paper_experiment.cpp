@@ -125,6 +125,15 @@ void print_findings(const PaperOptions& o, const PaperResults& r, std::ostream& 
   bool faster = true;
   for (std::size_t k = 1; k < r.timing.size(); ++k) faster = faster && r.timing[k].step_s_median < r.timing[0].step_s_median;
   log << format("  [%s] the condensed models step faster than the full model\n", faster ? "yes" : "NO");
+  // The model is linear: every error scales with the force. Say at which scale this run is.
+  if (!r.curves.empty() && r.opening_mm > 0) {
+    const double scale = paper_peak_max_error_mm / peak(r.curves.front());
+    log << format(
+        "  Scale: the errors scale with the force. Here %s peaks at %.3g mm at the %.1f s ramp, the paper's "
+        "Fig. 6 at about %.0f mm; --opening-mm %.4g gives the paper's scale.\n",
+        r.curves.front().setup.c_str(), peak(r.curves.front()), r.curves.front().ramp_s, paper_peak_max_error_mm,
+        r.opening_mm * scale);
+  }
 }
 
 /// Hansen & Larsen's Table 2 figure for a model of ours, or 0 where the paper has none.

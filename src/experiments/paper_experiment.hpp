@@ -79,5 +79,7 @@ PaperResults run_paper_experiment(const PaperOptions& options, std::ostream& log
 
 /// Hansen & Larsen's Table 2 (1998 hardware): seconds per step.
 inline constexpr double paper_full_step_s = 0.440, paper_setup1_step_s = 0.071, paper_setup2_step_s = 0.037;
+/// The paper's Fig. 6: setup 1's max error at the 0.5 s ramp peaks at about 6 mm (mm).
+inline constexpr double paper_peak_max_error_mm = 6.0;
 
 }  // namespace roifem::experiments
