@@ -15,8 +15,9 @@ void add_run_command(CLI::App& app, Action& action) {
   auto o = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("run",
                                  "Run one scenario (TOML: mesh, material, fixed sets, loads with ramps, ROI, "
-                                 "integrator, dt, steps, outputs; see scenarios/README.md) and write "
-                                 "DIR/results.h5 and DIR/results.xdmf");
+                                 "integrator, dt, steps, optional rtol / atol for error-controlled steps, outputs; see "
+                                 "scenarios/README.md) and write DIR/results.h5 and DIR/results.xdmf; prints the peak "
+                                 "displacement and warns when it makes no physical sense");
   cmd->add_option("SCENARIO", o->scenario, "Scenario file (.toml)")->required();
   cmd->footer(integrators::integrator_table_text());
   cmd->add_option("--out", o->out, "Output directory")->required();
