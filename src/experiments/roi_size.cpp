@@ -180,8 +180,8 @@ class Search {
 
 std::string row_text(const RoiSizeRow& r, double budget) {
   if (!r.found) return format("  %-18s misses the budget even with every node in the ROI\n", r.reduction.c_str());
-  std::string text = format("  %-18s from %lld nodes on, every ROI tried holds (%.4f mm there)", r.reduction.c_str(),
-                            static_cast<long long>(r.nodes), r.peak_max_mm);
+  std::string text = format("  %-18s from %lld node%s on, every ROI tried holds (%.4f mm there)", r.reduction.c_str(),
+                            static_cast<long long>(r.nodes), r.nodes == 1 ? "" : "s", r.peak_max_mm);
   if (r.missing_to > 0)
     text += format("; misses at %lld-%lld nodes", static_cast<long long>(r.missing_from), static_cast<long long>(r.missing_to));
   if (r.holds_below > 0)
