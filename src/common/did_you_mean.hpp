@@ -23,8 +23,10 @@ inline std::size_t edit_distance(std::string_view a, std::string_view b) {
   return row[b.size()];
 }
 
-/// The closest candidate if it is close enough to be a typo of `name`, else empty.
+/// The closest candidate if it is close enough to be a typo of `name`, else the shortest candidate
+/// that contains `name` (a name given without its prefix: "esdirk4" for "arkode-esdirk4"), else empty.
 inline std::string closest_name(std::string_view name, const std::vector<std::string>& candidates) {
+  if (std::find(candidates.begin(), candidates.end(), name) != candidates.end()) return "";  // valid already
   std::string best;
   std::size_t best_distance = 0;
   for (const auto& c : candidates) {
@@ -35,7 +37,12 @@ inline std::string closest_name(std::string_view name, const std::vector<std::st
     }
   }
   const std::size_t allowed = std::max<std::size_t>(2, std::max(name.size(), best.size()) / 3);
-  return !best.empty() && best_distance > 0 && best_distance <= allowed ? best : std::string();
+  if (!best.empty() && best_distance > 0 && best_distance <= allowed) return best;
+  std::string containing;
+  if (name.size() >= 3)
+    for (const auto& c : candidates)
+      if (c != name && c.find(name) != std::string::npos && (containing.empty() || c.size() < containing.size())) containing = c;
+  return containing;
 }
 
 /// " (did you mean 'x'?)", or "" when nothing is close.

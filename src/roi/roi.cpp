@@ -1,6 +1,7 @@
 #include "roi/roi.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <numeric>
 #include <sstream>
 
@@ -28,6 +29,18 @@ std::string RoiSpec::describe() const {
   }
   return s.str();
 }
+
+namespace {
+
+/// "(x, y, z) to (x, y, z) mm", to 0.1 mm.
+std::string box_text(const Vec3& low, const Vec3& high) {
+  char text[160];
+  std::snprintf(text, sizeof text, "(%.1f, %.1f, %.1f) to (%.1f, %.1f, %.1f) mm", low.x() / mm, low.y() / mm, low.z() / mm,
+                high.x() / mm, high.y() / mm, high.z() / mm);
+  return text;
+}
+
+}  // namespace
 
 std::vector<int> free_nodes(const mesh::TetMesh& mesh, const fem::DofMap& dofs) {
   std::vector<int> nodes;
@@ -79,9 +92,7 @@ std::vector<int> select_roi_nodes(const mesh::TetMesh& mesh, const fem::DofMap& 
     if (spec.kind == RoiSpec::Kind::ball) {
       const Vec3 low = mesh.nodes.rowwise().minCoeff(), high = mesh.nodes.rowwise().maxCoeff();
       if ((spec.center.array() < low.array()).any() || (spec.center.array() > high.array()).any())
-        why = ": the centre lies outside the mesh's box, (" + number_text(low.x() / mm) + ", " + number_text(low.y() / mm) +
-              ", " + number_text(low.z() / mm) + ") to (" + number_text(high.x() / mm) + ", " + number_text(high.y() / mm) +
-              ", " + number_text(high.z() / mm) + ") mm";
+        why = ": the centre lies outside the mesh's box, " + box_text(low, high);
       else if (spec.radius < 1 * mm)
         why = ": radius_mm is in millimetres, and " + number_text(spec.radius / mm) + " mm is smaller than any element (" +
               mesh.source + ")";

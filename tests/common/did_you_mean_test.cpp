@@ -22,6 +22,8 @@ TEST(DidYouMean, SuggestsTheClosestNameOnlyWhenItLooksLikeATypo) {
   EXPECT_EQ(did_you_mean("newmark", integrators), "");    // nothing close
   EXPECT_EQ(did_you_mean("trapezoid", integrators), "");  // already valid
   EXPECT_EQ(closest_name("--hlep", {"--help", "--out"}), "--help");
+  // A name without its family's prefix: the shortest name that contains it.
+  EXPECT_EQ(closest_name("esdirk4", {"arkode-esdirk4-mass", "arkode-esdirk4", "ida-bdf5"}), "arkode-esdirk4");
 }
 
 }  // namespace
