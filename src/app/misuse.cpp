@@ -39,8 +39,10 @@ std::string find_misuse(CLI::App& app, int argc, const char* const* argv) {
     if (!arg.starts_with("--")) continue;
     const std::string name(arg.substr(0, arg.find('=')));
     if (std::find(options.begin(), options.end(), name) != options.end()) continue;
-    return "unknown option '" + name + "' for 'roifem " + command + "'" + did_you_mean(name, options) + "; see roifem " +
-           command + " --help";
+    std::string message = "unknown option '";
+    message.append(name).append("' for 'roifem ").append(command).append("'");
+    message.append(did_you_mean(name, options)).append("; see roifem ").append(command).append(" --help");
+    return message;
   }
   return "";
 }
