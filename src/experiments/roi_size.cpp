@@ -178,7 +178,7 @@ class Search {
   RoiSizeResults& results_;
 };
 
-std::string row_text(const RoiSizeRow& r, double budget) {
+std::string row_text(const RoiSizeRow& r) {
   if (!r.found) return format("  %-18s misses the budget even with every node in the ROI\n", r.reduction.c_str());
   std::string text = format("  %-18s from %lld node%s on, every ROI tried holds (%.4f mm there)", r.reduction.c_str(),
                             static_cast<long long>(r.nodes), r.nodes == 1 ? "" : "s", r.peak_max_mm);
@@ -187,7 +187,6 @@ std::string row_text(const RoiSizeRow& r, double budget) {
   if (r.holds_below > 0)
     text += format("; holds again at %lld nodes and below (the error is not monotone in the ROI size)",
                    static_cast<long long>(r.holds_below));
-  (void)budget;
   return text + "\n";
 }
 
@@ -262,7 +261,7 @@ RoiSizeResults run_roi_size(const RoiSizeOptions& o, std::ostream& log) {
   for (const auto& reduction : o.reductions) {
     results.rows.push_back(search.find(reduction));
     write_files(o.out, results, nullptr, o.max_error_mm);
-    log << row_text(results.rows.back(), o.max_error_mm) << std::flush;
+    log << row_text(results.rows.back()) << std::flush;
   }
   print_summary(results, o.max_error_mm, log);
   if (!o.out.empty())

@@ -31,12 +31,18 @@ std::filesystem::path short_paper_scenario(const test::TempDir& dir) {
   return test::write_file(dir / "short.toml", s);
 }
 
-TEST(RoiSize, ALooseBudgetNeedsOneNodeAndAnExactOneEveryNode) {
-  const test::TempDir dir;
+/// Plain condensation sized on the short paper scenario, with few timing steps.
+RoiSizeOptions short_static_search(const test::TempDir& dir) {
   RoiSizeOptions o;
   o.scenario = short_paper_scenario(dir);
   o.timing_steps = 5;
   o.reductions = {{}};
+  return o;
+}
+
+TEST(RoiSize, ALooseBudgetNeedsOneNodeAndAnExactOneEveryNode) {
+  const test::TempDir dir;
+  RoiSizeOptions o = short_static_search(dir);
   std::ostringstream log;
   o.max_error_mm = 100;  // far above any dynamic deviation
   const auto loose = run_roi_size(o, log);
@@ -79,10 +85,7 @@ TEST(RoiSize, ThePaperErrorScaleScenarioScalesTheErrorByItsForceToThePapersSixMi
 
 TEST(RoiSize, EveryRoiTriedFromTheAnswerUpHoldsAndTheOneBelowMisses) {
   const test::TempDir dir;
-  RoiSizeOptions o;
-  o.scenario = short_paper_scenario(dir);
-  o.timing_steps = 5;
-  o.reductions = {{}};
+  RoiSizeOptions o = short_static_search(dir);
   o.max_error_mm = 100;  // every size holds: the peaks of the whole coarse grid
   std::ostringstream log;
   const auto all = run_roi_size(o, log).rows.at(0).probes;
@@ -101,11 +104,15 @@ TEST(RoiSize, EveryRoiTriedFromTheAnswerUpHoldsAndTheOneBelowMisses) {
               static_cast<long long>(row.missing_to), static_cast<long long>(row.holds_below), row.probes.size());
   Index below = 0;
   for (const auto& p : row.probes) {
-    if (p.nodes >= row.nodes) EXPECT_LE(p.peak_max_mm, o.max_error_mm) << p.nodes << " nodes";
+    if (p.nodes >= row.nodes) {
+      EXPECT_LE(p.peak_max_mm, o.max_error_mm) << p.nodes << " nodes";
+    }
     if (p.nodes < row.nodes) below = std::max(below, p.nodes);
     // The same size in the first search: the same error.
     for (const auto& q : all)
-      if (q.nodes == p.nodes) EXPECT_EQ(q.peak_max_mm, p.peak_max_mm) << p.nodes << " nodes";
+      if (q.nodes == p.nodes) {
+        EXPECT_EQ(q.peak_max_mm, p.peak_max_mm) << p.nodes << " nodes";
+      }
   }
   ASSERT_GT(below, 0);
   EXPECT_EQ(below, row.missing_to);
