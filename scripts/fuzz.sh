@@ -17,14 +17,19 @@ mkdir -p "$out"
 # -DNDEBUG as in the shipped build: toml++ 3.3's internal debug assertions fire on some malformed
 # keys ('[#' in a table header) that its release build reports as a clean parse error.
 flags=(-std=c++20 -O1 -g -DNDEBUG -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -I src -I /usr/include/eigen3)
-# Each harness is built from the few sources it exercises (instrumented), not the whole library.
+# Each harness is built from the few sources it exercises (instrumented); the rest of what they
+# reference (the reductions' basis makers, which the reduction table names) comes from the release
+# build's core library, uninstrumented: the harness's own definitions take precedence over it.
 declare -A sources=(
   [scenario_reader]="src/scenario/scenario_reader.cpp src/scenario/toml_text_guard.cpp src/fem/material.cpp src/condensation/reduction.cpp"
   [mesh_checks]="src/mesh/mesh_checks.cpp src/mesh/tet_mesh.cpp"
 )
+core=build/release/src
+[ -e "$core/libroifem_core.so" ] || { cmake --preset release >/dev/null && cmake --build --preset release --target roifem_core; }
 for name in scenario_reader mesh_checks; do
   # shellcheck disable=SC2086
-  clang++ "${flags[@]}" "fuzz/${name}_fuzzer.cpp" ${sources[$name]} -o "$out/${name}_fuzzer"
+  clang++ "${flags[@]}" "fuzz/${name}_fuzzer.cpp" ${sources[$name]} -L"$core" -lroifem_core -Wl,-rpath,"$PWD/$core" \
+    -o "$out/${name}_fuzzer"
   work="$out/corpus-$name"
   rm -rf "$work"
   cp -r "fuzz/corpus/$name" "$work"  # new inputs go to the copy; the committed corpus stays as it is

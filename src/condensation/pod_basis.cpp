@@ -8,6 +8,7 @@
 #include <string>
 
 #include "common/errors.hpp"
+#include "condensation/static_basis.hpp"
 #include "model/average_acceleration.hpp"
 #include "solvers/cholesky.hpp"
 
@@ -89,6 +90,12 @@ model::Modes pod_basis(const PodTraining& in, Index count) {
   if (ritz.info() != Eigen::Success || !(ritz.eigenvalues().minCoeff() > 0))
     throw SolverError("POD reduction: the projected K_ss is not positive definite");
   return {.omega = ritz.eigenvalues().cwiseSqrt(), .shapes = W * ritz.eigenvectors()};
+}
+
+model::Modes pod_modes(const BasisRequest& request) {
+  const Reduction& r = request.reduction;
+  return pod_basis({request.full, request.partition, request.X, r.snapshot_dt_s, r.snapshot_steps},
+                   std::min(r.modes, request.static_dofs()));
 }
 
 }  // namespace roifem::condensation

@@ -38,4 +38,9 @@ struct PodTraining {
 /// Throws ModelError when the loads do not move the static part relative to the interface.
 model::Modes pod_basis(const PodTraining& training, Index count);
 
+struct BasisRequest;  // static_basis.hpp
+
+/// The POD reduction's basis maker: the reduction's count of vectors, trained on its snapshot run.
+model::Modes pod_modes(const BasisRequest& request);
+
 }  // namespace roifem::condensation

@@ -5,19 +5,21 @@
 
 #include "common/did_you_mean.hpp"
 #include "common/errors.hpp"
+#include "condensation/pod_basis.hpp"
+#include "condensation/static_basis.hpp"
 
 namespace roifem::condensation {
 
 namespace {
 
 constexpr std::array<ReductionInfo, 4> table{{
-    {ReductionKind::static_condensation, "static", false, false, false, StaticBasis::none,
+    {"static", false, false, false, nullptr,
      "the paper's static condensation: K~ = K_dd - K_ds K_ss^-1 K_sd; the static part answers without inertia"},
-    {ReductionKind::guyan, "guyan", false, false, true, StaticBasis::none,
+    {"guyan", false, false, true, nullptr,
      "the static part's mass carried into the ROI through the static modes, M~ = T^T M T"},
-    {ReductionKind::craig_bampton, "craig-bampton", true, true, true, StaticBasis::fixed_interface_modes,
+    {"craig-bampton", true, true, true, fixed_interface_modes,
      "K fixed-interface modes of (K_ss, M_ss) as extra generalized coordinates"},
-    {ReductionKind::pod, "pod", true, false, true, StaticBasis::pod,
+    {"pod", true, false, true, pod_modes,
      "K fixed-interface vectors learnt from the full model's step responses (mass-weighted POD)"},
 }};
 
@@ -34,10 +36,10 @@ Index positive_count_after(const std::string& label, std::string_view key) {
 
 std::span<const ReductionInfo> reduction_table() { return table; }
 
-const ReductionInfo& reduction_info(ReductionKind kind) {
+const ReductionInfo& reduction_named(std::string_view key) {
   for (const auto& info : table)
-    if (info.kind == kind) return info;
-  throw Error("internal: a reduction kind without a table row");
+    if (info.key == key) return info;
+  throw Error("internal: no reduction is named '" + std::string(key) + "'");
 }
 
 std::string reduction_key_list() {
@@ -73,9 +75,9 @@ Reduction parse_reduction(const std::string& label) {
   std::vector<std::string> keys;
   for (const auto& info : table) {
     keys.push_back(std::string(info.key) + (info.counted ? "-K" : ""));
-    if (!info.counted && label == info.key) return {.kind = info.kind};
+    if (!info.counted && label == info.key) return {.kind = &info};
     if (info.counted) {
-      if (const Index count = positive_count_after(label, info.key); count > 0) return {.kind = info.kind, .modes = count};
+      if (const Index count = positive_count_after(label, info.key); count > 0) return {.kind = &info, .modes = count};
     }
     forms += (forms.empty() ? "" : ", ") + std::string(info.key) + (info.counted ? "-K" : "");
   }

@@ -91,7 +91,7 @@ void print_reductions(const PaperResults& r, std::ostream& log) {
                 "steady mean (mm)", "step (ms)", "vs static", "peak /");
   for (const auto& row : r.reductions) {
     const auto& plain = *std::find_if(r.reductions.begin(), r.reductions.end(), [&](const ReductionRow& x) {
-      return x.setup == row.setup && x.kind == condensation::ReductionKind::static_condensation;
+      return x.setup == row.setup && x.static_condensation;
     });
     log << format("  %-7s %-18s %5lld %6lld %15.4f %17.5f %11.4f %8.2fx %8.1fx\n", row.setup.c_str(), row.reduction.c_str(),
                   static_cast<long long>(row.dofs), static_cast<long long>(row.extra_dofs), row.peak_max_mm, row.steady_mean_mm,
@@ -261,7 +261,7 @@ PaperCurve run_setup(const PaperOptions& o, const PaperModel& m, const Setup& se
   model::SecondOrderSystem reduced = setup.condensation->system();
   reduced.load = reduced.load.with_ramp(model::Ramp{ramp});
   PaperCurve curve{
-      .setup = setup.name, .kind = setup.reduction.kind, .reduction = setup.label, .ramp_s = ramp, .mean_mm = {}, .max_mm = {}};
+      .setup = setup.name, .static_condensation = setup.reduction.is_static_condensation(), .reduction = setup.label, .ramp_s = ramp, .mean_mm = {}, .max_mm = {}};
   integrators::Trapezoid trapezoid(o.dt);
   model::State state = model::State::at_rest(reduced.size());
   trapezoid.reset(reduced, state);
@@ -285,7 +285,7 @@ void measure_accuracy(const PaperOptions& o, const PaperModel& m, const std::vec
     for (std::size_t si = 0; si < setups.size(); ++si) {
       const bool record_fields = si == 0 && ramp == o.ramps_s.front();  // setup1, the paper's reduction
       PaperCurve curve = run_setup(o, m, setups[si], ramp, reference, record_fields, record);
-      if (curve.kind == condensation::ReductionKind::static_condensation) results.curves.push_back(curve);
+      if (curve.static_condensation) results.curves.push_back(curve);
       results.reduction_curves.push_back(std::move(curve));
     }
   }
@@ -315,7 +315,7 @@ void measure_speed(const PaperOptions& o, const PaperModel& m, const std::vector
     });
     results.reductions.push_back({.setup = setup.name,
                                   .reduction = setup.label,
-                                  .kind = setup.reduction.kind,
+                                  .static_condensation = setup.reduction.is_static_condensation(),
                                   .dofs = setup.condensation->system().size(),
                                   .extra_dofs = setup.condensation->num_modes(),
                                   .ramp_s = curve.ramp_s,

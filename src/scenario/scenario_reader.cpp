@@ -196,7 +196,7 @@ condensation::Reduction read_reduction(StrictTable& t) {
     throw InputError(t.source() + ": key 'roi.reduction' must be one of " + condensation::reduction_key_list() + " (got '" +
                      kind + "')" + did_you_mean(kind, keys));
   }
-  r.kind = row->kind;
+  r.kind = &*row;
   const auto modes = t.integer("modes");
   const double cutoff = t.number("cutoff_rad_s", 0.0);
   const std::string named = "reduction = \"" + kind + "\"";

@@ -56,14 +56,14 @@ TEST(Reduction, EachReducedMatrixIsTheProjectionThroughItsTransformation) {
   const auto p = beam.partition();
   ASSERT_GT(p.s.size(), 20u);
   const auto& full = beam.model.system;
-  ReducedModel plain(full, p, *beam.model.dofs), guyan(full, p, *beam.model.dofs, {.kind = ReductionKind::guyan});
+  ReducedModel plain(full, p, *beam.model.dofs), guyan(full, p, *beam.model.dofs, parse_reduction("guyan"));
   expect_projection(plain, full, false);
   expect_projection(guyan, full, true);
-  ReducedModel cb(full, p, *beam.model.dofs, {.kind = ReductionKind::craig_bampton, .modes = 5});
+  ReducedModel cb(full, p, *beam.model.dofs, parse_reduction("craig-bampton-5"));
   EXPECT_EQ(cb.num_modes(), 5);
   EXPECT_EQ(cb.system().size(), static_cast<Index>(p.d.size()) + 5);
   expect_projection(cb, full, true);
-  ReducedModel pod(full, p, *beam.model.dofs, {.kind = ReductionKind::pod, .modes = 5, .snapshot_dt_s = 0.01});
+  ReducedModel pod(full, p, *beam.model.dofs, {.kind = &reduction_named("pod"), .modes = 5, .snapshot_dt_s = 0.01});
   EXPECT_EQ(pod.num_modes(), 5);
   expect_projection(pod, full, true);
 }
@@ -92,7 +92,7 @@ TEST(Reduction, PodReproducesTheRunItLearntFromAndBeatsCraigBamptonOnAnotherLoad
     }
     return worst / peak;
   };
-  const Reduction every{.kind = ReductionKind::pod, .modes = 30, .snapshot_dt_s = dt, .snapshot_steps = 30};
+  const Reduction every{.kind = &reduction_named("pod"), .modes = 30, .snapshot_dt_s = dt, .snapshot_steps = 30};
   ReducedModel replay(full, p, *beam.model.dofs, every);
   ASSERT_GT(replay.num_modes(), 5);
   const double replayed = error_against_full(replay, full, 30);
@@ -105,8 +105,8 @@ TEST(Reduction, PodReproducesTheRunItLearntFromAndBeatsCraigBamptonOnAnotherLoad
   model::SecondOrderSystem ramped = full;
   ramped.load = full.load.with_ramp(model::Ramp{0.1});
   ReducedModel pod(ramped, p, *beam.model.dofs,
-                   {.kind = ReductionKind::pod, .modes = 4, .snapshot_dt_s = dt, .snapshot_steps = 30});
-  ReducedModel cb(ramped, p, *beam.model.dofs, {.kind = ReductionKind::craig_bampton, .modes = 4});
+                   {.kind = &reduction_named("pod"), .modes = 4, .snapshot_dt_s = dt, .snapshot_steps = 30});
+  ReducedModel cb(ramped, p, *beam.model.dofs, parse_reduction("craig-bampton-4"));
   ReducedModel plain(ramped, p, *beam.model.dofs);
   const double e_pod = error_against_full(pod, ramped, 60), e_cb = error_against_full(cb, ramped, 60),
                e_plain = error_against_full(plain, ramped, 60);
@@ -119,10 +119,10 @@ TEST(Reduction, PodReproducesTheRunItLearntFromAndBeatsCraigBamptonOnAnotherLoad
 TEST(Reduction, PodNeedsVectorsAndALoad) {
   const Beam beam;
   const auto p = beam.partition();
-  EXPECT_THROW(ReducedModel(beam.model.system, p, *beam.model.dofs, {.kind = ReductionKind::pod, .modes = 0}), InputError);
+  EXPECT_THROW(ReducedModel(beam.model.system, p, *beam.model.dofs, Reduction{.kind = &reduction_named("pod"), .modes = 0}), InputError);
   model::SecondOrderSystem unloaded = beam.model.system;
   unloaded.load = model::LoadHistory(unloaded.size());
-  EXPECT_THROW(ReducedModel(unloaded, p, *beam.model.dofs, {.kind = ReductionKind::pod, .modes = 3}), InputError);
+  EXPECT_THROW(ReducedModel(unloaded, p, *beam.model.dofs, parse_reduction("pod-3")), InputError);
   EXPECT_EQ(parse_reduction("pod-40").modes, 40);
   EXPECT_EQ(parse_reduction("pod-40").label(), "pod-40");
   EXPECT_THROW(parse_reduction("pod-"), InputError);
@@ -133,7 +133,7 @@ TEST(Reduction, CraigBamptonWithEveryModeReproducesTheFullModel) {
   const auto p = beam.partition();
   const auto& full = beam.model.system;
   const Index all = static_cast<Index>(p.s.size());
-  ReducedModel cb(full, p, *beam.model.dofs, {.kind = ReductionKind::craig_bampton, .modes = all});
+  ReducedModel cb(full, p, *beam.model.dofs, {.kind = &reduction_named("craig-bampton"), .modes = all});
   ASSERT_EQ(cb.num_modes(), all);
   model::State a = model::State::at_rest(full.size());
   model::State b = model::State::at_rest(cb.system().size());
@@ -154,9 +154,9 @@ TEST(Reduction, CraigBamptonWithEveryModeReproducesTheFullModel) {
 TEST(Reduction, CutOffKeepsExactlyTheModesBelowIt) {
   const Beam beam;
   const auto p = beam.partition();
-  ReducedModel ten(beam.model.system, p, *beam.model.dofs, {.kind = ReductionKind::craig_bampton, .modes = 10});
+  ReducedModel ten(beam.model.system, p, *beam.model.dofs, parse_reduction("craig-bampton-10"));
   const double cutoff = 0.5 * (ten.mode_frequencies()[5] + ten.mode_frequencies()[6]);
-  ReducedModel cut(beam.model.system, p, *beam.model.dofs, {.kind = ReductionKind::craig_bampton, .cutoff_rad_s = cutoff});
+  ReducedModel cut(beam.model.system, p, *beam.model.dofs, {.kind = &reduction_named("craig-bampton"), .cutoff_rad_s = cutoff});
   EXPECT_EQ(cut.num_modes(), 6);
   EXPECT_LT((cut.mode_frequencies() - ten.mode_frequencies().head(6)).norm() / ten.mode_frequencies().head(6).norm(), 1e-9);
 }
@@ -177,10 +177,27 @@ TEST(Reduction, LanczosModesEqualDenseOnes) {
   EXPECT_LT((PtKP - DenseMatrix(lanczos.omega.cwiseAbs2().asDiagonal())).norm() / PtKP.norm(), 1e-9);
 }
 
+TEST(Reduction, EveryRowOfTheTableBuildsAProjectionWithTheBasisItNames) {
+  // A kind is its table row: each row's maker (or none) must give a model that is a projection of
+  // the full one, with as many extra coordinates as the row's count asks and none without a maker.
+  const Beam beam;
+  const auto p = beam.partition();
+  for (const ReductionInfo& row : reduction_table()) {
+    Reduction reduction{.kind = &row, .modes = row.counted ? 3 : 0};
+    reduction = reduction.trained_on(0.01, 40);
+    ReducedModel model(beam.model.system, p, *beam.model.dofs, reduction);
+    EXPECT_EQ(model.num_modes(), row.make_basis != nullptr ? 3 : 0) << row.key;
+    EXPECT_EQ(&parse_reduction(reduction.label()).info(), &row) << reduction.label();
+    expect_projection(model, beam.model.system, row.carries_mass);
+  }
+  EXPECT_TRUE(Reduction{}.is_static_condensation());
+  EXPECT_THROW(reduction_named("no-such-reduction"), Error);
+}
+
 TEST(Reduction, CraigBamptonWithoutModesOrCutOffIsAnInputError) {
   const Beam beam;
   try {
-    ReducedModel(beam.model.system, beam.partition(), *beam.model.dofs, {.kind = ReductionKind::craig_bampton});
+    ReducedModel(beam.model.system, beam.partition(), *beam.model.dofs, {.kind = &reduction_named("craig-bampton")});
     FAIL() << "expected an InputError";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("craig-bampton reduction: give a positive number of modes"), std::string::npos)
@@ -233,15 +250,15 @@ void expect_every_named_integrator_meets_the_modal_solution(const Reduction& red
 }
 
 TEST(Reduction, EveryNamedIntegratorIntegratesGuyanAgainstTheModalSolution) {
-  expect_every_named_integrator_meets_the_modal_solution({.kind = ReductionKind::guyan});
+  expect_every_named_integrator_meets_the_modal_solution(parse_reduction("guyan"));
 }
 
 TEST(Reduction, EveryNamedIntegratorIntegratesCraigBamptonAgainstTheModalSolution) {
-  expect_every_named_integrator_meets_the_modal_solution({.kind = ReductionKind::craig_bampton, .modes = 5});
+  expect_every_named_integrator_meets_the_modal_solution(parse_reduction("craig-bampton-5"));
 }
 
 TEST(Reduction, EveryNamedIntegratorIntegratesPodAgainstTheModalSolution) {
-  expect_every_named_integrator_meets_the_modal_solution(Reduction{.kind = ReductionKind::pod, .modes = 4}.trained_on(0.01, 60));
+  expect_every_named_integrator_meets_the_modal_solution(parse_reduction("pod-4").trained_on(0.01, 60));
 }
 
 TEST(Reduction, TheTrapezoidalRuleEliminatesModalCoordinatesAndStepsAsTheWholeSolveDoes) {
@@ -250,8 +267,8 @@ TEST(Reduction, TheTrapezoidalRuleEliminatesModalCoordinatesAndStepsAsTheWholeSo
   // when it factors K_eff whole (the same system with the declaration removed, or with a general
   // damping declared: the elimination folds C = alpha M into M).
   const Beam beam;
-  for (const Reduction& reduction : {Reduction{.kind = ReductionKind::craig_bampton, .modes = 5},
-                                     Reduction{.kind = ReductionKind::pod, .modes = 4}.trained_on(0.01, 60)}) {
+  for (const Reduction& reduction : {parse_reduction("craig-bampton-5"),
+                                     parse_reduction("pod-4").trained_on(0.01, 60)}) {
     ReducedModel r(beam.model.system, beam.partition(), *beam.model.dofs, reduction);
     const auto& eliminated = r.system();
     ASSERT_TRUE(eliminated.modal.has_value()) << reduction.label();
@@ -297,7 +314,7 @@ TEST(Reduction, TheEnergyLedgerOfAReducedModelReadsItsSplitMatricesRight) {
   // assembled matrices give the same energies, and the trapezoidal rule's discrete balance
   // E_n + D_n - W_n = E_0 holds with the Craig-Bampton model's full, damped mass.
   const Beam beam;
-  ReducedModel cb(beam.model.system, beam.partition(), *beam.model.dofs, {.kind = ReductionKind::craig_bampton, .modes = 5});
+  ReducedModel cb(beam.model.system, beam.partition(), *beam.model.dofs, parse_reduction("craig-bampton-5"));
   const auto& sys = cb.system();
   ASSERT_FALSE(sys.M_split.empty());
   model::State s = model::State::at_rest(sys.size());

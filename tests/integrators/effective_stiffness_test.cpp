@@ -21,7 +21,7 @@ namespace {
 struct ReducedBeam {
   test::Beam beam;
   condensation::ReducedModel reduced{
-      beam.model.system, beam.partition(), *beam.model.dofs, {.kind = condensation::ReductionKind::craig_bampton, .modes = 6}};
+      beam.model.system, beam.partition(), *beam.model.dofs, condensation::parse_reduction("craig-bampton-6")};
 };
 
 /// x = (K + 2/dt C + 4/dt^2 M)^-1 (f + M w) by a dense Cholesky factor, from the matrices alone.
