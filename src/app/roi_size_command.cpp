@@ -24,7 +24,7 @@ void add_roi_size_command(CLI::App& app, Action& action) {
   cmd->add_option("--max-error-mm", o->size.max_error_mm,
                   "Error budget: max distance to the full model over ROI nodes and steps (mm)")
       ->required();
-  cmd->add_option("--reductions", o->reductions, "Reductions to size: static, guyan, craig-bampton-K, pod-K")
+  cmd->add_option("--reductions", o->reductions, "Reductions to size: " + condensation::reduction_label_forms())
       ->capture_default_str();
   cmd->add_option("--integrator", o->size.integrator,
                   "Integrator of the full reference and of every ROI model, at the scenario's dt (the error "

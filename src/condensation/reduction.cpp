@@ -48,6 +48,12 @@ std::string reduction_key_list() {
   return list;
 }
 
+std::string reduction_label_forms() {
+  std::string forms;
+  for (const auto& info : table) forms += (forms.empty() ? "" : ", ") + std::string(info.key) + (info.counted ? "-K" : "");
+  return forms;
+}
+
 std::string quoted_keys(bool ReductionInfo::*flag) {
   std::string first, others;
   for (const auto& info : table) {
@@ -71,7 +77,6 @@ std::string Reduction::label() const {
 }
 
 Reduction parse_reduction(const std::string& label) {
-  std::string forms;
   std::vector<std::string> keys;
   for (const auto& info : table) {
     keys.push_back(std::string(info.key) + (info.counted ? "-K" : ""));
@@ -79,12 +84,11 @@ Reduction parse_reduction(const std::string& label) {
     if (info.counted) {
       if (const Index count = positive_count_after(label, info.key); count > 0) return {.kind = &info, .modes = count};
     }
-    forms += (forms.empty() ? "" : ", ") + std::string(info.key) + (info.counted ? "-K" : "");
   }
   // Compared as a form: "craig-bampten-10" as "craig-bampten-K".
   const std::size_t digits = label.find_last_not_of("0123456789") + 1;
   const std::string form = digits < label.size() ? label.substr(0, digits) + "K" : label;
-  throw InputError("unknown reduction '" + label + "'" + did_you_mean(form, keys) + ": use " + forms +
+  throw InputError("unknown reduction '" + label + "'" + did_you_mean(form, keys) + ": use " + reduction_label_forms() +
                    " (K modes or POD vectors, K >= 1)");
 }
 

@@ -36,6 +36,8 @@ std::span<const ReductionInfo> reduction_table();
 const ReductionInfo& reduction_named(std::string_view key);
 /// "static, guyan, craig-bampton, pod".
 std::string reduction_key_list();
+/// The CLI labels' forms: "static, guyan, craig-bampton-K, pod-K".
+std::string reduction_label_forms();
 /// The keys of the rows with `flag` set, quoted: "\"craig-bampton\" (or \"pod\")".
 std::string quoted_keys(bool ReductionInfo::*flag);
 
