@@ -11,6 +11,7 @@
 #include "integrators/arkode.hpp"
 #include "integrators/gsl_odeiv2.hpp"
 #include "integrators/ida.hpp"
+#include "integrators/tool_dae.hpp"
 #include "integrators/trapezoid.hpp"
 
 namespace roifem::integrators {
@@ -142,6 +143,26 @@ std::vector<IntegratorInfo> build_table() {
                   .tableau = nullptr,
                   .make = make_ida,
                   .summary = "IDA with BDF capped at order 2 (A-stable)"});
+  auto tool_dae = [&](const char* name, ToolFormulation formulation, const char* summary) {
+    rows.push_back({.name = name,
+                    .family = Family::ida,
+                    .order = 5,
+                    .is_explicit = false,
+                    .fixed_step = false,
+                    .adaptive = true,
+                    .linear_solver = LS::klu,
+                    .method_id = static_cast<int>(formulation),
+                    .tableau = nullptr,
+                    .make = make_tool_dae,
+                    .summary = summary,
+                    .needs_tools = true});
+  };
+  tool_dae("ida-index3", ToolFormulation::index3,
+           "IDA on the tools' DAE, index 3 (position constraints; velocities and multipliers out of the error test), KLU");
+  tool_dae("ida-ggl", ToolFormulation::ggl,
+           "IDA on the tools' DAE, GGL-stabilized index 2 (position and velocity constraints), KLU");
+  tool_dae("ida-index1", ToolFormulation::index1,
+           "IDA on the tools' DAE, index 1 (acceleration constraint, Baumgarte-stabilized, a = 100/s), KLU");
   auto gsl = [&](const char* name, int order, bool is_explicit, bool fixed, LS solver, ButcherTableau (*tableau)(),
                  IntegratorMaker make, const char* summary) {
     rows.push_back({.name = name,

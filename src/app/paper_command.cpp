@@ -34,9 +34,9 @@ void add_paper_command(CLI::App& app, Action& action) {
   cmd->add_option("--timing-steps", o->timing_steps, "Steps timed per model for Table 2 (medians)")->capture_default_str();
   auto reductions = std::make_shared<std::vector<std::string>>();
   for (const auto& r : o->reductions) reductions->push_back(r.label());
-  cmd->add_option("--reductions", *reductions,
-                  "Reductions of the static part compared at the fastest ramp (static first): " +
-                      condensation::reduction_label_forms())
+  cmd->add_option(
+         "--reductions", *reductions,
+         "Reductions of the static part compared at the fastest ramp (static first): " + condensation::reduction_label_forms())
       ->capture_default_str();
   cmd->add_flag("!--no-plots", o->plots, "Skip the PNG plots");
   cmd->callback([&action, o, reductions] {

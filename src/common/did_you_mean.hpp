@@ -23,15 +23,17 @@ inline std::size_t edit_distance(std::string_view a, std::string_view b) {
   return row[b.size()];
 }
 
-/// The closest candidate if it is close enough to be a typo of `name`, else the shortest candidate
-/// that contains `name` (a name given without its prefix: "esdirk4" for "arkode-esdirk4"), else empty.
+/// The closest candidate (of equally close ones, one that contains `name`) if it is close enough to be a typo of `name`, else the
+/// shortest candidate that contains `name` (a name given without its prefix: "esdirk4" for "arkode-esdirk4"), else empty.
 inline std::string closest_name(std::string_view name, const std::vector<std::string>& candidates) {
   if (std::find(candidates.begin(), candidates.end(), name) != candidates.end()) return "";  // valid already
   std::string best;
   std::size_t best_distance = 0;
+  auto contains_name = [&](const std::string& c) { return c.find(name) != std::string::npos; };
   for (const auto& c : candidates) {
     const std::size_t d = edit_distance(name, c);
-    if (best.empty() || d < best_distance) {
+    // A tie goes to a candidate that contains the name ("ramp": "ramp_s" before "name").
+    if (best.empty() || d < best_distance || (d == best_distance && contains_name(c) && !contains_name(best))) {
       best = c;
       best_distance = d;
     }

@@ -15,8 +15,7 @@ namespace {
 constexpr std::array<ReductionInfo, 4> table{{
     {"static", false, false, false, nullptr,
      "the paper's static condensation: K~ = K_dd - K_ds K_ss^-1 K_sd; the static part answers without inertia"},
-    {"guyan", false, false, true, nullptr,
-     "the static part's mass carried into the ROI through the static modes, M~ = T^T M T"},
+    {"guyan", false, false, true, nullptr, "the static part's mass carried into the ROI through the static modes, M~ = T^T M T"},
     {"craig-bampton", true, true, true, fixed_interface_modes,
      "K fixed-interface modes of (K_ss, M_ss) as extra generalized coordinates"},
     {"pod", true, false, true, pod_modes,

@@ -278,8 +278,15 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
       o.t_end > 0 ? std::min(o.t_end, sc.dt * static_cast<double>(sc.steps)) : sc.dt * static_cast<double>(sc.steps);
   const long outputs = std::lround(t_end / sc.dt);
   if (outputs < 1) throw InputError("compare: --t-end must cover at least one output step of " + number_text(sc.dt) + " s");
-  std::vector<std::string> names = o.integrators.empty() ? integrators::integrator_names() : o.integrators;
-  for (const auto& name : names) (void)integrators::integrator_info(name);  // unknown names fail before any work
+  std::vector<std::string> names = o.integrators;
+  if (names.empty())  // every integrator that applies: the tools' DAE forms where there are tools
+    for (const auto& info : integrators::integrator_table())
+      if (!info.needs_tools || system.constrained) names.push_back(info.name);
+  for (const auto& name : names)  // unknown names, and a DAE form without tools, fail before any work
+    if (integrators::integrator_info(name).needs_tools && !system.constrained)
+      throw InputError(
+          "compare: " + name + " integrates a model with tools ([[tool]]) as a DAE, and " + sc.file.string() +
+          (built->condensation ? " condenses its tools away (the DAE forms run the full model for now)" : " has none"));
 
   const Stopwatch clock;
   const model::ModalReference modal(system, model::State::at_rest(system.size()));

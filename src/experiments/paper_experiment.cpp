@@ -90,9 +90,8 @@ void print_reductions(const PaperResults& r, std::ostream& log) {
   log << format("  %-7s %-18s %5s %6s %15s %17s %11s %9s %9s\n", "setup", "reduction", "dofs", "extra", "peak max (mm)",
                 "steady mean (mm)", "step (ms)", "vs static", "peak /");
   for (const auto& row : r.reductions) {
-    const auto& plain = *std::find_if(r.reductions.begin(), r.reductions.end(), [&](const ReductionRow& x) {
-      return x.setup == row.setup && x.static_condensation;
-    });
+    const auto& plain = *std::find_if(r.reductions.begin(), r.reductions.end(),
+                                      [&](const ReductionRow& x) { return x.setup == row.setup && x.static_condensation; });
     log << format("  %-7s %-18s %5lld %6lld %15.4f %17.5f %11.4f %8.2fx %8.1fx\n", row.setup.c_str(), row.reduction.c_str(),
                   static_cast<long long>(row.dofs), static_cast<long long>(row.extra_dofs), row.peak_max_mm, row.steady_mean_mm,
                   row.step_s_median * 1e3, row.step_s_median / plain.step_s_median, plain.peak_max_mm / row.peak_max_mm);
@@ -260,8 +259,12 @@ PaperCurve run_setup(const PaperOptions& o, const PaperModel& m, const Setup& se
                      const std::vector<Vector>& reference, bool record_fields, FieldRecord& record) {
   model::SecondOrderSystem reduced = setup.condensation->system();
   reduced.load = reduced.load.with_ramp(model::Ramp{ramp});
-  PaperCurve curve{
-      .setup = setup.name, .static_condensation = setup.reduction.is_static_condensation(), .reduction = setup.label, .ramp_s = ramp, .mean_mm = {}, .max_mm = {}};
+  PaperCurve curve{.setup = setup.name,
+                   .static_condensation = setup.reduction.is_static_condensation(),
+                   .reduction = setup.label,
+                   .ramp_s = ramp,
+                   .mean_mm = {},
+                   .max_mm = {}};
   integrators::Trapezoid trapezoid(o.dt);
   model::State state = model::State::at_rest(reduced.size());
   trapezoid.reset(reduced, state);

@@ -32,11 +32,13 @@ struct PaperOptions {
   long field_every = 10;  ///< full displacement field in results.h5 every k steps
   bool plots = true;
   /// Reductions of the static part compared (the first is the paper's, static condensation).
-  std::vector<condensation::Reduction> reductions{
-      condensation::parse_reduction("static"),           condensation::parse_reduction("guyan"),
-      condensation::parse_reduction("craig-bampton-5"),  condensation::parse_reduction("craig-bampton-10"),
-      condensation::parse_reduction("craig-bampton-20"), condensation::parse_reduction("craig-bampton-200"),
-      condensation::parse_reduction("pod-40")};
+  std::vector<condensation::Reduction> reductions{condensation::parse_reduction("static"),
+                                                  condensation::parse_reduction("guyan"),
+                                                  condensation::parse_reduction("craig-bampton-5"),
+                                                  condensation::parse_reduction("craig-bampton-10"),
+                                                  condensation::parse_reduction("craig-bampton-20"),
+                                                  condensation::parse_reduction("craig-bampton-200"),
+                                                  condensation::parse_reduction("pod-40")};
 };
 
 struct PaperCurve {  ///< one setup, one reduction, one ramp
@@ -53,10 +55,10 @@ struct PaperTiming {
   double step_s_median = 0, step_s_p99 = 0, setup_s = 0;
 };
 
-struct ReductionRow {            ///< one setup, one reduction, at the fastest (first) ramp
-  std::string setup, reduction;  ///< reduction: its label
+struct ReductionRow {               ///< one setup, one reduction, at the fastest (first) ramp
+  std::string setup, reduction;     ///< reduction: its label
   bool static_condensation = true;  ///< the paper's reduction
-  Index dofs = 0, extra_dofs = 0;  ///< of the reduced system; beyond the ROI's own
+  Index dofs = 0, extra_dofs = 0;   ///< of the reduced system; beyond the ROI's own
   double ramp_s = 0, peak_max_mm = 0, steady_mean_mm = 0;
   double step_s_median = 0, setup_s = 0;
 };

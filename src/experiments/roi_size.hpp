@@ -29,8 +29,8 @@ namespace roifem::experiments {
 struct RoiSizeOptions {
   std::filesystem::path scenario;
   double max_error_mm = 0.5;
-  std::vector<condensation::Reduction> reductions{
-      condensation::parse_reduction("static"), condensation::parse_reduction("guyan"), condensation::parse_reduction("craig-bampton-10")};
+  std::vector<condensation::Reduction> reductions{condensation::parse_reduction("static"), condensation::parse_reduction("guyan"),
+                                                  condensation::parse_reduction("craig-bampton-10")};
   std::string integrator = "trapezoid";  ///< runs the full reference and every reduced model, at the scenario's dt
   Index start_nodes = 1;
   double coarse = 0.25;      ///< ratio of the coarse grid's successive sizes, less one

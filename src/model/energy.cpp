@@ -4,8 +4,16 @@
 
 namespace roifem::model {
 
-EnergyLedger::EnergyLedger(const SecondOrderSystem& system, const State& initial)
+EnergyLedger::ToolTerms EnergyLedger::tool_terms(const State& s) const {
+  return {.g = tools_->positions(s.t),
+          .coupled = tools_->coupling_times(s.u),
+          .loads = tools_->loads_at_tools(s.t),
+          .forces = tools_->forces(s.u, s.t)};
+}
+
+EnergyLedger::EnergyLedger(const SecondOrderSystem& system, const State& initial, const ToolSet* tools)
     : system_(system),
+      tools_(tools != nullptr && !tools->empty() ? tools : nullptr),
       alpha_(mass_proportional_damping(system)),
       previous_(initial),
       f_previous_(system.load.at(initial.t)),
@@ -16,6 +24,10 @@ EnergyLedger::EnergyLedger(const SecondOrderSystem& system, const State& initial
   system_.apply_stiffness(initial.u, Ku_);
   kinetic_ = 0.5 * initial.v.dot(Mv_previous_);
   strain_ = 0.5 * initial.u.dot(Ku_);
+  if (tools_ != nullptr) {
+    tools_previous_ = tool_terms(initial);
+    coupling_ = tools_->coupling_energy(initial.u, initial.t);
+  }
   initial_total_ = total();
 }
 
@@ -34,6 +46,15 @@ void EnergyLedger::record(const State& next) {
   system_.apply_stiffness(next.u, Ku_);
   kinetic_ = 0.5 * next.v.dot(Mv_next_);
   strain_ = 0.5 * next.u.dot(Ku_);
+  if (tools_ != nullptr) {
+    ToolTerms now = tool_terms(next);
+    const ToolTerms& was = tools_previous_;
+    const Vector dg = now.g - was.g;
+    load_work_at_tools_ += 0.5 * (now.g + was.g).dot(now.coupled - was.coupled) + 0.5 * dg.dot(now.loads + was.loads);
+    tool_work_ += 0.5 * dg.dot(now.forces + was.forces);
+    coupling_ = tools_->coupling_energy(next.u, next.t);
+    tools_previous_ = std::move(now);
+  }
   previous_ = next;
   f_previous_ = f_next;
   Mv_previous_.swap(Mv_next_);

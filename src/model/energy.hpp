@@ -5,30 +5,50 @@
 ///   D += dt v_mid^T C v_mid,  v_mid = (v_n + v_{n+1}) / 2    (dissipated).
 /// For the trapezoidal rule E_n + D_n - W_n = E_0 holds exactly (to round-off): multiply the
 /// averaged equation of motion by u_{n+1} - u_n = dt v_mid.
+/// With tools (tools.hpp, eliminated from the system), E also holds the coupling energy, W only the
+/// loads' work (on the tissue and on the tools' nodes), and the tools' work is kept apart,
+///   W_tools += (g_{n+1} - g_n) . (F_n + F_{n+1}) / 2,
+/// so that E + D = E_0 + W + W_tools, again exactly for the trapezoidal rule.
 #include "model/second_order_system.hpp"
+#include "model/tools.hpp"
 
 namespace roifem::model {
 
 class EnergyLedger {
  public:
-  EnergyLedger(const SecondOrderSystem& system, const State& initial);
+  /// `tools`: the system's tools, or none; kept by pointer.
+  EnergyLedger(const SecondOrderSystem& system, const State& initial, const ToolSet* tools = nullptr);
   /// Call with each new state, in order.
   void record(const State& next);
   double kinetic() const { return kinetic_; }
-  double strain() const { return strain_; }
-  double total() const { return kinetic_ + strain_; }
+  double strain() const { return strain_ + coupling_; }
+  double total() const { return kinetic_ + strain(); }
   double dissipated() const { return dissipated_; }
-  double external_work() const { return work_; }
-  /// E + D - W - E_0: zero for an exact discrete balance.
-  double balance_residual() const { return total() + dissipated_ - work_ - initial_total_; }
+  /// The loads' work.
+  double external_work() const { return work_ + load_work_at_tools_; }
+  double tool_work() const { return tool_work_; }
+  /// E + D - W - W_tools - E_0: zero for an exact discrete balance.
+  double balance_residual() const { return total() + dissipated_ - external_work() - tool_work_ - initial_total_; }
 
  private:
+  /// The tools' terms of a state: positions g, coupling u, loads on their nodes, forces F.
+  struct ToolTerms {
+    Vector g, coupled, loads, forces;
+  };
+  ToolTerms tool_terms(const State& s) const;
+
   const SecondOrderSystem& system_;
-  double alpha_;  ///< C = alpha M, or NaN
+  const ToolSet* tools_;  ///< null or empty: none
+  double alpha_;          ///< C = alpha M, or NaN
   State previous_;
   Vector f_previous_;
   Vector Mv_previous_, Mv_next_, Ku_;
+  ToolTerms tools_previous_;
   double kinetic_ = 0, strain_ = 0, dissipated_ = 0, work_ = 0, initial_total_ = 0;
+  double coupling_ = 0, tool_work_ = 0;
+  /// The loads' work as the system sees it (work_) counts -K_fp G as a load: this corrects it to
+  /// the loads' own work, and adds theirs on the tools' nodes.
+  double load_work_at_tools_ = 0;
 };
 
 }  // namespace roifem::model

@@ -1,34 +1,148 @@
 #include "model/fem_model.hpp"
 
+#include <map>
+
 #include "common/errors.hpp"
 #include "fem/assembly.hpp"
 #include "fem/loads.hpp"
+#include "io/csv.hpp"
+#include "model/prescribed_motion.hpp"
 
 namespace roifem::model {
 
+namespace {
+
+fem::Constraints fixed_constraints(const mesh::TetMesh& mesh, const std::vector<std::string>& fixed_sets) {
+  fem::Constraints constraints(mesh.num_nodes());
+  for (const auto& name : fixed_sets) constraints.fix_set(mesh, name);
+  return constraints;
+}
+
+/// A set's force, restricted to the free dofs; InputError when the fixed nodes take all of it, a
+/// warning with the share they take otherwise (a support's reaction, not a load on the tissue).
+Vector set_load(const mesh::TetMesh& mesh, const fem::DofMap& dofs, const SetLoad& load, std::vector<std::string>& warnings) {
+  const Vector full = fem::set_force(mesh, load.set, load.force);
+  Vector kept = dofs.restrict_to_free(full);
+  const double total = full.norm(), lost = (full - dofs.expand_homogeneous(kept)).norm();
+  if (total > 0 && lost == total)
+    throw InputError(mesh.source + ": the load on set '" + load.set +
+                     "' lies wholly on fixed nodes: it would move nothing; load a set off the supports");
+  if (lost > 1e-12 * total)
+    warnings.push_back(
+        io::format("the load on set '%s' acts partly on fixed nodes: %.3g%% of it (%.3g N) "
+                   "goes into the supports and moves nothing",
+                   load.set.c_str(), 100 * lost / total, lost));
+  return kept;
+}
+
+std::vector<int> tool_nodes(const mesh::TetMesh& mesh, const SetTool& tool) {
+  if (!tool.set.empty()) return mesh.set(tool.set).nodes;
+  std::vector<int> nodes;
+  for (const int n : mesh::boundary_nodes(mesh))
+    if ((mesh.node(n) - tool.center).norm() <= tool.radius) nodes.push_back(n);
+  return nodes;
+}
+
+/// Each tool's nodes, checked: some, none fixed, none another tool's.
+std::vector<Tool> attach_tools(const mesh::TetMesh& mesh, const fem::Constraints& fixed, const std::vector<SetTool>& tools) {
+  std::vector<Tool> attached;
+  std::map<int, std::size_t> holder;
+  for (std::size_t a = 0; a < tools.size(); ++a) {
+    const SetTool& t = tools[a];
+    Tool tool{.name = t.name, .nodes = tool_nodes(mesh, t), .path = t.path};
+    if (tool.nodes.empty())
+      throw InputError(mesh.source + ": " + t.describe() + " holds no node" +
+                       (t.set.empty() ? " (no boundary node within its radius: widen it or move its centre)" : ""));
+    for (const int n : tool.nodes) {
+      if (fixed.is_constrained(3 * n) || fixed.is_constrained(3 * n + 1) || fixed.is_constrained(3 * n + 2))
+        throw InputError(mesh.source + ": " + t.describe() + " holds node " + std::to_string(n) +
+                         ", which [boundary] fixes: a tool moves free nodes only");
+      if (const auto [it, fresh] = holder.emplace(n, a); !fresh)
+        throw InputError(mesh.source + ": " + t.describe() + " and " + tools[it->second].describe() + " both hold node " +
+                         std::to_string(n) + ": tools must not overlap");
+    }
+    attached.push_back(std::move(tool));
+  }
+  return attached;
+}
+
+SecondOrderSystem assemble(const mesh::TetMesh& mesh, const fem::Material& material, const fem::DofMap& dofs) {
+  SecondOrderSystem system;
+  const fem::StiffnessAssembler assembler(mesh, dofs);
+  system.K = assembler.stiffness(material);
+  const Vector m = fem::lumped_mass(mesh, dofs, material.rho);
+  system.M = diagonal_matrix(m);
+  system.C = diagonal_matrix(material.alpha * m);
+  system.damping = Damping::mass_proportional(material.alpha);
+  return system;
+}
+
+LoadHistory loads_on(const mesh::TetMesh& mesh, const fem::Material& material, const fem::DofMap& dofs,
+                     const std::vector<SetLoad>& loads, std::vector<std::string>& warnings) {
+  LoadHistory history(dofs.num_free());
+  for (const auto& load : loads)
+    history.add(load.gravity ? dofs.restrict_to_free(fem::gravity_force(mesh, material.rho, *load.gravity))
+                             : set_load(mesh, dofs, load, warnings),
+                load.ramp);
+  return history;
+}
+
+}  // namespace
+
+std::string SetTool::describe() const {
+  return "tool '" + name + "' (" +
+         (set.empty() ? io::format("boundary nodes within %g mm of (%g, %g, %g) mm", radius / mm, center.x() / mm,
+                                   center.y() / mm, center.z() / mm)
+                      : "set '" + set + "'") +
+         ")";
+}
+
+Vector FemModel::displacement(const Eigen::Ref<const Vector>& u_free, double t) const {
+  Vector u = dofs->expand(u_free);
+  for (const Tool& tool : tools.tools()) {
+    const Vec3 g = tool.path.at(t);
+    for (const int n : tool.nodes) u.segment<3>(3 * n) = g;
+  }
+  return u;
+}
+
 FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::Material& material, const std::vector<std::string>& fixed_sets,
-                         const std::vector<SetLoad>& loads) {
+                         const std::vector<SetLoad>& loads, const std::vector<SetTool>& tools) {
   material.validate();
   FemModel model;
   model.mesh = &mesh;
   model.material = material;
-  fem::Constraints constraints(mesh.num_nodes());
-  for (const auto& name : fixed_sets) constraints.fix_set(mesh, name);
-  model.dofs = std::make_unique<fem::DofMap>(constraints);
-  if (model.dofs->num_constrained() == 0)
+  fem::Constraints constraints = fixed_constraints(mesh, fixed_sets);
+  const fem::DofMap fixed_only(constraints);
+  if (fixed_only.num_constrained() == 0)
     throw ModelError(mesh.source + ": no node is fixed, so the brain can move as a rigid body (fix a set such as 'base')");
-  const fem::DofMap& dofs = *model.dofs;
-  const fem::StiffnessAssembler assembler(mesh, dofs);
-  model.system.K = assembler.stiffness(material);
-  const Vector m = fem::lumped_mass(mesh, dofs, material.rho);
-  model.system.M = diagonal_matrix(m);
-  model.system.C = diagonal_matrix(material.alpha * m);
-  model.system.damping = Damping::mass_proportional(material.alpha);
-  model.system.load = LoadHistory(dofs.num_free());
+  const std::vector<Tool> attached = attach_tools(mesh, constraints, tools);
+  if (attached.empty()) {
+    model.dofs = std::make_unique<fem::DofMap>(constraints);
+    model.system = assemble(mesh, material, *model.dofs);
+    model.system.load = loads_on(mesh, material, *model.dofs, loads, model.warnings);
+    return model;
+  }
+  // With tools: the model over every unfixed dof, then the tools' dofs eliminated.
+  SecondOrderSystem all = assemble(mesh, material, fixed_only);
+  std::vector<std::string> unused;  // a load on tools' nodes is the tools' to carry, not lost
+  all.load = loads_on(mesh, material, fixed_only, loads, unused);
+  std::vector<ToolDofs> tool_dofs;
+  for (const Tool& tool : attached) {
+    ToolDofs td{.tool = tool, .dofs = {}};
+    for (const int n : tool.nodes) {
+      for (int c = 0; c < 3; ++c) td.dofs.push_back(fixed_only.free_dof(n, c));
+      constraints.fix_node(n);
+    }
+    tool_dofs.push_back(std::move(td));
+  }
+  ToolElimination eliminated = eliminate_tools(all, tool_dofs);
+  model.dofs = std::make_unique<fem::DofMap>(constraints);
+  model.system = std::move(eliminated.system);
+  model.tools = std::move(eliminated.tools);
+  // The loads' share on fixed nodes, as the model without tools would report it.
   for (const auto& load : loads)
-    model.system.load.add(dofs.restrict_to_free(load.gravity ? fem::gravity_force(mesh, material.rho, *load.gravity)
-                                                             : fem::set_force(mesh, load.set, load.force)),
-                          load.ramp);
+    if (!load.gravity) set_load(mesh, fixed_only, load, model.warnings);
   return model;
 }
 

@@ -1,6 +1,8 @@
 #pragma once
 /// The full dynamic model of a mesh: free dofs after fixing named sets, lumped M, C = alpha M,
-/// K assembled, and forces on named sets with their ramps.
+/// K assembled, forces on named sets with their ramps, and tools (tools.hpp) whose attached nodes
+/// follow a prescribed path: their dofs are eliminated (prescribed_motion.hpp) and the DofMap
+/// lists them as constrained.
 #include <memory>
 #include <optional>
 #include <string>
@@ -10,6 +12,7 @@
 #include "fem/material.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "model/second_order_system.hpp"
+#include "model/tools.hpp"
 
 namespace roifem::model {
 
@@ -22,15 +25,30 @@ struct SetLoad {
   std::optional<Vec3> gravity;  ///< set: body force rho g instead of `force` on `set`
 };
 
+/// A rigid tool attached to the nodes of a named set, or to the boundary nodes within a ball.
+struct SetTool {
+  std::string name;
+  std::string set;             ///< or, empty: the footprint
+  Vec3 center = Vec3::Zero();  ///< m, footprint: boundary nodes within `radius` of it
+  double radius = 0;           ///< m
+  ToolPath path;
+  std::string describe() const;  ///< "tool 'left' (set 'opening_left')"
+};
+
 struct FemModel {
   const mesh::TetMesh* mesh = nullptr;
   fem::Material material;
-  std::unique_ptr<fem::DofMap> dofs;
+  std::unique_ptr<fem::DofMap> dofs;  ///< tools' nodes are constrained here (their motion: tools)
   SecondOrderSystem system;
+  ToolSet tools;                      ///< in the free numbering
+  std::vector<std::string> warnings;  ///< e.g. a load partly on fixed nodes, and how much it loses
+  /// The displacement of every node (3N, m): u over the free dofs, the tools' paths at time t.
+  Vector displacement(const Eigen::Ref<const Vector>& u_free, double t) const;
 };
 
-/// Builds the full model. Throws InputError for a missing set and ModelError when nothing is fixed.
+/// Builds the full model. Throws InputError for a missing set, a load wholly on fixed nodes, and a
+/// tool on no node, on a fixed node or on another tool's node; ModelError when nothing is fixed.
 FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::Material& material, const std::vector<std::string>& fixed_sets,
-                         const std::vector<SetLoad>& loads);
+                         const std::vector<SetLoad>& loads, const std::vector<SetTool>& tools = {});
 
 }  // namespace roifem::model

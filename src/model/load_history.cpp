@@ -9,7 +9,21 @@ namespace roifem::model {
 
 double Ramp::value(double t) const {
   if (t <= 0) return duration > 0 ? 0.0 : (t < 0 ? 0.0 : 1.0);
-  return duration > 0 ? std::min(t / duration, 1.0) : 1.0;
+  if (duration <= 0 || t >= duration) return 1.0;
+  const double s = t / duration;
+  return shape == Shape::linear ? s : s * s * s * (10 - 15 * s + 6 * s * s);
+}
+
+double Ramp::rate(double t) const {
+  if (t < 0 || duration <= 0 || t >= duration) return 0.0;
+  const double s = t / duration;
+  return (shape == Shape::linear ? 1.0 : 30 * s * s * (1 - s) * (1 - s)) / duration;
+}
+
+double Ramp::acceleration(double t) const {
+  if (shape == Shape::linear || t < 0 || duration <= 0 || t >= duration) return 0.0;
+  const double s = t / duration;
+  return 60 * s * (1 - s) * (1 - 2 * s) / (duration * duration);
 }
 
 void LoadHistory::add(Vector pattern, Ramp ramp) {

@@ -8,10 +8,17 @@
 
 namespace roifem::model {
 
-/// Linear rise from 0 at t = 0 to 1 at t = duration, then held (the paper's load profile).
+/// A rise from 0 at t = 0 to 1 at t = duration, then held: linear (the paper's load profile; its
+/// rate jumps at both ends), or smooth, s^3 (10 - 15 s + 6 s^2) with s = t / duration (rate and
+/// acceleration zero at both ends, continuous: a constrained DAE's multipliers stay finite).
 struct Ramp {
+  enum class Shape { linear, smooth };
   double duration = 0;  ///< s
+  Shape shape = Shape::linear;
   double value(double t) const;
+  /// d value / dt and d^2 value / dt^2 (1/s, 1/s^2); at a kink, the value after it.
+  double rate(double t) const;
+  double acceleration(double t) const;
 };
 
 class LoadHistory {

@@ -47,6 +47,9 @@ ModalReference::ModalReference(const SecondOrderSystem& system, const State& ini
   if (n > max_dofs)
     throw ModelError("modal reference: " + std::to_string(n) + " dofs is more than the dense eigensolver's limit of " +
                      std::to_string(max_dofs));
+  for (const auto& term : system.load.terms())
+    if (term.ramp.shape != Ramp::Shape::linear)
+      throw InputError("modal reference: solves linear ramps only (a load has a smooth one)");
   const DenseMatrix M(system.M), C(system.C);
   alpha_ = mass_proportional_damping(system);
   if (!std::isfinite(alpha_)) throw InputError("modal reference: needs mass-proportional damping C = alpha M");

@@ -13,7 +13,7 @@ namespace roifem::model {
 
 class ModalReference {
  public:
-  /// Throws InputError unless C = alpha M; ModelError above `max_dofs`.
+  /// Throws InputError unless C = alpha M and every ramp is linear; ModelError above `max_dofs`.
   ModalReference(const SecondOrderSystem& system, const State& initial, Index max_dofs = 6000);
   Vector displacement(double t) const;
   Vector velocity(double t) const;

@@ -3,6 +3,7 @@
 ///   M u'' + C u' + K u = f(t)
 /// M symmetric positive definite (lumped: diagonal), C = alpha M, K symmetric positive definite.
 /// The full model and a condensed ROI model are both of this form.
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -43,6 +44,8 @@ struct ModalBlock {
   Index interface_dofs = 0;  ///< the first entries of M_split.index
 };
 
+struct ConstrainedForm;  // prescribed_motion.hpp
+
 struct SecondOrderSystem {
   SparseMatrix M, C, K;  ///< in full, for factorizations
   LoadHistory load;
@@ -50,6 +53,9 @@ struct SecondOrderSystem {
   SplitMatrix M_split;              ///< optional: the same M, split (Guyan, Craig-Bampton)
   Damping damping;                  ///< what C is (general unless declared)
   std::optional<ModalBlock> modal;  ///< set by reductions with modal coordinates
+  /// Set where tools were eliminated from a larger system: that system and its tools, for the
+  /// DAE formulations that keep the tools' dofs as unknowns (integrators/ida_tool_dae.hpp).
+  std::shared_ptr<const ConstrainedForm> constrained;
   Index size() const { return K.rows(); }
   /// y = K x, through K_split when there is one.
   void apply_stiffness(const Eigen::Ref<const Vector>& x, Eigen::Ref<Vector> y) const;

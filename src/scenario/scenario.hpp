@@ -20,6 +20,7 @@ struct Scenario {
   fem::Material material;
   std::vector<std::string> fixed_sets{"base"};
   std::vector<model::SetLoad> loads;
+  std::vector<model::SetTool> tools;  ///< [[tool]]: attached nodes follow a prescribed path
   std::optional<roi::RoiSpec> roi;    ///< none: the full dynamic model
   condensation::Reduction reduction;  ///< of the static part, with an ROI
   std::string integrator = "trapezoid";

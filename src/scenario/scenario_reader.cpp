@@ -252,6 +252,51 @@ roi::RoiSpec read_roi(StrictTable& t) {
   return spec;
 }
 
+/// ramp_s (>= 0) and ramp_shape ("linear", the default, or "smooth").
+model::Ramp read_ramp(StrictTable& t, const toml::node& node) {
+  model::Ramp ramp;
+  ramp.duration = t.number("ramp_s", 0.0);
+  if (ramp.duration < 0) throw InputError(t.where(node) + ": key '" + t.key_name("ramp_s") + "' must be >= 0");
+  const std::string shape = t.string("ramp_shape").value_or("linear");
+  if (shape == "smooth")
+    ramp.shape = model::Ramp::Shape::smooth;
+  else if (shape != "linear")
+    throw InputError(t.where(node) + ": key '" + t.key_name("ramp_shape") + "' must be \"linear\" or \"smooth\" (got '" + shape +
+                     "')" + did_you_mean(shape, {"linear", "smooth"}));
+  return ramp;
+}
+
+std::string ramp_toml(const model::Ramp& ramp);
+
+/// A [[tool]]: a name, where it holds (set, or center_mm and radius_mm) and its path.
+model::SetTool read_tool(StrictTable t, const toml::node& node, const std::vector<model::SetTool>& earlier) {
+  model::SetTool tool;
+  tool.name = t.string("name").value_or("tool" + std::to_string(earlier.size() + 1));
+  for (const auto& other : earlier)
+    if (other.name == tool.name) throw InputError(t.where(node) + ": two [[tool]] tables are named '" + tool.name + "'");
+  const auto set = t.string("set");
+  const auto center = t.vec3("center_mm");
+  const auto radius = t.number("radius_mm");
+  if (set && (center || radius))
+    throw InputError(t.where(node) + ": a [[tool]] holds a set or the boundary nodes within center_mm and radius_mm, not both");
+  if (set) {
+    tool.set = *set;
+  } else {
+    if (!center) t.missing("set", " (or center_mm and radius_mm)");
+    if (!radius) t.missing("radius_mm");
+    if (!(*radius > 0))
+      throw InputError(t.where(node) + ": key 'tool.radius_mm' must be positive (got " + number_text(*radius) + ")");
+    tool.center = *center * mm;
+    tool.radius = *radius * mm;
+  }
+  const auto displacement = t.vec3("displacement_mm");
+  if (!displacement) t.missing("displacement_mm");
+  tool.path.displacement = *displacement * mm;
+  tool.path.ramp = read_ramp(t, node);
+  t.close();
+  return tool;
+}
+
 std::string toml_number(double v) {
   std::ostringstream s;
   s.precision(17);
@@ -259,6 +304,11 @@ std::string toml_number(double v) {
   std::string out = s.str();
   if (out.find_first_of(".eEn") == std::string::npos) out += ".0";
   return out;
+}
+
+std::string ramp_toml(const model::Ramp& ramp) {
+  return "ramp_s = " + toml_number(ramp.duration) + "\n" +
+         (ramp.shape == model::Ramp::Shape::smooth ? "ramp_shape = \"smooth\"\n" : "");
 }
 
 }  // namespace
@@ -306,12 +356,13 @@ Scenario parse_scenario(std::string_view text, const std::string& source, const 
         l.set = *set;
         l.force = *force;
       }
-      l.ramp.duration = load.number("ramp_s", 0.0);
-      if (l.ramp.duration < 0) throw InputError(load.where(node) + ": key 'load.ramp_s' must be >= 0");
+      l.ramp = read_ramp(load, node);
       load.close();
       s.loads.push_back(l);
     }
   }
+  if (const toml::array* tools = top.table_array("tool"))
+    for (const auto& node : *tools) s.tools.push_back(read_tool(StrictTable(*node.as_table(), source, "tool"), node, s.tools));
   if (const toml::table* t = top.subtable("roi")) {
     StrictTable roi_table(*t, source, "roi");
     s.reduction = read_reduction(roi_table);
@@ -366,7 +417,18 @@ std::string Scenario::resolved_toml() const {
     else
       o << "\n[[load]]\nset = \"" << l.set << "\"\nforce_N = [" << toml_number(l.force.x()) << ", " << toml_number(l.force.y())
         << ", " << toml_number(l.force.z()) << "]";
-    o << "\nramp_s = " << toml_number(l.ramp.duration) << "\n";
+    o << "\n" << ramp_toml(l.ramp);
+  }
+  for (const auto& t : tools) {
+    o << "\n[[tool]]\nname = \"" << t.name << "\"\n";
+    if (t.set.empty())
+      o << "center_mm = [" << toml_number(t.center.x() / mm) << ", " << toml_number(t.center.y() / mm) << ", "
+        << toml_number(t.center.z() / mm) << "]\nradius_mm = " << toml_number(t.radius / mm) << "\n";
+    else
+      o << "set = \"" << t.set << "\"\n";
+    o << "displacement_mm = [" << toml_number(t.path.displacement.x() / mm) << ", " << toml_number(t.path.displacement.y() / mm)
+      << ", " << toml_number(t.path.displacement.z() / mm) << "]\n"
+      << ramp_toml(t.path.ramp);
   }
   if (roi) {
     o << "\n[roi]\n";

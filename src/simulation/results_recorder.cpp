@@ -2,7 +2,6 @@
 
 #include "common/errors.hpp"
 #include "io/csv.hpp"
-#include "io/displacement_field.hpp"
 
 namespace roifem::simulation {
 
@@ -34,11 +33,23 @@ ResultsRecorder::ResultsRecorder(const scenario::Scenario& scenario, const Scena
       dissipated_(h5_.appendable("energy/dissipated_J", {})),
       work_(h5_.appendable("energy/external_work_J", {})),
       xdmf_{.h5_name = "results.h5", .nodes = model.mesh.num_nodes(), .tets = model.mesh.num_tets()},
-      ledger_(model.system(), initial) {
+      ledger_(model.system(), initial, &model.tools) {
   if (!model.roi_nodes.empty()) roi_series_.emplace(h5_.appendable("roi/displacement_mm", {model.roi_nodes.size(), 3}, 16));
   if (model.condensation)
     for (const auto& p : model.node_positions()) roi_position_.insert(roi_position_.end(), p.begin(), p.end());
   roi_record_.resize(roi_position_.size());
+  if (model.tools.empty()) return;
+  tool_work_.emplace(h5_.appendable("energy/tool_work_J", {}));
+  for (const auto& tool : model.tools.tools()) {
+    h5_.write("tools/" + tool.name + "/nodes", tool.nodes, {tool.nodes.size()});
+    tool_force_.push_back(h5_.appendable("tools/" + tool.name + "/force_N", {3}));
+    tool_position_.push_back(h5_.appendable("tools/" + tool.name + "/displacement_mm", {3}));
+  }
+}
+
+double ResultsRecorder::bytes_per_step(const ScenarioModel& model) {
+  const double scalars = 6 + (model.tools.empty() ? 0 : 1 + 6 * model.tools.count());  // time, wall, 4 energies; tools
+  return 8 * scalars + 24.0 * static_cast<double>(model.roi_nodes.size());
 }
 
 void ResultsRecorder::record(long k, const model::State& s, double seconds) {
@@ -52,6 +63,15 @@ void ResultsRecorder::record(long k, const model::State& s, double seconds) {
   strain_.append(&energies[1]);
   dissipated_.append(&energies[2]);
   work_.append(&energies[3]);
+  if (tool_work_) {
+    const double work = ledger_.tool_work();
+    tool_work_->append(&work);
+    const Vector forces = model_.tools.forces(s.u, s.t), positions = model_.tools.positions(s.t) / mm;
+    for (std::size_t a = 0; a < tool_force_.size(); ++a) {
+      tool_force_[a].append(forces.data() + 3 * a);
+      tool_position_[a].append(positions.data() + 3 * a);
+    }
+  }
   if (roi_series_) {
     for (std::size_t i = 0; i < roi_position_.size(); ++i)
       roi_record_[i] = roi_position_[i] < 0 ? 0.0 : s.u[roi_position_[i]] / mm;
@@ -60,7 +80,9 @@ void ResultsRecorder::record(long k, const model::State& s, double seconds) {
   if (scenario_.field_every > 0 && k % scenario_.field_every == 0) {
     const std::string name = io::format("fields/displacement_mm_%06ld", k);
     const Vector u_free = model_.condensation ? model_.condensation->expand(s.u, s.t) : s.u;
-    h5_.write(name, io::displacement_field_mm(*model_.full.dofs, u_free), {static_cast<hsize_t>(model_.mesh.num_nodes()), 3});
+    const Vector field_mm = model_.full.displacement(u_free, s.t) / mm;
+    h5_.write(name, std::vector<double>(field_mm.data(), field_mm.data() + field_mm.size()),
+              {static_cast<hsize_t>(model_.mesh.num_nodes()), 3});
     xdmf_.times.push_back(s.t);
     xdmf_.fields.push_back("/" + name);
   }

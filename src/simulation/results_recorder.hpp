@@ -1,7 +1,8 @@
 #pragma once
 /// The run loop's HDF5 observer for `roifem run`: appends every step's time, wall time, energies
 /// (EnergyLedger), ROI displacement and, every field_every steps, the whole displacement field
-/// (static part recovered) to results.h5 under a temporary name, flushes every 50 steps (what a
+/// (static part recovered) and, with tools, each tool's position and force on the tissue (N) and
+/// their work, to results.h5 under a temporary name, flushes every 50 steps (what a
 /// kill -9 cannot take away), and on finish() moves the file into place: results.h5 when
 /// complete, results.incomplete.h5 (status attribute: why) beside a good one when not.
 #include <filesystem>
@@ -31,6 +32,9 @@ class ResultsRecorder {
   /// Keeps every recorded step as results.incomplete.h5 (status: `why`) beside any good results.h5.
   void abandon(const std::string& why);
   const model::EnergyLedger& ledger() const { return ledger_; }
+  /// The size of what the run writes (bytes, without HDF5's overhead): per step and per field.
+  static double bytes_per_step(const ScenarioModel& model);
+  static double bytes_per_field(const ScenarioModel& model) { return 24.0 * static_cast<double>(model.mesh.num_nodes()); }
   bool has_fields() const { return !xdmf_.times.empty(); }
 
  private:
@@ -41,6 +45,8 @@ class ResultsRecorder {
   io::Hdf5Writer h5_;
   io::AppendableDataset time_s_, wall_s_, kinetic_, strain_, dissipated_, work_;
   std::optional<io::AppendableDataset> roi_series_;
+  std::optional<io::AppendableDataset> tool_work_;
+  std::vector<io::AppendableDataset> tool_force_, tool_position_;  ///< per tool
   std::vector<Index> roi_position_;  ///< each ROI node's components in the integrated vector (-1: constrained)
   std::vector<double> roi_record_;
   io::XdmfSeries xdmf_;

@@ -17,7 +17,8 @@ RunSummary run(integrators::Integrator& integrator, model::State& state, double 
   if (!(dt > 0)) throw InputError("time step dt = " + number_text(dt) + " s must be positive");
   if (steps <= 0) throw InputError("number of steps " + std::to_string(steps) + " must be positive");
   RunSummary summary;
-  summary.step_seconds.reserve(static_cast<std::size_t>(steps));
+  // Grows as it goes beyond a million steps: a run stopped early never holds a huge reservation.
+  summary.step_seconds.reserve(static_cast<std::size_t>(std::min(steps, 1L << 20)));
   std::unique_ptr<ProgressReporter> progress;
   if (!progress_label.empty()) progress = std::make_unique<ProgressReporter>(progress_label, steps);
   const double t0 = state.t;

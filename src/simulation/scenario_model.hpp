@@ -16,6 +16,7 @@ struct ScenarioModel {
   model::FemModel full;
   std::unique_ptr<condensation::ReducedModel> condensation;
   std::vector<int> roi_nodes;  ///< empty for the full model
+  model::ToolSet tools;        ///< the scenario's tools, in system()'s numbering
 
   const model::SecondOrderSystem& system() const { return condensation ? condensation->system() : full.system; }
   /// The integrated system's nodes (ROI nodes, or all free nodes) in its numbering

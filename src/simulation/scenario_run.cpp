@@ -1,5 +1,6 @@
 #include "simulation/scenario_run.hpp"
 
+#include <cmath>
 #include <ostream>
 
 #include "common/atomic_file.hpp"
@@ -32,6 +33,25 @@ void print_start(const scenario::Scenario& sc, const ScenarioModel& built, doubl
                 static_cast<long long>(built.mesh.num_nodes()), built.condensation ? "condensed ROI" : "full",
                 static_cast<long long>(built.system().size()), sc.roi ? sc.roi->describe().c_str() : "no ROI", stepping.c_str(),
                 sc.steps, setup_s);
+  for (const auto& w : built.full.warnings) log << "warning: " << w << '\n';
+  for (const auto& tool : built.tools.tools()) {
+    const Vec3 d = tool.path.displacement / mm;
+    log << format("tool '%s': %zu nodes, moved by (%.4g, %.4g, %.4g) mm over %g s\n", tool.name.c_str(), tool.nodes.size(), d.x(),
+                  d.y(), d.z(), tool.path.ramp.duration);
+  }
+}
+
+void print_tool_forces(const ScenarioModel& built, const model::State& state, const model::EnergyLedger& ledger,
+                       std::ostream& log) {
+  if (built.tools.empty()) return;
+  const Vector F = built.tools.forces(state.u, state.t);
+  for (std::size_t a = 0; a < built.tools.tools().size(); ++a) {
+    const Vec3 f = F.segment<3>(3 * static_cast<Index>(a)) * 1e3;
+    log << format("tool '%s': force on the tissue (%.4g, %.4g, %.4g) mN at t = %g s\n", built.tools.tools()[a].name.c_str(),
+                  f.x(), f.y(), f.z(), state.t);
+  }
+  log << format("tools' work %.4e J; energy balance |E + D - W - W_tools - E_0| / |W_tools| = %.1e\n", ledger.tool_work(),
+                std::abs(ledger.balance_residual()) / std::abs(ledger.tool_work()));
 }
 
 void print_deformation(const DeformationReport& r, const PeakDisplacement& peak, double dt, std::ostream& log) {
@@ -45,6 +65,22 @@ void print_deformation(const DeformationReport& r, const PeakDisplacement& peak,
       r.peak_m / mm, r.peak_node, peak.step(), static_cast<double>(peak.step()) * dt, r.smallest_extent_m / mm,
       r.mean_edge_m / mm);
   for (const auto& w : r.warnings) log << "warning: " << w << '\n';
+}
+
+/// InputError when the results of `steps` steps could not fit on the output's file system.
+void check_results_fit(const scenario::Scenario& sc, const ScenarioModel& built, const std::filesystem::path& out) {
+  const double steps = static_cast<double>(sc.steps);
+  const double fields = sc.field_every > 0 ? std::floor(steps / static_cast<double>(sc.field_every)) + 1 : 0;
+  const double bytes = steps * ResultsRecorder::bytes_per_step(built) + fields * ResultsRecorder::bytes_per_field(built);
+  std::error_code ec;
+  const auto space = std::filesystem::space(std::filesystem::absolute(out).parent_path(), ec);
+  if (ec || bytes <= static_cast<double>(space.available)) return;
+  throw InputError(
+      format("%s: key 'time.steps' = %ld is too many for the disk: its results would take about %.3g GB (%.0f bytes "
+             "per step%s), and %s has %.3g GB free; fewer steps, or a larger output.field_every",
+             sc.file.c_str(), sc.steps, bytes / 1e9, ResultsRecorder::bytes_per_step(built),
+             fields > 0 ? format(" and %.0f per field", ResultsRecorder::bytes_per_field(built)).c_str() : "", out.c_str(),
+             static_cast<double>(space.available) / 1e9));
 }
 
 /// The run loop with the recorder as its observer. A divergence, a solver failure or a signal
@@ -85,6 +121,7 @@ ScenarioRunSummary run_scenario(const scenario::Scenario& sc, const std::filesys
   summary.dofs = system.size();
   summary.roi_nodes = static_cast<Index>(built->roi_nodes.size());
   print_start(sc, *built, summary.setup_s, log);
+  check_results_fit(sc, *built, out);
 
   ResultsRecorder recorder(sc, *built, state, out);
   PeakDisplacement peak(*built);
@@ -100,6 +137,7 @@ ScenarioRunSummary run_scenario(const scenario::Scenario& sc, const std::filesys
   log << format("done: %ld steps, median %.4f ms per step; final kinetic %.3e J, strain %.3e J, work %.3e J, dissipated %.3e J\n",
                 summary.steps, summary.step_s_median * 1e3, ledger.kinetic(), ledger.strain(), ledger.external_work(),
                 ledger.dissipated());
+  print_tool_forces(*built, state, ledger, log);
   print_deformation(check_deformation(*built, peak), peak, sc.dt, log);
   log << "results: " << (out / "results.h5").string() << (recorder.has_fields() ? " (ParaView: results.xdmf)" : "") << '\n';
   return summary;

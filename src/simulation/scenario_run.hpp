@@ -3,7 +3,9 @@
 /// DIR/results.xdmf. results.h5 holds (lengths in mm, energies in J):
 ///   /mesh/nodes_mm (N x 3), /mesh/tets (E x 4)
 ///   /time_s (K+1), /step_wall_time_s (K+1, 0 at t_0)
-///   /energy/{kinetic_J, strain_J, dissipated_J, external_work_J} (K+1)
+///   /energy/{kinetic_J, strain_J, dissipated_J, external_work_J} (K+1), tool_work_J with tools
+///   /tools/NAME/{nodes, displacement_mm (K+1 x 3), force_N (K+1 x 3)}   (with [[tool]]s; the
+///       force the tool applies to the tissue, summed over its nodes: the surgeon feels -force_N)
 ///   /roi/nodes (R), /roi/displacement_mm (K+1 x R x 3)             (with an ROI)
 ///   /fields/displacement_mm_NNNNNN (N x 3) every output.field_every steps, static part recovered
 ///   attributes: scenario (the resolved TOML), integrator, counters, status

@@ -24,6 +24,9 @@ TEST(DidYouMean, SuggestsTheClosestNameOnlyWhenItLooksLikeATypo) {
   EXPECT_EQ(closest_name("--hlep", {"--help", "--out"}), "--help");
   // A name without its family's prefix: the shortest name that contains it.
   EXPECT_EQ(closest_name("esdirk4", {"arkode-esdirk4-mass", "arkode-esdirk4", "ida-bdf5"}), "arkode-esdirk4");
+  // Equally close: the one that contains the name ("ramp" is 2 edits from both).
+  EXPECT_EQ(edit_distance("ramp", "name"), edit_distance("ramp", "ramp_s"));
+  EXPECT_EQ(closest_name("ramp", {"center_mm", "name", "ramp_s"}), "ramp_s");
 }
 
 }  // namespace

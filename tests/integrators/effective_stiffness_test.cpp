@@ -20,8 +20,8 @@ namespace {
 /// The test beam's Craig-Bampton model with 6 modal coordinates.
 struct ReducedBeam {
   test::Beam beam;
-  condensation::ReducedModel reduced{
-      beam.model.system, beam.partition(), *beam.model.dofs, condensation::parse_reduction("craig-bampton-6")};
+  condensation::ReducedModel reduced{beam.model.system, beam.partition(), *beam.model.dofs,
+                                     condensation::parse_reduction("craig-bampton-6")};
 };
 
 /// x = (K + 2/dt C + 4/dt^2 M)^-1 (f + M w) by a dense Cholesky factor, from the matrices alone.

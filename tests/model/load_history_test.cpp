@@ -55,3 +55,30 @@ TEST(LoadHistory, RefusesANegativeRampAndAPatternOfTheWrongSize) {
 
 }  // namespace
 }  // namespace roifem::model
+
+namespace roifem::model {
+namespace {
+
+TEST(Ramp, RatesAndAccelerationsAreTheValuesDerivatives) {
+  for (const auto shape : {Ramp::Shape::linear, Ramp::Shape::smooth}) {
+    const Ramp r{0.4, shape};
+    EXPECT_EQ(r.value(0.0), 0.0);
+    EXPECT_EQ(r.value(0.4), 1.0);
+    EXPECT_EQ(r.value(0.9), 1.0);
+    EXPECT_NEAR(r.value(0.2), 0.5, 1e-15);  // both are symmetric about the middle
+    const double h = 1e-6;
+    for (const double t : {0.05, 0.13, 0.2, 0.31, 0.39}) {
+      EXPECT_NEAR(r.rate(t), (r.value(t + h) - r.value(t - h)) / (2 * h), 1e-6) << t;
+      EXPECT_NEAR(r.acceleration(t), (r.rate(t + h) - r.rate(t - h)) / (2 * h), 1e-4) << t;
+    }
+    EXPECT_EQ(r.rate(0.5), 0.0);
+  }
+  const Ramp smooth{0.4, Ramp::Shape::smooth};  // at rest at both ends: no kink for a DAE to restart at
+  EXPECT_EQ(smooth.rate(0.0), 0.0);
+  EXPECT_NEAR(smooth.rate(0.4 - 1e-12), 0.0, 1e-9);
+  EXPECT_EQ(smooth.acceleration(0.0), 0.0);
+  EXPECT_NEAR(Ramp{0.4}.rate(0.0), 2.5, 1e-15);  // linear: 1 / duration from t = 0 on
+}
+
+}  // namespace
+}  // namespace roifem::model

@@ -1,31 +1,18 @@
 #include "simulation/scenario_run.hpp"
 
 #include <gtest/gtest.h>
-#include <hdf5.h>
 
 #include <fstream>
 #include <sstream>
 
 #include "common/errors.hpp"
+#include "h5_read.hpp"
 #include "test_support.hpp"
 
 namespace roifem::simulation {
 namespace {
 
-std::vector<double> read_dataset(const std::filesystem::path& file, const std::string& name) {
-  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  EXPECT_GE(f, 0) << file;
-  const hid_t d = H5Dopen2(f, name.c_str(), H5P_DEFAULT);
-  EXPECT_GE(d, 0) << name;
-  const hid_t space = H5Dget_space(d);
-  const hssize_t n = H5Sget_simple_extent_npoints(space);
-  std::vector<double> data(static_cast<std::size_t>(n));
-  H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data());
-  H5Sclose(space);
-  H5Dclose(d);
-  H5Fclose(f);
-  return data;
-}
+using test::read_h5;
 
 scenario::Scenario paper_scenario(const std::string& roi_block, long steps) {
   const std::string text = "mesh = \"" + std::string(ROIFEM_MESH_DIR) + "/brain-800.msh\"\n" +
@@ -49,8 +36,8 @@ TEST(ScenarioRun, RoiOfAllNodesWritesTheSameFieldsAsTheFullModel) {
   std::ostringstream log;
   run_scenario(paper_scenario("", 40), dir / "full", log);
   run_scenario(paper_scenario("[roi]\nkind = \"all\"\n", 40), dir / "all", log);
-  const auto a = read_dataset(dir / "full/results.h5", "/fields/displacement_mm_000040");
-  const auto b = read_dataset(dir / "all/results.h5", "/fields/displacement_mm_000040");
+  const auto a = read_h5(dir / "full/results.h5", "/fields/displacement_mm_000040");
+  const auto b = read_h5(dir / "all/results.h5", "/fields/displacement_mm_000040");
   ASSERT_EQ(a.size(), b.size());
   double diff = 0, norm = 0;
   for (std::size_t i = 0; i < a.size(); ++i) {
@@ -94,15 +81,15 @@ TEST(ScenarioRun, StoredEnergiesSatisfyTheDiscreteBalance) {
   test::TempDir dir;
   std::ostringstream log;
   run_scenario(paper_scenario("[roi]\nkind = \"nearest\"\ntarget_mm = [0, 0, 40]\nnodes = 306\n", 60), dir.path(), log);
-  const auto K = read_dataset(dir / "results.h5", "/energy/kinetic_J");
-  const auto U = read_dataset(dir / "results.h5", "/energy/strain_J");
-  const auto D = read_dataset(dir / "results.h5", "/energy/dissipated_J");
-  const auto W = read_dataset(dir / "results.h5", "/energy/external_work_J");
+  const auto K = read_h5(dir / "results.h5", "/energy/kinetic_J");
+  const auto U = read_h5(dir / "results.h5", "/energy/strain_J");
+  const auto D = read_h5(dir / "results.h5", "/energy/dissipated_J");
+  const auto W = read_h5(dir / "results.h5", "/energy/external_work_J");
   ASSERT_EQ(K.size(), 61u);
   for (std::size_t k = 0; k < K.size(); ++k) EXPECT_NEAR(K[k] + U[k] + D[k] - W[k], 0.0, 1e-8 * W.back()) << k;
-  const auto roi = read_dataset(dir / "results.h5", "/roi/displacement_mm");
+  const auto roi = read_h5(dir / "results.h5", "/roi/displacement_mm");
   EXPECT_EQ(roi.size(), 61u * 306u * 3u);
-  EXPECT_EQ(read_dataset(dir / "results.h5", "/time_s").back(), 60 * 0.05);
+  EXPECT_EQ(read_h5(dir / "results.h5", "/time_s").back(), 60 * 0.05);
 }
 
 TEST(ScenarioRun, FailedRunLeavesAnExistingResultUntouched) {

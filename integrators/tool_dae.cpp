@@ -1,0 +1,43 @@
+#include "integrators/tool_dae.hpp"
+
+#include "common/errors.hpp"
+#include "integrators/integrator_table.hpp"
+
+namespace roifem::integrators {
+
+std::unique_ptr<Integrator> make_tool_dae(const IntegratorInfo& info, const StepControl& control) {
+  return std::make_unique<ToolDae>(info.name, static_cast<ToolFormulation>(info.method_id), control);
+}
+
+ToolDae::ToolDae(std::string name, ToolFormulation formulation, StepControl control)
+    : name_(std::move(name)), formulation_(formulation), control_(control) {
+  if (!(control_.rtol > 0 && control_.atol > 0)) throw InputError(name_ + ": tolerances rtol and atol must be positive");
+}
+
+void ToolDae::reset(const model::SecondOrderSystem& system, const model::State& initial) {
+  if (!system.constrained)
+    throw InputError(name_ + " integrates a model with tools ([[tool]]) as a constrained DAE, and this one has " +
+                     (system.modal || !system.K_split.empty() ? "its tools eliminated before condensation: the DAE formulations "
+                                                                "run the full model (no [roi]) for now"
+                                                              : "none: choose an integrator of the plain equations (ida-bdf5)"));
+  if (initial.u.squaredNorm() != 0 || initial.v.squaredNorm() != 0)
+    throw InputError(name_ + ": starts at rest only (the tools' nodes on their paths)");
+  form_ = system.constrained.get();
+  dae_ = std::make_unique<IdaToolDae>(form_->all, form_->tools, formulation_, control_);
+  dae_->reset(initial.t);
+}
+
+void ToolDae::advance_to(double t_out, model::State& state) {
+  if (!dae_) throw Error("internal: " + name_ + ": advance_to before reset");
+  dae_->advance_to(t_out);
+  const Vector u = dae_->displacement(), v = dae_->velocity();
+  for (std::size_t i = 0; i < form_->kept.size(); ++i) {
+    state.u[static_cast<Index>(i)] = u[form_->kept[i]];
+    state.v[static_cast<Index>(i)] = v[form_->kept[i]];
+  }
+  state.t = dae_->t();
+}
+
+Stats ToolDae::stats() const { return dae_ ? dae_->stats() : Stats{}; }
+
+}  // namespace roifem::integrators

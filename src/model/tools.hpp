@@ -1,0 +1,68 @@
+#pragma once
+/// Rigid tools that move tissue (the paper's spatulas, a surgeon's instrument): a tool is attached
+/// to a set of nodes, all three components, and prescribes their displacement, g(t) (bilateral).
+/// A ToolSet describes the tools of a system whose unknowns they drive (the tool's own dofs are not
+/// among them: prescribed_motion.hpp eliminates them), and gives per tool
+///   F(t) = coupling u + self G(t) - f_tools(t)       (N, on the tissue),
+/// the residual K u - f summed over its attached nodes: the force the tool applies to the tissue
+/// (the surgeon feels -F). The attached nodes' own inertia moves with the tool, so that the energy
+/// of the tissue obeys, exactly for the trapezoidal rule,
+///   E + D = W_loads + W_tools,   W_tools = integral of F . dg/dt,
+/// with the coupling energy g . coupling u + g . self g / 2 counted in the strain energy.
+/// Vectors over the tools stack each tool's x, y, z (3 T entries).
+#include <string>
+#include <vector>
+
+#include "common/types.hpp"
+#include "model/load_history.hpp"
+
+namespace roifem::model {
+
+/// g(t) = displacement ramp(t): the tool's rigid translation (m).
+struct ToolPath {
+  Vec3 displacement = Vec3::Zero();  ///< reached at the end of the ramp
+  Ramp ramp;
+  Vec3 at(double t) const { return ramp.value(t) * displacement; }
+  Vec3 velocity(double t) const { return ramp.rate(t) * displacement; }
+  Vec3 acceleration(double t) const { return ramp.acceleration(t) * displacement; }
+};
+
+struct Tool {
+  std::string name;
+  std::vector<int> nodes;  ///< mesh nodes it holds, ascending
+  ToolPath path;
+};
+
+class ToolSet {
+ public:
+  ToolSet() = default;
+  /// coupling: 3T x n, each tool's rows of K summed over its nodes, at the unknowns; self: 3T x 3T,
+  /// the same at the tools' own dofs (the force of a unit translation of each tool); load_at_tools:
+  /// the loads (3T entries per pattern) on the attached nodes, with their ramps.
+  ToolSet(std::vector<Tool> tools, const SparseMatrix& coupling, DenseMatrix self, LoadHistory load_at_tools);
+
+  bool empty() const { return tools_.empty(); }
+  Index count() const { return static_cast<Index>(tools_.size()); }
+  const std::vector<Tool>& tools() const { return tools_; }
+  /// g(t) of every tool (3T).
+  Vector positions(double t) const;
+  /// F(t) of every tool (3T) for the unknowns u.
+  Vector forces(const Eigen::Ref<const Vector>& u, double t) const;
+  /// The loads on the attached nodes, summed per tool (3T): f_tools(t).
+  Vector loads_at_tools(double t) const { return load_at_tools_.at(t); }
+  /// coupling x (3T): how the unknowns pull on the tools.
+  Vector coupling_times(const Eigen::Ref<const Vector>& x) const { return coupling_ * x; }
+  /// The strain energy stored between the tools and the unknowns: g . coupling u + g . self g / 2.
+  double coupling_energy(const Eigen::Ref<const Vector>& u, double t) const;
+  /// The same tools for a system whose unknown new_index[i] is this one's unknown i (all mapped).
+  ToolSet renumbered(Index new_size, const std::vector<Index>& new_index) const;
+  const SparseMatrix& coupling() const { return coupling_; }
+
+ private:
+  std::vector<Tool> tools_;
+  SparseMatrix coupling_;
+  DenseMatrix self_;
+  LoadHistory load_at_tools_;
+};
+
+}  // namespace roifem::model

@@ -1,0 +1,131 @@
+#include <gtest/gtest.h>
+
+#include <Eigen/Cholesky>
+#include <sstream>
+
+#include "common/errors.hpp"
+#include "h5_read.hpp"
+#include "integrators/trapezoid.hpp"
+#include "model/energy.hpp"
+#include "scenario/scenario.hpp"
+#include "simulation/scenario_model.hpp"
+#include "simulation/scenario_run.hpp"
+#include "test_support.hpp"
+
+namespace roifem::simulation {
+namespace {
+
+/// The paper's brain with two spatulas on the opening's walls, each moved 1 mm outwards over 0.5 s,
+/// and `roi` (TOML, may be empty).
+scenario::Scenario spatulas(const std::string& roi, long steps = 40) {
+  const std::string text = "mesh = \"" + std::string(ROIFEM_MESH_DIR) + "/brain-800.msh\"\n" + R"([material]
+preset = "paper"
+[[tool]]
+name = "left"
+set = "opening_left"
+displacement_mm = [-1.0, 0, 0]
+ramp_s = 0.5
+[[tool]]
+name = "right"
+set = "opening_right"
+displacement_mm = [1.0, 0, 0]
+ramp_s = 0.5
+)" + roi +
+                           "[time]\ndt_s = 0.05\nsteps = " + std::to_string(steps) + "\n[output]\nfield_every = 0\n";
+  return scenario::parse_scenario(text, "spatulas.toml", ROIFEM_MESH_DIR);
+}
+
+const std::string setup1 = "[roi]\nkind = \"nearest\"\ntarget_mm = [0, 0, 40]\nnodes = 306\n";
+
+/// The static tool forces of a model (K u = f at t after the ramp).
+Vector static_forces(const ScenarioModel& m, double t) {
+  const Vector u = DenseMatrix(m.system().K).llt().solve(m.system().load.at(t));
+  return m.tools.forces(u, t);
+}
+
+TEST(ToolsScenario, TheCondensedModelFeelsTheFullModelsStaticToolForces) {
+  // Static condensation is exact at rest: the ROI model's tools feel what the full model's do.
+  const auto full = build_scenario_model(spatulas(""));
+  const auto condensed = build_scenario_model(spatulas(setup1));
+  ASSERT_EQ(condensed->tools.count(), 2);
+  const Vector F_full = static_forces(*full, 1.0), F_roi = static_forces(*condensed, 1.0);
+  std::printf("static spatula forces (mN): full (%.4f, %.4f, %.4f | %.4f, %.4f, %.4f), condensed differs by %.1e relative\n",
+              F_full[0] * 1e3, F_full[1] * 1e3, F_full[2] * 1e3, F_full[3] * 1e3, F_full[4] * 1e3, F_full[5] * 1e3,
+              (F_roi - F_full).norm() / F_full.norm());
+  EXPECT_LT((F_roi - F_full).norm(), 1e-9 * F_full.norm());
+  EXPECT_LT(F_full[0], 0);  // the left spatula pulls left, the right one right
+  EXPECT_GT(F_full[3], 0);
+}
+
+TEST(ToolsScenario, AToolBesideTheStaticPartIsRefusedNamingBoth) {
+  try {
+    build_scenario_model(spatulas("[roi]\nkind = \"nearest\"\ntarget_mm = [0, 0, 40]\nnodes = 5\n"));
+    FAIL() << "expected a ModelError";
+  } catch (const ModelError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("tool '"), std::string::npos) << what;
+    EXPECT_NE(what.find("shares an element with node"), std::string::npos) << what;
+    EXPECT_NE(what.find("which is in the static part"), std::string::npos) << what;
+  }
+}
+
+TEST(ToolsScenario, ARunWritesEachToolsForceAndKeepsTheBalance) {
+  const auto sc = spatulas(setup1, 30);
+  const test::TempDir dir;
+  std::ostringstream log;
+  run_scenario(sc, dir.path(), log);
+  const auto force = test::read_h5(dir.path() / "results.h5", "tools/right/force_N");
+  const auto position = test::read_h5(dir.path() / "results.h5", "tools/right/displacement_mm");
+  ASSERT_EQ(force.size(), 31u * 3);
+  EXPECT_DOUBLE_EQ(position[3 * 30], 1.0);  // at the end of the ramp (t = 1.5 s)
+  EXPECT_DOUBLE_EQ(position[3 * 5], 0.5);   // half way
+  EXPECT_EQ(force[0], 0.0);                 // at rest
+  // The force written at the last step is the model's for the last state: recompute it.
+  const auto built = build_scenario_model(sc);
+  model::State s = model::State::at_rest(built->system().size());
+  integrators::Trapezoid trapezoid(sc.dt);
+  trapezoid.reset(built->system(), s);
+  model::EnergyLedger ledger(built->system(), s, &built->tools);
+  for (int n = 1; n <= 30; ++n) {
+    trapezoid.advance_to(n * sc.dt, s);
+    ledger.record(s);
+  }
+  const Vector F = built->tools.forces(s.u, s.t);
+  for (int c = 0; c < 3; ++c) EXPECT_DOUBLE_EQ(force[3 * 30 + c], F[3 + c]);
+  EXPECT_LT(std::abs(ledger.balance_residual()), 1e-10 * ledger.tool_work());
+  const auto work = test::read_h5(dir.path() / "results.h5", "energy/tool_work_J");
+  EXPECT_DOUBLE_EQ(work.back(), ledger.tool_work());
+  EXPECT_NE(log.str().find("tool 'right': force on the tissue"), std::string::npos) << log.str();
+}
+
+TEST(ToolsScenario, ToolTablesAreReadStrictlyAndWrittenBack) {
+  const auto sc = spatulas(setup1);
+  ASSERT_EQ(sc.tools.size(), 2u);
+  EXPECT_EQ(sc.tools[1].set, "opening_right");
+  EXPECT_DOUBLE_EQ(sc.tools[1].path.displacement.x(), 1e-3);
+  const auto again = scenario::parse_scenario(sc.resolved_toml(), "again.toml", ROIFEM_MESH_DIR);
+  ASSERT_EQ(again.tools.size(), 2u);
+  EXPECT_EQ(again.tools[0].name, "left");
+  EXPECT_EQ(again.tools[0].path.displacement, sc.tools[0].path.displacement);
+  auto refused = [](const std::string& tool, const std::string& words) {
+    const std::string text = "mesh = \"m.msh\"\n[[tool]]\n" + tool;
+    try {
+      scenario::parse_scenario(text, "t.toml", "/data");
+      ADD_FAILURE() << "accepted: " << tool;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+  };
+  refused("set = \"a\"\ncenter_mm = [0, 0, 0]\nradius_mm = 2\ndisplacement_mm = [1, 0, 0]\n", "not both");
+  refused("displacement_mm = [1, 0, 0]\n", "missing required key 'tool.set' (or center_mm and radius_mm)");
+  refused("center_mm = [0, 0, 0]\nradius_mm = -2\ndisplacement_mm = [1, 0, 0]\n", "'tool.radius_mm' must be positive");
+  refused("set = \"a\"\n", "missing required key 'tool.displacement_mm'");
+  refused("set = \"a\"\ndisplacement_mm = [1, 0, 0]\nramp = 1\n", "unknown key 'tool.ramp' (did you mean 'ramp_s'?)");
+  refused(
+      "name = \"x\"\nset = \"a\"\ndisplacement_mm = [1, 0, 0]\n[[tool]]\nname = \"x\"\nset = \"b\"\ndisplacement_mm = [1, 0, "
+      "0]\n",
+      "two [[tool]] tables are named 'x'");
+}
+
+}  // namespace
+}  // namespace roifem::simulation
