@@ -214,11 +214,9 @@ void IdaToolDae::reset(double t0) {
 
 std::vector<double> IdaToolDae::kinks_after(double t) const {
   std::vector<double> kinks;
-  auto add = [&](const model::Ramp& r) {
-    if (r.shape == model::Ramp::Shape::linear && r.duration > t) kinks.push_back(r.duration);
-  };
-  for (const auto& tool : tools_) add(tool.path.ramp);
-  for (const auto& term : all_.load.terms()) add(term.ramp);
+  auto add = [&](const std::vector<double>& more) { kinks.insert(kinks.end(), more.begin(), more.end()); };
+  for (const auto& tool : tools_) add(tool.path.kinks_after(t));
+  for (const auto& term : all_.load.terms()) add(term.ramp.kinks_after(t));
   std::sort(kinks.begin(), kinks.end());
   return kinks;
 }

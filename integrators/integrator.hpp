@@ -3,6 +3,7 @@
 ///   M u'' + C u' + K u = f(t)
 /// from a State, converting it to whatever form its method needs. Output, energy and error are
 /// observers of the run loop, never code inside an integrator.
+#include <optional>
 #include <string_view>
 
 #include "model/second_order_system.hpp"
@@ -16,6 +17,13 @@ struct Stats {
   double factorization_s = 0;  ///< seconds in linear-solver setups: orderings, analyses, factorizations
 };
 
+/// What a method that holds the tools' constraints itself (the DAE forms) says of them now.
+struct ConstraintReport {
+  Vector forces;              ///< each tool's force on the tissue from its multipliers (3 per tool, N)
+  double position_drift = 0;  ///< max |H u - G| (m)
+  double velocity_drift = 0;  ///< max |H v - G'| (m/s)
+};
+
 class Integrator {
  public:
   virtual ~Integrator() = default;
@@ -26,6 +34,8 @@ class Integrator {
   /// Advances `state` to t_out; throws SolverError naming the method, t and step on failure.
   virtual void advance_to(double t_out, model::State& state) = 0;
   virtual Stats stats() const = 0;
+  /// The constraints' report after the last advance_to, from methods that hold constraints (else none).
+  virtual std::optional<ConstraintReport> constraints() const { return std::nullopt; }
 };
 
 }  // namespace roifem::integrators

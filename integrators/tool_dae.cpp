@@ -17,8 +17,8 @@ ToolDae::ToolDae(std::string name, ToolFormulation formulation, StepControl cont
 void ToolDae::reset(const model::SecondOrderSystem& system, const model::State& initial) {
   if (!system.constrained)
     throw InputError(name_ + " integrates a model with tools ([[tool]]) as a constrained DAE, and this one has " +
-                     (system.modal || !system.K_split.empty() ? "its tools eliminated before condensation: the DAE formulations "
-                                                                "run the full model (no [roi]) for now"
+                     (system.modal || !system.M_split.empty() ? "its tools eliminated by a reduction that carries mass: the DAE "
+                                                                "forms run the full model or static condensation"
                                                               : "none: choose an integrator of the plain equations (ida-bdf5)"));
   if (initial.u.squaredNorm() != 0 || initial.v.squaredNorm() != 0)
     throw InputError(name_ + ": starts at rest only (the tools' nodes on their paths)");
@@ -36,6 +36,12 @@ void ToolDae::advance_to(double t_out, model::State& state) {
     state.v[static_cast<Index>(i)] = v[form_->kept[i]];
   }
   state.t = dae_->t();
+}
+
+std::optional<ConstraintReport> ToolDae::constraints() const {
+  if (!dae_) return std::nullopt;
+  return ConstraintReport{
+      .forces = dae_->tool_forces(), .position_drift = dae_->position_drift(), .velocity_drift = dae_->velocity_drift()};
 }
 
 Stats ToolDae::stats() const { return dae_ ? dae_->stats() : Stats{}; }

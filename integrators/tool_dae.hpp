@@ -23,6 +23,7 @@ class ToolDae final : public Integrator {
   void reset(const model::SecondOrderSystem& system, const model::State& initial) override;
   void advance_to(double t_out, model::State& state) override;
   Stats stats() const override;
+  std::optional<ConstraintReport> constraints() const override;
   /// The DAE itself (its multipliers, drifts), after reset().
   const IdaToolDae& dae() const { return *dae_; }
 

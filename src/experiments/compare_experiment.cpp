@@ -30,11 +30,15 @@ struct Reference {
   std::vector<Vector> u;  ///< at t_k = k * interval, k = 1..K
   double final_energy = 0;
   double interval = 0;
-  RoiNodeDofs nodes;  ///< the integrated system's nodes, the same numbering in both
+  RoiNodeDofs nodes;                      ///< the integrated system's nodes, the same numbering in both
+  const model::ToolSet* tools = nullptr;  ///< the model's tools (empty: none)
+  std::vector<Vector> tool_forces;        ///< their exact forces at t_k
+  double tool_force_peak = 0;             ///< max over k and components, N
 };
 
 struct RunError {
   double max_mm = 0, rms_mm = 0, energy_drift = 0;
+  ToolFigures tools;
 };
 
 /// A run stopped for taking longer than --max-run-seconds (GSL's dense implicit steppers at tight
@@ -51,14 +55,24 @@ RunError measure(integrators::Integrator& integrator, const model::SecondOrderSy
   model::State state = model::State::at_rest(system.size());
   integrator.reset(system, state);
   RunError e;
-  double mean_square = 0;
+  double mean_square = 0, force_error = 0;
   for (std::size_t k = 0; k < ref.u.size(); ++k) {
     integrator.advance_to(static_cast<double>(k + 1) * ref.interval, state);
     if (clock.seconds() > budget_s) throw OverBudget{state.t};
     const RoiError at_k = roi_error(ref.nodes, state.u, ref.u[k]);
     e.max_mm = std::max(e.max_mm, at_k.max / mm);
     mean_square += at_k.rms * at_k.rms;
+    if (ref.tool_forces.empty()) continue;
+    // The tools' force as the method has it: its multipliers (DAE forms), or the residual of its state.
+    const auto held = integrator.constraints();
+    const Vector F = held ? held->forces : ref.tools->forces(state.u, state.t);
+    force_error = std::max(force_error, (F - ref.tool_forces[k]).lpNorm<Eigen::Infinity>());
+    if (held) {
+      e.tools.position_drift_mm = std::max(e.tools.position_drift_mm, held->position_drift / mm);
+      e.tools.velocity_drift_mm_s = std::max(e.tools.velocity_drift_mm_s, held->velocity_drift / mm);
+    }
   }
+  if (!ref.tool_forces.empty()) e.tools.force_error_rel = force_error / ref.tool_force_peak;
   e.rms_mm = std::sqrt(mean_square / static_cast<double>(std::max<std::size_t>(ref.u.size(), 1))) / mm;
   const double energy = kinetic_energy(system, state) + strain_energy(system, state);
   e.energy_drift = std::abs(energy - ref.final_energy) / ref.final_energy;
@@ -106,6 +120,13 @@ Reference exact_reference(const model::SecondOrderSystem& system, const model::M
     ref.u.push_back(modal.displacement(static_cast<double>(k) * interval));
     peak = std::max(peak, ref.u.back().lpNorm<Eigen::Infinity>());
   }
+  if (!built.tools.empty()) {
+    ref.tools = &built.tools;
+    for (long k = 1; k <= outputs; ++k) {
+      ref.tool_forces.push_back(built.tools.forces(ref.u[static_cast<std::size_t>(k - 1)], static_cast<double>(k) * interval));
+      ref.tool_force_peak = std::max(ref.tool_force_peak, ref.tool_forces.back().lpNorm<Eigen::Infinity>());
+    }
+  }
   const model::State exact_end{t_end, ref.u.back(), modal.velocity(t_end)};
   ref.final_energy = kinetic_energy(system, exact_end) + strain_energy(system, exact_end);
   return ref;
@@ -122,6 +143,7 @@ bool record_run(Sweep& w, const std::string& name, const std::string& mode, doub
     row.err_max_mm = e.max_mm;
     row.err_rms_mm = e.rms_mm;
     row.energy_drift = e.energy_drift;
+    row.tools = e.tools;
     // Growing without bound but still finite at the end of the window: unstable all the same.
     if (e.max_mm > 10 * w.peak / mm) {
       row.stable = false;
@@ -146,8 +168,12 @@ bool record_run(Sweep& w, const std::string& name, const std::string& mode, doub
   row.jac_evals = st.jac_evals;
   row.lin_setups = st.lin_setups;
   row.lin_solves = st.lin_solves;
-  w.log << format("  %-20s %-8s %9.3g  %8ld steps  %9.3f s  max error %s mm\n", name.c_str(), mode.c_str(), dt_or_tol, row.steps,
-                  row.wall_s, row.stable ? format("%.3e", row.err_max_mm).c_str() : "(diverged)")
+  const std::string tool_figures =
+      !w.ref.tool_forces.empty() && row.stable
+          ? format("; tool force error %.1e, drift %.1e mm", row.tools.force_error_rel, row.tools.position_drift_mm)
+          : "";
+  w.log << format("  %-20s %-8s %9.3g  %8ld steps  %9.3f s  max error %s mm%s\n", name.c_str(), mode.c_str(), dt_or_tol,
+                  row.steps, row.wall_s, row.stable ? format("%.3e", row.err_max_mm).c_str() : "(diverged)", tool_figures.c_str())
         << std::flush;  // a sweep runs for minutes: show each run as it ends
   w.results.rows.push_back(row);
   return true;
@@ -217,6 +243,19 @@ void search_stability_limit(Sweep& w, const integrators::IntegratorInfo& info, d
                   limit, lo, lo / limit);
 }
 
+/// tools.csv, for a model with tools: per run, the tools' force error and the constraint drifts.
+void write_tool_figures(const CompareOptions& o, const CompareResults& results) {
+  // tool_force_err_rel: max |F - F_exact| / max |F_exact| over the outputs (F: the multipliers' force
+  // for the DAE forms, the residual of the state otherwise); drifts: max |H u - G| and |H v - G'|
+  // of the DAE forms (0 by construction where the tools are eliminated).
+  io::CsvWriter csv(o.out / "tools.csv", "integrator,mode,dt_or_tol,tool_force_err_rel,position_drift_mm,velocity_drift_mm_s");
+  for (const auto& r : results.rows)
+    if (r.finished() && r.stable)
+      csv.row(format("%s,%s,%.6g,%.6e,%.6e,%.6e", r.integrator.c_str(), r.mode.c_str(), r.dt_or_tol, r.tools.force_error_rel,
+                     r.tools.position_drift_mm, r.tools.velocity_drift_mm_s));
+  csv.close();
+}
+
 void write_compare_files(const CompareOptions& o, const CompareResults& results) {
   {
     // dt_or_tol: the fixed step in s, or the relative tolerance rtol (atol = rtol x the exact peak, m);
@@ -284,9 +323,10 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
       if (!info.needs_tools || system.constrained) names.push_back(info.name);
   for (const auto& name : names)  // unknown names, and a DAE form without tools, fail before any work
     if (integrators::integrator_info(name).needs_tools && !system.constrained)
-      throw InputError(
-          "compare: " + name + " integrates a model with tools ([[tool]]) as a DAE, and " + sc.file.string() +
-          (built->condensation ? " condenses its tools away (the DAE forms run the full model for now)" : " has none"));
+      throw InputError("compare: " + name + " integrates a model with tools ([[tool]]) as a DAE, and " + sc.file.string() +
+                       (built->condensation
+                            ? " reduces it with mass carried (the DAE forms need the full model or static condensation)"
+                            : " has none"));
 
   const Stopwatch clock;
   const model::ModalReference modal(system, model::State::at_rest(system.size()));
@@ -307,10 +347,12 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
   }
 
   write_compare_files(o, w.results);
+  if (!built->tools.empty()) write_tool_figures(o, w.results);
   print_summary(w.results, sc.dt, log);
   if (o.plots && io::run_plot_script("plot_compare.py", o.out, log))
     log << "plots: " << (o.out / "work_precision.png").string() << ", " << (o.out / "error_vs_dt.png").string() << '\n';
-  log << "results: " << (o.out / "compare.csv").string() << ", " << (o.out / "stability.csv").string() << '\n';
+  log << "results: " << (o.out / "compare.csv").string() << ", " << (o.out / "stability.csv").string()
+      << (built->tools.empty() ? "" : ", " + (o.out / "tools.csv").string()) << '\n';
   return w.results;
 }
 

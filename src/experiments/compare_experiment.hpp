@@ -6,7 +6,8 @@
 ///   integrator,mode,dt_or_tol,steps,rhs_evals,jac_evals,lin_setups,lin_solves,wall_s,
 ///   err_max_mm,err_rms_mm,stable,energy_drift
 /// (errors over the output grid and the system's nodes; energy_drift = |E - E_exact| / E_exact at
-/// the end; a diverged run has stable = 0 and empty error fields), DIR/stability.csv and PNG plots.
+/// the end; a diverged run has stable = 0 and empty error fields), DIR/stability.csv and PNG plots;
+/// with tools also DIR/tools.csv (the tools' force error and the DAE forms' constraint drifts).
 #include <filesystem>
 #include <iosfwd>
 #include <string>
@@ -27,11 +28,18 @@ struct CompareOptions {
   bool plots = true;
 };
 
+/// With tools: the tools' force against the exact one, and the DAE forms' constraint drifts.
+struct ToolFigures {
+  double force_error_rel = 0;
+  double position_drift_mm = 0, velocity_drift_mm_s = 0;
+};
+
 struct CompareRow {
   std::string integrator, mode;
   double dt_or_tol = 0;
   long steps = 0, rhs_evals = 0, jac_evals = 0, lin_setups = 0, lin_solves = 0;
   double wall_s = 0, err_max_mm = 0, err_rms_mm = 0, energy_drift = 0;
+  ToolFigures tools;  ///< with tools (tools.csv)
   bool stable = true;
   /// "ok", "diverged: <the solver's message>" or "stopped at t = ... s after ... s (--max-run-seconds)":
   /// a run that did not finish keeps its row, with this reason, and no error figures.

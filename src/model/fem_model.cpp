@@ -138,6 +138,7 @@ FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::Material& materia
   }
   ToolElimination eliminated = eliminate_tools(all, tool_dofs);
   model.dofs = std::make_unique<fem::DofMap>(constraints);
+  model.dofs_with_tools = std::make_unique<fem::DofMap>(fixed_only);
   model.system = std::move(eliminated.system);
   model.tools = std::move(eliminated.tools);
   // The loads' share on fixed nodes, as the model without tools would report it.

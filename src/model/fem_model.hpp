@@ -40,7 +40,10 @@ struct FemModel {
   fem::Material material;
   std::unique_ptr<fem::DofMap> dofs;  ///< tools' nodes are constrained here (their motion: tools)
   SecondOrderSystem system;
-  ToolSet tools;                      ///< in the free numbering
+  ToolSet tools;  ///< in the free numbering
+  /// With tools: the dof map before their nodes were constrained, the numbering of
+  /// system.constrained->all (the DAE forms').
+  std::unique_ptr<fem::DofMap> dofs_with_tools;
   std::vector<std::string> warnings;  ///< e.g. a load partly on fixed nodes, and how much it loses
   /// The displacement of every node (3N, m): u over the free dofs, the tools' paths at time t.
   Vector displacement(const Eigen::Ref<const Vector>& u_free, double t) const;

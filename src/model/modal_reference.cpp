@@ -49,7 +49,7 @@ ModalReference::ModalReference(const SecondOrderSystem& system, const State& ini
                      std::to_string(max_dofs));
   for (const auto& term : system.load.terms())
     if (term.ramp.shape != Ramp::Shape::linear)
-      throw InputError("modal reference: solves linear ramps only (a load has a smooth one)");
+      throw InputError("modal reference: solves linear ramps only (a load or tool path here is smooth or sampled)");
   const DenseMatrix M(system.M), C(system.C);
   alpha_ = mass_proportional_damping(system);
   if (!std::isfinite(alpha_)) throw InputError("modal reference: needs mass-proportional damping C = alpha M");

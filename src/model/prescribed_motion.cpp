@@ -70,12 +70,13 @@ ToolElimination eliminate_tools(const SecondOrderSystem& all, const std::vector<
     sys.load.add(P_f * term.pattern, term.ramp);
     at_tools.add(S * (P_p * term.pattern), term.ramp);
   }
-  // -K_fp G(t): each tool's path is one pattern (its unit displacement spread) times its ramp.
-  for (std::size_t a = 0; a < tools.size(); ++a) {
-    Vector g = Vector::Zero(rows);
-    g.segment<3>(3 * static_cast<Index>(a)) = tools[a].tool.path.displacement;
-    sys.load.add(-(K_fp * (S.transpose() * g)), tools[a].tool.path.ramp);
-  }
+  // -K_fp G(t): each term of a tool's path is one pattern (its direction spread) times its history.
+  for (std::size_t a = 0; a < tools.size(); ++a)
+    for (const auto& [direction, history] : tools[a].tool.path.terms()) {
+      Vector g = Vector::Zero(rows);
+      g.segment<3>(3 * static_cast<Index>(a)) = direction;
+      sys.load.add(-(K_fp * (S.transpose() * g)), history);
+    }
   sys.constrained = std::make_shared<const ConstrainedForm>(ConstrainedForm{.all = all, .tools = tools, .kept = out.kept});
   std::vector<Tool> described;
   described.reserve(tools.size());

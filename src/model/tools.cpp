@@ -11,6 +11,16 @@ ToolSet::ToolSet(std::vector<Tool> tools, const SparseMatrix& coupling, DenseMat
     throw Error("internal: a tool set's matrices do not match its tools");
 }
 
+std::vector<std::pair<Vec3, Ramp>> ToolPath::terms() const {
+  if (!trajectory) return {{displacement, ramp}};
+  return {{Vec3::UnitX(), (*trajectory)[0]}, {Vec3::UnitY(), (*trajectory)[1]}, {Vec3::UnitZ(), (*trajectory)[2]}};
+}
+
+std::vector<double> ToolPath::kinks_after(double t) const {
+  std::vector<double> kinks = trajectory ? (*trajectory)[0].kinks_after(t) : ramp.kinks_after(t);  // shared sample times
+  return kinks;
+}
+
 Vector ToolSet::positions(double t) const {
   Vector g(3 * count());
   for (Index a = 0; a < count(); ++a) g.segment<3>(3 * a) = tools_[static_cast<std::size_t>(a)].path.at(t);

@@ -10,7 +10,10 @@
 ///   E + D = W_loads + W_tools,   W_tools = integral of F . dg/dt,
 /// with the coupling energy g . coupling u + g . self g / 2 counted in the strain energy.
 /// Vectors over the tools stack each tool's x, y, z (3 T entries).
+#include <array>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/types.hpp"
@@ -18,13 +21,26 @@
 
 namespace roifem::model {
 
-/// g(t) = displacement ramp(t): the tool's rigid translation (m).
+/// The tool's rigid translation g(t) (m): displacement ramp(t), or a trajectory, piecewise linear
+/// through sampled points (one sampled ramp per component, in metres).
 struct ToolPath {
   Vec3 displacement = Vec3::Zero();  ///< reached at the end of the ramp
   Ramp ramp;
-  Vec3 at(double t) const { return ramp.value(t) * displacement; }
-  Vec3 velocity(double t) const { return ramp.rate(t) * displacement; }
-  Vec3 acceleration(double t) const { return ramp.acceleration(t) * displacement; }
+  std::optional<std::array<Ramp, 3>> trajectory;  ///< set: g_c(t) = trajectory[c].value(t) instead
+  std::string trajectory_file;                    ///< where the trajectory was read
+  Vec3 at(double t) const { return component(t, &Ramp::value); }
+  Vec3 velocity(double t) const { return component(t, &Ramp::rate); }
+  Vec3 acceleration(double t) const { return component(t, &Ramp::acceleration); }
+  /// g(t) as a sum of fixed directions times histories: (displacement, ramp), or (e_c, trajectory_c).
+  std::vector<std::pair<Vec3, Ramp>> terms() const;
+  /// Where g' jumps after t, ascending.
+  std::vector<double> kinks_after(double t) const;
+
+ private:
+  Vec3 component(double t, double (Ramp::*f)(double) const) const {
+    if (!trajectory) return (ramp.*f)(t)*displacement;
+    return {((*trajectory)[0].*f)(t), ((*trajectory)[1].*f)(t), ((*trajectory)[2].*f)(t)};
+  }
 };
 
 struct Tool {

@@ -11,6 +11,7 @@
 #include "common/number_text.hpp"
 #include "scenario/scenario.hpp"
 #include "scenario/toml_text_guard.hpp"
+#include "scenario/trajectory_reader.hpp"
 
 namespace roifem::scenario {
 
@@ -269,7 +270,8 @@ model::Ramp read_ramp(StrictTable& t, const toml::node& node) {
 std::string ramp_toml(const model::Ramp& ramp);
 
 /// A [[tool]]: a name, where it holds (set, or center_mm and radius_mm) and its path.
-model::SetTool read_tool(StrictTable t, const toml::node& node, const std::vector<model::SetTool>& earlier) {
+model::SetTool read_tool(StrictTable t, const toml::node& node, const std::vector<model::SetTool>& earlier,
+                         const std::filesystem::path& directory) {
   model::SetTool tool;
   tool.name = t.string("name").value_or("tool" + std::to_string(earlier.size() + 1));
   for (const auto& other : earlier)
@@ -290,9 +292,15 @@ model::SetTool read_tool(StrictTable t, const toml::node& node, const std::vecto
     tool.radius = *radius * mm;
   }
   const auto displacement = t.vec3("displacement_mm");
-  if (!displacement) t.missing("displacement_mm");
-  tool.path.displacement = *displacement * mm;
-  tool.path.ramp = read_ramp(t, node);
+  if (const auto file = t.string("trajectory")) {
+    if (displacement || t.number("ramp_s") || t.string("ramp_shape"))
+      throw InputError(t.where(node) + ": a [[tool]] follows a trajectory or displacement_mm over a ramp, not both");
+    tool.path = read_trajectory(std::filesystem::path(*file).is_absolute() ? std::filesystem::path(*file) : directory / *file);
+  } else {
+    if (!displacement) t.missing("displacement_mm", " (or trajectory)");
+    tool.path.displacement = *displacement * mm;
+    tool.path.ramp = read_ramp(t, node);
+  }
   t.close();
   return tool;
 }
@@ -362,7 +370,8 @@ Scenario parse_scenario(std::string_view text, const std::string& source, const 
     }
   }
   if (const toml::array* tools = top.table_array("tool"))
-    for (const auto& node : *tools) s.tools.push_back(read_tool(StrictTable(*node.as_table(), source, "tool"), node, s.tools));
+    for (const auto& node : *tools)
+      s.tools.push_back(read_tool(StrictTable(*node.as_table(), source, "tool"), node, s.tools, directory));
   if (const toml::table* t = top.subtable("roi")) {
     StrictTable roi_table(*t, source, "roi");
     s.reduction = read_reduction(roi_table);
@@ -426,9 +435,12 @@ std::string Scenario::resolved_toml() const {
         << toml_number(t.center.z() / mm) << "]\nradius_mm = " << toml_number(t.radius / mm) << "\n";
     else
       o << "set = \"" << t.set << "\"\n";
-    o << "displacement_mm = [" << toml_number(t.path.displacement.x() / mm) << ", " << toml_number(t.path.displacement.y() / mm)
-      << ", " << toml_number(t.path.displacement.z() / mm) << "]\n"
-      << ramp_toml(t.path.ramp);
+    if (t.path.trajectory)
+      o << "trajectory = \"" << t.path.trajectory_file << "\"\n";
+    else
+      o << "displacement_mm = [" << toml_number(t.path.displacement.x() / mm) << ", " << toml_number(t.path.displacement.y() / mm)
+        << ", " << toml_number(t.path.displacement.z() / mm) << "]\n"
+        << ramp_toml(t.path.ramp);
   }
   if (roi) {
     o << "\n[roi]\n";

@@ -1,5 +1,7 @@
 #include "simulation/results_recorder.hpp"
 
+#include <algorithm>
+
 #include "common/errors.hpp"
 #include "io/csv.hpp"
 
@@ -67,6 +69,7 @@ void ResultsRecorder::record(long k, const model::State& s, double seconds) {
     const double work = ledger_.tool_work();
     tool_work_->append(&work);
     const Vector forces = model_.tools.forces(s.u, s.t), positions = model_.tools.positions(s.t) / mm;
+    last_forces_ = forces;
     for (std::size_t a = 0; a < tool_force_.size(); ++a) {
       tool_force_[a].append(forces.data() + 3 * a);
       tool_position_[a].append(positions.data() + 3 * a);
@@ -87,6 +90,22 @@ void ResultsRecorder::record(long k, const model::State& s, double seconds) {
     xdmf_.fields.push_back("/" + name);
   }
   if (k % flush_every == 0) h5_.flush();
+}
+
+void ResultsRecorder::record_constraints(const integrators::ConstraintReport& report, double t) {
+  if (model_.tools.empty()) return;
+  if (multiplier_force_.empty()) {
+    for (const auto& tool : model_.tools.tools())
+      multiplier_force_.push_back(h5_.appendable("tools/" + tool.name + "/multiplier_force_N", {3}));
+    drift_.emplace(h5_.appendable("tools/position_drift_mm", {}));
+  }
+  for (std::size_t a = 0; a < multiplier_force_.size(); ++a) multiplier_force_[a].append(report.forces.data() + 3 * a);
+  const double drift_mm = report.position_drift / mm;
+  drift_->append(&drift_mm);
+  if (t > 0) {
+    force_gap_ = std::max(force_gap_, (report.forces - last_forces_).lpNorm<Eigen::Infinity>());
+    force_peak_ = std::max(force_peak_, last_forces_.lpNorm<Eigen::Infinity>());
+  }
 }
 
 void ResultsRecorder::finish(const integrators::Stats& st) {

@@ -27,6 +27,11 @@ class ResultsRecorder {
                   const std::filesystem::path& out);
   /// The observer: step k's state and wall time (k = 0: the initial state).
   void record(long k, const model::State& state, double seconds);
+  /// With a method that holds the tools' constraints itself (a DAE form): its multipliers' force
+  /// per tool and its drift, after record() of the same step.
+  void record_constraints(const integrators::ConstraintReport& report, double t);
+  /// max over the steps of |F_multipliers - F_residual| / max |F_residual| (0 without a DAE form).
+  double multiplier_disagreement() const { return force_peak_ > 0 ? force_gap_ / force_peak_ : 0.0; }
   /// Writes the counters, marks the file complete and moves it into place (with results.xdmf).
   void finish(const integrators::Stats& stats);
   /// Keeps every recorded step as results.incomplete.h5 (status: `why`) beside any good results.h5.
@@ -47,6 +52,10 @@ class ResultsRecorder {
   std::optional<io::AppendableDataset> roi_series_;
   std::optional<io::AppendableDataset> tool_work_;
   std::vector<io::AppendableDataset> tool_force_, tool_position_;  ///< per tool
+  std::vector<io::AppendableDataset> multiplier_force_;            ///< per tool, with a DAE form
+  std::optional<io::AppendableDataset> drift_;
+  Vector last_forces_;  ///< the residual's, at the last record()
+  double force_gap_ = 0, force_peak_ = 0;
   std::vector<Index> roi_position_;  ///< each ROI node's components in the integrated vector (-1: constrained)
   std::vector<double> roi_record_;
   io::XdmfSeries xdmf_;

@@ -1,8 +1,11 @@
 #include "simulation/scenario_model.hpp"
 
+#include <algorithm>
+
 #include "common/errors.hpp"
 #include "mesh/gmsh_reader.hpp"
 #include "mesh/mesh_checks.hpp"
+#include "model/prescribed_motion.hpp"
 
 namespace roifem::simulation {
 
@@ -26,6 +29,32 @@ model::ToolSet tools_in_reduced(const model::FemModel& full, const roi::Partitio
   return full.tools.renumbered(reduced_size, position);
 }
 
+/// The condensed model's DAE form (static condensation): the full model with the tools' dofs as
+/// unknowns, condensed onto the ROI and the tools' nodes (the same static part, so the same
+/// dynamics), with the tools' dofs and the eliminated model's unknowns placed in it.
+std::shared_ptr<const model::ConstrainedForm> condensed_constrained_form(const ScenarioModel& m,
+                                                                         const condensation::Reduction& r) {
+  const model::ConstrainedForm& full_form = *m.full.system.constrained;
+  const fem::DofMap& all_dofs = *m.full.dofs_with_tools;
+  std::vector<int> nodes = m.roi_nodes;
+  for (const auto& tool : m.full.tools.tools()) nodes.insert(nodes.end(), tool.nodes.begin(), tool.nodes.end());
+  std::sort(nodes.begin(), nodes.end());
+  const roi::Partition partition = roi::partition_dofs(full_form.all.K, all_dofs, nodes);
+  condensation::ReducedModel reduced(full_form.all, partition, all_dofs, r);
+  std::vector<Index> position(static_cast<std::size_t>(all_dofs.num_free()), -1);
+  for (std::size_t i = 0; i < partition.d.size(); ++i) position[static_cast<std::size_t>(partition.d[i])] = static_cast<Index>(i);
+  auto form = std::make_shared<model::ConstrainedForm>();
+  form->all = reduced.system();
+  form->tools = full_form.tools;
+  for (auto& tool : form->tools)
+    for (Index& dof : tool.dofs) dof = position[static_cast<std::size_t>(dof)];
+  for (const Index e : m.condensation->partition().d) {
+    const Index full = m.full.dofs->full_dof(e);
+    form->kept.push_back(position[static_cast<std::size_t>(all_dofs.free_dof(full / 3, static_cast<int>(full % 3)))]);
+  }
+  return form;
+}
+
 }  // namespace
 
 std::unique_ptr<ScenarioModel> build_scenario_model(const scenario::Scenario& sc) {
@@ -46,6 +75,8 @@ std::unique_ptr<ScenarioModel> build_scenario_model(const scenario::Scenario& sc
   if (!m->full.tools.empty())
     m->tools = m->condensation ? tools_in_reduced(m->full, m->condensation->partition(), m->condensation->system().size())
                                : m->full.tools;
+  if (m->condensation && !m->full.tools.empty() && sc.reduction.is_static_condensation())
+    m->condensation->attach_constrained_form(condensed_constrained_form(*m, sc.reduction));
   return m;
 }
 

@@ -88,10 +88,14 @@ void check_results_fit(const scenario::Scenario& sc, const ScenarioModel& built,
 RunSummary integrate(const scenario::Scenario& sc, integrators::Integrator& integrator, model::State& state,
                      ResultsRecorder& recorder, PeakDisplacement& peak, const std::filesystem::path& out, std::ostream& log) {
   recorder.record(0, state, 0.0);
+  if (const auto held = integrator.constraints()) recorder.record_constraints(*held, state.t);
   const InterruptGuard interrupts;
   try {
     return run(integrator, state, sc.dt, sc.steps,
-               {[&](long k, const model::State& s, double seconds) { recorder.record(k, s, seconds); },
+               {[&](long k, const model::State& s, double seconds) {
+                  recorder.record(k, s, seconds);
+                  if (const auto held = integrator.constraints()) recorder.record_constraints(*held, s.t);
+                },
                 [&](long k, const model::State& s, double) { peak.observe(k, s); }},
                "run " + sc.file.filename().string());
   } catch (const Error& e) {
@@ -138,6 +142,9 @@ ScenarioRunSummary run_scenario(const scenario::Scenario& sc, const std::filesys
                 summary.steps, summary.step_s_median * 1e3, ledger.kinetic(), ledger.strain(), ledger.external_work(),
                 ledger.dissipated());
   print_tool_forces(*built, state, ledger, log);
+  if (const auto held = integrator->constraints())
+    log << format("%s: the multipliers' tool forces differ from the residual's by at most %.1e of their peak; drift %.1e mm\n",
+                  sc.integrator.c_str(), recorder.multiplier_disagreement(), held->position_drift / mm);
   print_deformation(check_deformation(*built, peak), peak, sc.dt, log);
   log << "results: " << (out / "results.h5").string() << (recorder.has_fields() ? " (ParaView: results.xdmf)" : "") << '\n';
   return summary;

@@ -6,6 +6,8 @@
 ///   /energy/{kinetic_J, strain_J, dissipated_J, external_work_J} (K+1), tool_work_J with tools
 ///   /tools/NAME/{nodes, displacement_mm (K+1 x 3), force_N (K+1 x 3)}   (with [[tool]]s; the
 ///       force the tool applies to the tissue, summed over its nodes: the surgeon feels -force_N)
+///   /tools/NAME/multiplier_force_N (K+1 x 3), /tools/position_drift_mm (K+1)  (DAE forms: from
+///       the multipliers, and the constraint's drift)
 ///   /roi/nodes (R), /roi/displacement_mm (K+1 x R x 3)             (with an ROI)
 ///   /fields/displacement_mm_NNNNNN (N x 3) every output.field_every steps, static part recovered
 ///   attributes: scenario (the resolved TOML), integrator, counters, status

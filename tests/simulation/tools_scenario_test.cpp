@@ -5,8 +5,10 @@
 
 #include "common/errors.hpp"
 #include "h5_read.hpp"
+#include "integrators/factory.hpp"
 #include "integrators/trapezoid.hpp"
 #include "model/energy.hpp"
+#include "model/modal_reference.hpp"
 #include "scenario/scenario.hpp"
 #include "simulation/scenario_model.hpp"
 #include "simulation/scenario_run.hpp"
@@ -98,6 +100,31 @@ TEST(ToolsScenario, ARunWritesEachToolsForceAndKeepsTheBalance) {
   EXPECT_NE(log.str().find("tool 'right': force on the tissue"), std::string::npos) << log.str();
 }
 
+TEST(ToolsScenario, TheDaeFormsOfTheCondensedModelMeetItsExactSolution) {
+  // Static condensation keeps the tools' dofs in its DAE form (the full model condensed onto the
+  // ROI and the tools' nodes): by name, each form meets the eliminated condensed model's exact
+  // (modal) solution and its exact tool forces.
+  const auto built = build_scenario_model(spatulas(setup1));
+  const model::SecondOrderSystem& system = built->system();
+  ASSERT_TRUE(system.constrained);
+  const model::ModalReference exact(system, model::State::at_rest(system.size()));
+  const double t = 0.05;
+  const Vector u = exact.displacement(t), F = built->tools.forces(u, t);
+  for (const char* name : {"ida-ggl", "ida-index1"}) {
+    auto dae = integrators::make_integrator(name, {.dt = t, .adaptive = true, .rtol = 1e-8, .atol = 1e-14});
+    model::State s = model::State::at_rest(system.size());
+    dae->reset(system, s);
+    dae->advance_to(t, s);
+    const auto held = dae->constraints();
+    ASSERT_TRUE(held.has_value());
+    std::printf("%s on setup 1 with spatulas: displacement error %.1e, tool force error %.1e (relative), drift %.1e mm\n", name,
+                (s.u - u).norm() / u.norm(), (held->forces - F).norm() / F.norm(), held->position_drift / mm);
+    EXPECT_LT((s.u - u).norm(), 1e-6 * u.norm()) << name;
+    EXPECT_LT((held->forces - F).norm(), 1e-6 * F.norm()) << name;
+    EXPECT_LT(held->position_drift, 1e-8 * mm) << name;
+  }
+}
+
 TEST(ToolsScenario, ToolTablesAreReadStrictlyAndWrittenBack) {
   const auto sc = spatulas(setup1);
   ASSERT_EQ(sc.tools.size(), 2u);
@@ -119,7 +146,11 @@ TEST(ToolsScenario, ToolTablesAreReadStrictlyAndWrittenBack) {
   refused("set = \"a\"\ncenter_mm = [0, 0, 0]\nradius_mm = 2\ndisplacement_mm = [1, 0, 0]\n", "not both");
   refused("displacement_mm = [1, 0, 0]\n", "missing required key 'tool.set' (or center_mm and radius_mm)");
   refused("center_mm = [0, 0, 0]\nradius_mm = -2\ndisplacement_mm = [1, 0, 0]\n", "'tool.radius_mm' must be positive");
-  refused("set = \"a\"\n", "missing required key 'tool.displacement_mm'");
+  refused("set = \"a\"\n", "missing required key 'tool.displacement_mm' (or trajectory)");
+  refused("set = \"a\"\ntrajectory = \"p.csv\"\ndisplacement_mm = [1, 0, 0]\n",
+          "a trajectory or displacement_mm over a ramp, not both");
+  refused("set = \"a\"\ntrajectory = \"p.csv\"\nramp_s = 1\n", "not both");
+  refused("set = \"a\"\ntrajectory = \"p.csv\"\n", "/data/p.csv: cannot open trajectory file");
   refused("set = \"a\"\ndisplacement_mm = [1, 0, 0]\nramp = 1\n", "unknown key 'tool.ramp' (did you mean 'ramp_s'?)");
   refused(
       "name = \"x\"\nset = \"a\"\ndisplacement_mm = [1, 0, 0]\n[[tool]]\nname = \"x\"\nset = \"b\"\ndisplacement_mm = [1, 0, "
