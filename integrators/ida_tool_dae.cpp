@@ -20,20 +20,11 @@ namespace roifem::integrators {
 namespace {
 
 /// Steps IDA may take between two outputs before it gives up (IDA_TOO_MUCH_WORK): the stable
-/// forms take tens, index 3 can grind on at ever smaller steps.
+/// forms take a few hundred on the tests' models, index 3 can grind on at ever smaller steps.
 constexpr long max_steps_per_output = 20000;
 
 constexpr std::array<std::pair<ToolFormulation, std::string_view>, 3> formulation_names{
     {{ToolFormulation::index3, "index3"}, {ToolFormulation::ggl, "ggl"}, {ToolFormulation::index1, "index1"}}};
-
-/// The 0/1 matrix with a one at (i, columns[i]).
-SparseMatrix picking(const std::vector<Index>& columns, Index n) {
-  SparseMatrix P(static_cast<Index>(columns.size()), n);
-  std::vector<Eigen::Triplet<double>> ones;
-  for (std::size_t i = 0; i < columns.size(); ++i) ones.emplace_back(static_cast<Index>(i), columns[i], 1.0);
-  P.setFromTriplets(ones.begin(), ones.end());
-  return P;
-}
 
 }  // namespace
 
@@ -69,7 +60,7 @@ IdaToolDae::IdaToolDae(const model::SecondOrderSystem& all, const std::vector<mo
   if (tool_dofs_.empty()) throw Error("internal: IDA tool DAE without tools");
   if (!(model::is_diagonal(all.M) && model::is_diagonal(all.C)))
     throw ModelError("IDA tool DAE: needs the lumped (diagonal) M and C");
-  H_ = picking(tool_dofs_, n());
+  H_ = model::selection_matrix(tool_dofs_, n());
   Ht_ = H_.transpose();
   S_ = SparseMatrix(3 * static_cast<Index>(tools.size()), p());
   S_.setFromTriplets(sums.begin(), sums.end());

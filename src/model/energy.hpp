@@ -27,6 +27,8 @@ class EnergyLedger {
   /// The loads' work.
   double external_work() const { return work_ + load_work_at_tools_; }
   double tool_work() const { return tool_work_; }
+  /// The tools' forces F at the last state recorded (or the initial one): 3 per tool.
+  const Vector& tool_forces() const { return tools_previous_.forces; }
   /// E + D - W - W_tools - E_0: zero for an exact discrete balance.
   double balance_residual() const { return total() + dissipated_ - external_work() - tool_work_ - initial_total_; }
 

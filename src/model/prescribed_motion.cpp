@@ -6,15 +6,6 @@ namespace roifem::model {
 
 namespace {
 
-/// The 0/1 matrix that picks `rows` of an n-vector.
-SparseMatrix selection(const std::vector<Index>& rows, Index n) {
-  SparseMatrix P(static_cast<Index>(rows.size()), n);
-  std::vector<Eigen::Triplet<double>> ones;
-  for (std::size_t i = 0; i < rows.size(); ++i) ones.emplace_back(static_cast<Index>(i), rows[i], 1.0);
-  P.setFromTriplets(ones.begin(), ones.end());
-  return P;
-}
-
 /// S: 3T x #p, summing each tool's attached dofs per component (G = S^T g spreads them back).
 SparseMatrix summation(const std::vector<ToolDofs>& tools, Index num_tool_dofs) {
   SparseMatrix S(3 * static_cast<Index>(tools.size()), num_tool_dofs);
@@ -36,6 +27,14 @@ bool couples(const SparseMatrix& A, const std::vector<char>& is_tool) {
 
 }  // namespace
 
+SparseMatrix selection_matrix(const std::vector<Index>& columns, Index n) {
+  SparseMatrix P(static_cast<Index>(columns.size()), n);
+  std::vector<Eigen::Triplet<double>> ones;
+  for (std::size_t i = 0; i < columns.size(); ++i) ones.emplace_back(static_cast<Index>(i), columns[i], 1.0);
+  P.setFromTriplets(ones.begin(), ones.end());
+  return P;
+}
+
 ToolElimination eliminate_tools(const SecondOrderSystem& all, const std::vector<ToolDofs>& tools) {
   const Index n = all.size();
   std::vector<char> is_tool(static_cast<std::size_t>(n), 0);
@@ -53,7 +52,7 @@ ToolElimination eliminate_tools(const SecondOrderSystem& all, const std::vector<
   ToolElimination out;
   for (Index i = 0; i < n; ++i)
     if (!is_tool[static_cast<std::size_t>(i)]) out.kept.push_back(i);
-  const SparseMatrix P_f = selection(out.kept, n), P_p = selection(tool_dofs, n);
+  const SparseMatrix P_f = selection_matrix(out.kept, n), P_p = selection_matrix(tool_dofs, n);
   const SparseMatrix S = summation(tools, static_cast<Index>(tool_dofs.size()));
   const SparseMatrix K_fp = P_f * all.K * SparseMatrix(P_p.transpose());
   const SparseMatrix K_pp = P_p * all.K * SparseMatrix(P_p.transpose());

@@ -29,6 +29,9 @@ struct ToolElimination {
   std::vector<Index> kept;   ///< the system's unknowns that stay, ascending
 };
 
+/// The 0/1 matrix with a one at (i, columns[i]): picks those entries of an n-vector.
+SparseMatrix selection_matrix(const std::vector<Index>& columns, Index n);
+
 /// Eliminates the tools' dofs from `all`. Throws Error when a dof is held by two tools or when M
 /// or C couples a tool dof to another (they must be lumped).
 ToolElimination eliminate_tools(const SecondOrderSystem& all, const std::vector<ToolDofs>& tools);

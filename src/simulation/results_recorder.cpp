@@ -68,8 +68,8 @@ void ResultsRecorder::record(long k, const model::State& s, double seconds) {
   if (tool_work_) {
     const double work = ledger_.tool_work();
     tool_work_->append(&work);
-    const Vector forces = model_.tools.forces(s.u, s.t), positions = model_.tools.positions(s.t) / mm;
-    last_forces_ = forces;
+    const Vector& forces = ledger_.tool_forces();  // the ledger's, of this state
+    const Vector positions = model_.tools.positions(s.t) / mm;
     for (std::size_t a = 0; a < tool_force_.size(); ++a) {
       tool_force_[a].append(forces.data() + 3 * a);
       tool_position_[a].append(positions.data() + 3 * a);
@@ -103,8 +103,9 @@ void ResultsRecorder::record_constraints(const integrators::ConstraintReport& re
   const double drift_mm = report.position_drift / mm;
   drift_->append(&drift_mm);
   if (t > 0) {
-    force_gap_ = std::max(force_gap_, (report.forces - last_forces_).lpNorm<Eigen::Infinity>());
-    force_peak_ = std::max(force_peak_, last_forces_.lpNorm<Eigen::Infinity>());
+    const Vector& residual = ledger_.tool_forces();  // record() of the same step came first
+    force_gap_ = std::max(force_gap_, (report.forces - residual).lpNorm<Eigen::Infinity>());
+    force_peak_ = std::max(force_peak_, residual.lpNorm<Eigen::Infinity>());
   }
 }
 

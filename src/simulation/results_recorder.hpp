@@ -54,7 +54,6 @@ class ResultsRecorder {
   std::vector<io::AppendableDataset> tool_force_, tool_position_;  ///< per tool
   std::vector<io::AppendableDataset> multiplier_force_;            ///< per tool, with a DAE form
   std::optional<io::AppendableDataset> drift_;
-  Vector last_forces_;  ///< the residual's, at the last record()
   double force_gap_ = 0, force_peak_ = 0;
   std::vector<Index> roi_position_;  ///< each ROI node's components in the integrated vector (-1: constrained)
   std::vector<double> roi_record_;

@@ -50,8 +50,9 @@ void print_tool_forces(const ScenarioModel& built, const model::State& state, co
     log << format("tool '%s': force on the tissue (%.4g, %.4g, %.4g) mN at t = %g s\n", built.tools.tools()[a].name.c_str(),
                   f.x(), f.y(), f.z(), state.t);
   }
-  log << format("tools' work %.4e J; energy balance |E + D - W - W_tools - E_0| / |W_tools| = %.1e\n", ledger.tool_work(),
-                std::abs(ledger.balance_residual()) / std::abs(ledger.tool_work()));
+  const double scale = std::max(std::abs(ledger.tool_work()), std::abs(ledger.external_work()));
+  log << format("tools' work %.4e J; energy balance |E + D - W - W_tools - E_0| / max(|W|, |W_tools|) = %.1e\n",
+                ledger.tool_work(), scale > 0 ? std::abs(ledger.balance_residual()) / scale : 0.0);
 }
 
 void print_deformation(const DeformationReport& r, const PeakDisplacement& peak, double dt, std::ostream& log) {
