@@ -110,7 +110,7 @@ TEST(ToolsScenario, TheDaeFormsOfTheCondensedModelMeetItsExactSolution) {
   const model::ModalReference exact(system, model::State::at_rest(system.size()));
   const double t = 0.05;
   const Vector u = exact.displacement(t), F = built->tools.forces(u, t);
-  for (const char* name : {"ida-ggl", "ida-index1"}) {
+  for (const char* name : {"ida-ggl"}) {  // (index 1 and 3: on the beam and the box, cheaper)
     auto dae = integrators::make_integrator(name, {.dt = t, .adaptive = true, .rtol = 1e-8, .atol = 1e-14});
     model::State s = model::State::at_rest(system.size());
     dae->reset(system, s);
