@@ -5,10 +5,12 @@
 namespace roifem::model {
 
 EnergyLedger::ToolTerms EnergyLedger::tool_terms(const State& s) const {
-  return {.g = tools_->positions(s.t),
-          .coupled = tools_->coupling_times(s.u),
-          .loads = tools_->loads_at_tools(s.t),
-          .forces = tools_->forces(s.u, s.t)};
+  // One product with the coupling per state: F and the coupling energy both follow from it.
+  ToolTerms terms{.g = tools_->positions(s.t), .coupled = tools_->coupling_times(s.u), .loads = tools_->loads_at_tools(s.t)};
+  const Vector self_g = tools_->self_times(terms.g);
+  terms.forces = terms.coupled + self_g - terms.loads;
+  terms.coupling_energy = terms.g.dot(terms.coupled) + 0.5 * terms.g.dot(self_g);
+  return terms;
 }
 
 EnergyLedger::EnergyLedger(const SecondOrderSystem& system, const State& initial, const ToolSet* tools)
@@ -26,7 +28,7 @@ EnergyLedger::EnergyLedger(const SecondOrderSystem& system, const State& initial
   strain_ = 0.5 * initial.u.dot(Ku_);
   if (tools_ != nullptr) {
     tools_previous_ = tool_terms(initial);
-    coupling_ = tools_->coupling_energy(initial.u, initial.t);
+    coupling_ = tools_previous_.coupling_energy;
   }
   initial_total_ = total();
 }
@@ -52,7 +54,7 @@ void EnergyLedger::record(const State& next) {
     const Vector dg = now.g - was.g;
     load_work_at_tools_ += 0.5 * (now.g + was.g).dot(now.coupled - was.coupled) + 0.5 * dg.dot(now.loads + was.loads);
     tool_work_ += 0.5 * dg.dot(now.forces + was.forces);
-    coupling_ = tools_->coupling_energy(next.u, next.t);
+    coupling_ = now.coupling_energy;
     tools_previous_ = std::move(now);
   }
   previous_ = next;

@@ -36,6 +36,7 @@ class EnergyLedger {
   /// The tools' terms of a state: positions g, coupling u, loads on their nodes, forces F.
   struct ToolTerms {
     Vector g, coupled, loads, forces;
+    double coupling_energy = 0;
   };
   ToolTerms tool_terms(const State& s) const;
 

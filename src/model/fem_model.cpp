@@ -125,8 +125,8 @@ FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::Material& materia
   }
   // With tools: the model over every unfixed dof, then the tools' dofs eliminated.
   SecondOrderSystem all = assemble(mesh, material, fixed_only);
-  std::vector<std::string> unused;  // a load on tools' nodes is the tools' to carry, not lost
-  all.load = loads_on(mesh, material, fixed_only, loads, unused);
+  // Over these dofs only the fixed nodes take a load's share (one on tools' nodes is theirs to carry).
+  all.load = loads_on(mesh, material, fixed_only, loads, model.warnings);
   std::vector<ToolDofs> tool_dofs;
   for (const Tool& tool : attached) {
     ToolDofs td{.tool = tool, .dofs = {}};
@@ -141,9 +141,6 @@ FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::Material& materia
   model.dofs_with_tools = std::make_unique<fem::DofMap>(fixed_only);
   model.system = std::move(eliminated.system);
   model.tools = std::move(eliminated.tools);
-  // The loads' share on fixed nodes, as the model without tools would report it.
-  for (const auto& load : loads)
-    if (!load.gravity) set_load(mesh, fixed_only, load, model.warnings);
   return model;
 }
 

@@ -68,6 +68,8 @@ class ToolSet {
   Vector loads_at_tools(double t) const { return load_at_tools_.at(t); }
   /// coupling x (3T): how the unknowns pull on the tools.
   Vector coupling_times(const Eigen::Ref<const Vector>& x) const { return coupling_ * x; }
+  /// self g (3T): the tools' pull on themselves at positions g.
+  Vector self_times(const Eigen::Ref<const Vector>& g) const { return self_ * g; }
   /// The strain energy stored between the tools and the unknowns: g . coupling u + g . self g / 2.
   double coupling_energy(const Eigen::Ref<const Vector>& u, double t) const;
   /// The same tools for a system whose unknown new_index[i] is this one's unknown i (all mapped).
