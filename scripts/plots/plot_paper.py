@@ -4,7 +4,8 @@
 usage: /usr/bin/python3 plot_paper.py DIR
 reads DIR/errors.csv and DIR/timing.csv; writes DIR/mean_error.png, DIR/max_error.png (the
 paper's static condensation), DIR/step_time.png and DIR/reductions.png (static condensation, Guyan
-and Craig-Bampton at the fastest ramp), each written to a temporary name, then renamed.
+and Craig-Bampton at the fastest ramp) and, driven by spatulas (DIR/force_errors.csv),
+DIR/force_error.png, each written to a temporary name, then renamed.
 """
 import csv
 import os
@@ -76,6 +77,37 @@ def main(directory):
     ax.legend()
     ax.grid(alpha=0.3, which="both", axis="y")
     save(fig, os.path.join(directory, "step_time.png"))
+
+    forces = os.path.join(directory, "force_errors.csv")
+    if os.path.exists(forces):
+        plot_force_errors(forces, titles, os.path.join(directory, "force_error.png"))
+
+
+def plot_force_errors(path, titles, out):
+    """The force the surgeon feels: the spatulas' force error (mN and % of the full model's peak)."""
+    every = defaultdict(lambda: ([], [], []))  # (setup, ramp) -> steps, error, full force
+    with open(path) as f:
+        for row in csv.DictReader(f):
+            if row["reduction"] != "static":
+                continue
+            steps, error, full = every[(row["setup"], float(row["ramp_s"]))]
+            steps.append(int(row["step"]))
+            error.append(float(row["force_err_mN"]))
+            full.append(float(row["force_full_mN"]))
+    setups = sorted({s for s, _ in every})
+    ramps = sorted({r for _, r in every})
+    fig, axes = plt.subplots(1, len(setups), figsize=(5.5 * len(setups), 4), sharey=True, squeeze=False)
+    for ax, setup in zip(axes[0], setups):
+        for ramp in ramps:
+            steps, error, full = every[(setup, ramp)]
+            ax.plot(steps, error, label=f"ramp {ramp:g} s (peak {100 * max(error) / max(full):.2f}% of the force)")
+        ax.set_title(titles.get(setup, setup))
+        ax.set_xlabel("iteration (dt = 0.05 s)")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+    axes[0][0].set_ylabel("spatula force error (mN)")
+    fig.suptitle("The force the surgeon feels: condensed ROI model vs full model, larger of the two spatulas")
+    save(fig, out)
 
 
 if __name__ == "__main__":

@@ -28,7 +28,14 @@ void add_paper_command(CLI::App& app, Action& action) {
   cmd->add_option("--out", o->out, "Output directory")->required();
   cmd->add_option("--mesh", o->mesh, "The 800-node brain mesh (mm)")->capture_default_str();
   cmd->add_option("--material", o->material, "Material preset: paper (Table 1) or brain")->capture_default_str();
-  cmd->add_option("--opening-mm", o->opening_mm, "Static widening of the opening the force is chosen for (mm)")
+  auto drive = std::make_shared<std::string>("forces");
+  cmd->add_option("--drive", *drive,
+                  "What widens the opening: 'forces' (the paper's) or 'spatulas' (two rigid tools move the walls' nodes "
+                  "apart; also reports the error of the force each spatula feels, condensed against full)")
+      ->check(CLI::IsMember({"forces", "spatulas"}))
+      ->capture_default_str();
+  cmd->add_option("--opening-mm", o->opening_mm,
+                  "Static widening of the opening (mm): the forces are chosen for it, or the spatulas impose it")
       ->capture_default_str();
   cmd->add_option("--steps", o->steps, "Time steps per run")->capture_default_str();
   cmd->add_option("--timing-steps", o->timing_steps, "Steps timed per model for Table 2 (medians)")->capture_default_str();
@@ -39,8 +46,9 @@ void add_paper_command(CLI::App& app, Action& action) {
          "Reductions of the static part compared at the fastest ramp (static first): " + condensation::reduction_label_forms())
       ->capture_default_str();
   cmd->add_flag("!--no-plots", o->plots, "Skip the PNG plots");
-  cmd->callback([&action, o, reductions] {
-    action = [o, reductions] {
+  cmd->callback([&action, o, reductions, drive] {
+    action = [o, reductions, drive] {
+      o->drive = *drive == "spatulas" ? experiments::PaperDrive::spatulas : experiments::PaperDrive::forces;
       o->reductions.clear();
       for (const auto& label : *reductions) o->reductions.push_back(condensation::parse_reduction(label));
       experiments::run_paper_experiment(*o, std::cout);

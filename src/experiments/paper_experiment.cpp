@@ -11,6 +11,7 @@
 #include "common/number_text.hpp"
 #include "common/timer.hpp"
 #include "condensation/reduced_model.hpp"
+#include "experiments/paper_report.hpp"
 #include "experiments/roi_error.hpp"
 #include "fem/static_solve.hpp"
 #include "integrators/trapezoid.hpp"
@@ -23,6 +24,7 @@
 #include "mesh/mesh_checks.hpp"
 #include "model/fem_model.hpp"
 #include "simulation/run_loop.hpp"
+#include "simulation/scenario_model.hpp"
 
 namespace roifem::experiments {
 
@@ -44,6 +46,7 @@ struct Setup {
   std::string label;  ///< reduction.label()
   std::unique_ptr<condensation::ReducedModel> condensation;
   RoiNodeDofs node_dofs;
+  model::ToolSet tools;  ///< the spatulas in the reduced numbering (none when forces drive)
   double setup_s = 0;
 };
 
@@ -76,115 +79,80 @@ std::vector<std::vector<double>> time_steps(const std::vector<const model::Secon
   return seconds;
 }
 
-double steady_mean(const PaperCurve& c) {
-  double sum = 0;
-  long count = 0;
-  for (std::size_t k = 100; k < c.mean_mm.size(); ++k, ++count) sum += c.mean_mm[k];
-  return count ? sum / static_cast<double>(count) : 0.0;
-}
-
-void print_reductions(const PaperResults& r, std::ostream& log) {
-  if (r.reductions.empty()) return;
-  log << format("\nBeyond the paper: the static part's inertia (ramp %.1f s; step cost of the trapezoidal rule, median)\n",
-                r.reductions.front().ramp_s);
-  log << format("  %-7s %-18s %5s %6s %15s %17s %11s %9s %9s\n", "setup", "reduction", "dofs", "extra", "peak max (mm)",
-                "steady mean (mm)", "step (ms)", "vs static", "peak /");
-  for (const auto& row : r.reductions) {
-    const auto& plain = *std::find_if(r.reductions.begin(), r.reductions.end(),
-                                      [&](const ReductionRow& x) { return x.setup == row.setup && x.static_condensation; });
-    log << format("  %-7s %-18s %5lld %6lld %15.4f %17.5f %11.4f %8.2fx %8.1fx\n", row.setup.c_str(), row.reduction.c_str(),
-                  static_cast<long long>(row.dofs), static_cast<long long>(row.extra_dofs), row.peak_max_mm, row.steady_mean_mm,
-                  row.step_s_median * 1e3, row.step_s_median / plain.step_s_median, plain.peak_max_mm / row.peak_max_mm);
-  }
-  log << "  (vs static: step cost relative to plain condensation; peak /: how many times lower the peak is)\n";
-}
-
-void print_findings(const PaperOptions& o, const PaperResults& r, std::ostream& log) {
-  log << "\nFindings (Hansen & Larsen 1998, Section 5), checked on this run:\n";
-  auto peak = [](const PaperCurve& c) { return *std::max_element(c.max_mm.begin(), c.max_mm.end()); };
-  bool steady_ok = true;
-  for (const auto& c : r.curves) {
-    const double steady = steady_mean(c);
-    steady_ok = steady_ok && steady < 0.2;
-    log << format(
-        "  %-8s ramp %.1f s: peak max error %6.3f mm, peak mean error %6.3f mm, steady mean error (steps > 100) %.4f mm\n",
-        c.setup.c_str(), c.ramp_s, peak(c), *std::max_element(c.mean_mm.begin(), c.mean_mm.end()), steady);
-  }
-  log << format("  [%s] steady-state mean error below 0.2 mm for every ramp and setup\n", steady_ok ? "yes" : "NO");
-  bool ramp_order = true, setup_order = true;
-  const std::size_t n_ramps = o.ramps_s.size();
-  for (std::size_t s = 0; s < o.setup_nodes.size(); ++s)
-    for (std::size_t k = 0; k + 1 < n_ramps; ++k)
-      ramp_order = ramp_order && peak(r.curves[s * n_ramps + k]) > peak(r.curves[s * n_ramps + k + 1]);
-  for (std::size_t k = 0; k < n_ramps && o.setup_nodes.size() > 1; ++k)
-    setup_order = setup_order && peak(r.curves[n_ramps + k]) > peak(r.curves[k]);
-  log << format("  [%s] the faster the ramp, the higher the max-error peak (0.5 s highest, 2 s lowest)\n",
-                ramp_order ? "yes" : "NO");
-  log << format("  [%s] setup 2 (smaller ROI) peaks above setup 1\n", setup_order ? "yes" : "NO");
-  bool faster = true;
-  for (std::size_t k = 1; k < r.timing.size(); ++k) faster = faster && r.timing[k].step_s_median < r.timing[0].step_s_median;
-  log << format("  [%s] the condensed models step faster than the full model\n", faster ? "yes" : "NO");
-  // The model is linear: every error scales with the force. Say at which scale this run is.
-  if (!r.curves.empty() && r.opening_mm > 0) {
-    const double scale = paper_peak_max_error_mm / peak(r.curves.front());
-    log << format(
-        "  Scale: the errors scale with the force. Here %s peaks at %.3g mm at the %.1f s ramp, the paper's "
-        "Fig. 6 at about %.0f mm; --opening-mm %.4g gives the paper's scale.\n",
-        r.curves.front().setup.c_str(), peak(r.curves.front()), r.curves.front().ramp_s, paper_peak_max_error_mm,
-        r.opening_mm * scale);
-  }
-}
-
-/// Hansen & Larsen's Table 2 figure for a model of ours, or 0 where the paper has none.
-double paper_step_s(const std::string& model) {
-  if (model == "full") return paper_full_step_s;
-  if (model == "setup1") return paper_setup1_step_s;
-  if (model == "setup2") return paper_setup2_step_s;
-  return 0.0;
-}
-
-void print_table2(const PaperResults& r, std::ostream& log) {
-  log << "\nTable 2: time per step (trapezoidal rule, dt = 0.05 s; real time at 20 Hz needs < 50 ms)\n";
-  log << format("  %-8s %6s %6s %12s %14s %11s %14s %10s\n", "model", "nodes", "dofs", "1998 (s)", "roifem (ms)", "p99 (ms)",
-                "frame rate", "vs full");
-  for (std::size_t k = 0; k < r.timing.size(); ++k) {
-    const auto& t = r.timing[k];
-    log << format("  %-8s %6lld %6lld %12.3f %14.4f %11.4f %11.0f Hz %9.2fx\n", t.model.c_str(), static_cast<long long>(t.nodes),
-                  static_cast<long long>(t.dofs), paper_step_s(t.model), t.step_s_median * 1e3, t.step_s_p99 * 1e3,
-                  1.0 / t.step_s_median, r.timing[0].step_s_median / t.step_s_median);
-  }
-  log << "  (1998: the paper's figures on its hardware; roifem: medians of per-step wall time on this machine)\n";
-}
-
-/// The full model with the opening's forces, scaled so that the static opening widens by opening_mm.
+/// The full model with the opening's forces, scaled so that the static opening widens by
+/// opening_mm; or with two spatulas that move the walls apart by opening_mm.
 struct PaperModel {
   mesh::TetMesh mesh;
   model::FemModel full;
 };
 
+/// The forces' model: unit forces (1 N per wall, opposite directions), scaled to the opening.
+void add_opening_forces(const PaperOptions& o, PaperModel& m, PaperResults& results) {
+  m.full = model::build_fem_model(
+      m.mesh, fem::material_preset(o.material), {"base"},
+      {{"opening_left", Vec3(-1, 0, 0), model::Ramp{0}}, {"opening_right", Vec3(1, 0, 0), model::Ramp{0}}});
+  const fem::DofMap& dofs = *m.full.dofs;
+  solvers::Cholesky K;
+  fem::factorize_stiffness(K, m.full.system.K, dofs);
+  const Vector u = dofs.expand(K.solve(m.full.system.load.at(1.0)));
+  const double opening_per_newton = mean_x(m.mesh, u, "opening_right") - mean_x(m.mesh, u, "opening_left");
+  results.force_N = o.opening_mm * mm / opening_per_newton;
+  m.full.system.load = m.full.system.load.mapped(dofs.num_free(), [&](const Vector& p) { return Vector(results.force_N * p); });
+}
+
+/// The spatulas' model: each wall's nodes held by a rigid tool that moves it opening_mm / 2
+/// outwards; the force each spatula holds at rest.
+void add_spatulas(const PaperOptions& o, PaperModel& m, PaperResults& results) {
+  const double half = o.opening_mm * mm / 2;
+  auto spatula = [&](const char* name, const char* set, double direction) {
+    return model::SetTool{.name = name,
+                          .set = set,
+                          .center = Vec3::Zero(),
+                          .radius = 0,
+                          .path = {.displacement = Vec3(direction * half, 0, 0), .ramp = model::Ramp{0}}};
+  };
+  m.full = model::build_fem_model(m.mesh, fem::material_preset(o.material), {"base"}, {},
+                                  {spatula("left", "opening_left", -1), spatula("right", "opening_right", 1)});
+  solvers::Cholesky K;
+  fem::factorize_stiffness(K, m.full.system.K, *m.full.dofs);
+  const Vector forces = m.full.tools.forces(K.solve(m.full.system.load.at(1.0)), 1.0);
+  results.force_N = std::max(forces.segment<3>(0).norm(), forces.segment<3>(3).norm());
+}
+
 std::unique_ptr<PaperModel> build_paper_model(const PaperOptions& o, PaperResults& results, std::ostream& log) {
   auto m = std::make_unique<PaperModel>();
   m->mesh = mesh::read_mesh(o.mesh);
   mesh::check_mesh(m->mesh);
-  // Unit forces (1 N per wall, opposite directions), scaled below to the requested opening.
-  m->full = model::build_fem_model(
-      m->mesh, fem::material_preset(o.material), {"base"},
-      {{"opening_left", Vec3(-1, 0, 0), model::Ramp{0}}, {"opening_right", Vec3(1, 0, 0), model::Ramp{0}}});
+  results.drive = o.drive;
+  results.opening_mm = o.opening_mm;
+  if (o.drive == PaperDrive::forces)
+    add_opening_forces(o, *m, results);
+  else
+    add_spatulas(o, *m, results);
   const fem::DofMap& dofs = *m->full.dofs;
-  {
-    solvers::Cholesky K;
-    fem::factorize_stiffness(K, m->full.system.K, dofs);
-    const Vector u = dofs.expand(K.solve(m->full.system.load.at(1.0)));
-    const double opening_per_newton = mean_x(m->mesh, u, "opening_right") - mean_x(m->mesh, u, "opening_left");
-    results.force_N = o.opening_mm * mm / opening_per_newton;
-    results.opening_mm = o.opening_mm;
-  }
-  m->full.system.load = m->full.system.load.mapped(dofs.num_free(), [&](const Vector& p) { return Vector(results.force_N * p); });
   log << format("paper experiment: %s, %lld nodes (%lld free dofs), material '%s'\n", o.mesh.c_str(),
                 static_cast<long long>(m->mesh.num_nodes()), static_cast<long long>(dofs.num_free()), o.material.c_str());
-  log << format("  force %.4g mN on each wall of the opening (x: -left, +right) widens it statically by %.1f mm\n",
-                results.force_N * 1e3, o.opening_mm);
+  if (o.drive == PaperDrive::forces)
+    log << format("  force %.4g mN on each wall of the opening (x: -left, +right) widens it statically by %.1f mm\n",
+                  results.force_N * 1e3, o.opening_mm);
+  else
+    log << format(
+        "  two spatulas hold the walls' nodes (%zu and %zu) and move them %.2f mm apart each (x: -left, +right): "
+        "%.1f mm in all, held at rest by %.4g mN\n",
+        m->full.tools.tools()[0].nodes.size(), m->full.tools.tools()[1].nodes.size(), o.opening_mm / 2, o.opening_mm,
+        results.force_N * 1e3);
+  for (const auto& warning : m->full.warnings) log << "  warning: " << warning << '\n';
   return m;
+}
+
+/// The setup's ROI: the same nodes whichever the drive, chosen among the nodes the base leaves free
+/// (the walls' included); those a spatula holds then leave the unknowns and move with it.
+std::vector<int> select_setup_nodes(const PaperModel& m, const roi::RoiSpec& spec) {
+  const fem::DofMap& choose_among = m.full.dofs_with_tools ? *m.full.dofs_with_tools : *m.full.dofs;
+  std::vector<int> nodes = roi::select_roi_nodes(m.mesh, choose_among, spec);
+  const std::vector<int> free = roi::free_nodes(m.mesh, *m.full.dofs);
+  std::erase_if(nodes, [&](int n) { return !std::binary_search(free.begin(), free.end(), n); });
+  return nodes;
 }
 
 /// Every setup reduced by every reduction, setup-major (setup1 with each reduction, then setup2 ...).
@@ -194,13 +162,16 @@ std::vector<Setup> build_setups(const PaperOptions& o, const PaperModel& m, Pape
   for (std::size_t k = 0; k < o.setup_nodes.size(); ++k) {
     const roi::RoiSpec spec{
         .kind = roi::RoiSpec::Kind::nearest, .center = o.roi_target_mm * mm, .radius = 0, .count = o.setup_nodes[k], .set = {}};
-    const auto partition = roi::partition_dofs(m.full.system.K, dofs, roi::select_roi_nodes(m.mesh, dofs, spec));
+    const auto partition = roi::partition_dofs(m.full.system.K, dofs, select_setup_nodes(m, spec));
     std::set<int> interface_nodes;
     for (Index i : partition.interface)
       interface_nodes.insert(static_cast<int>(dofs.full_dof(partition.d[static_cast<std::size_t>(i)]) / 3));
     results.interface_nodes.push_back(static_cast<Index>(interface_nodes.size()));
-    log << format("  setup%zu: ROI = %s: %zu dofs, %zu interface nodes, %zu static dofs\n", k + 1, spec.describe().c_str(),
+    log << format("  setup%zu: ROI = %s: %zu dofs, %zu interface nodes, %zu static dofs", k + 1, spec.describe().c_str(),
                   partition.d.size(), interface_nodes.size(), partition.s.size());
+    if (const Index held = spec.count - static_cast<Index>(partition.roi_nodes.size()); held > 0)
+      log << format(" (%lld of its nodes held by the spatulas)", static_cast<long long>(held));
+    log << "\n";
     for (const auto& reduction : o.reductions) {
       Setup s;
       s.name = "setup" + std::to_string(k + 1);
@@ -212,6 +183,7 @@ std::vector<Setup> build_setups(const PaperOptions& o, const PaperModel& m, Pape
           std::make_unique<condensation::ReducedModel>(m.full.system, partition, dofs, reduction.trained_on(o.dt, o.steps));
       s.setup_s = clock.seconds();
       s.node_dofs = roi_node_dofs(partition, dofs);
+      if (!m.full.tools.empty()) s.tools = simulation::tools_in_reduced(m.full, partition, s.condensation->system().size());
       log << format("    %-18s %4lld dofs, reduced in %.3f s", s.label.c_str(),
                     static_cast<long long>(s.condensation->system().size()), s.setup_s);
       if (s.condensation->num_modes() > 0)
@@ -236,45 +208,77 @@ struct FieldRecord {
   }
 };
 
-/// The full model's trapezoidal run under one ramp: the reference displacements per step.
-std::vector<Vector> run_reference(const PaperOptions& o, const PaperModel& m, double ramp, FieldRecord& record) {
+/// Every node's displacement (mm, N x 3 row-major), the spatulas' nodes where their paths put them.
+std::vector<double> field_mm(const PaperModel& m, const model::ToolSet& tools, const Vector& u_free, double t) {
+  const Vector u = m.full.displacement(u_free, tools, t) / mm;
+  return {u.data(), u.data() + u.size()};
+}
+
+/// The largest of the tools' forces' differences and the largest reference force (mN), at one step.
+std::pair<double, double> force_error_mN(const Vector& forces, const Vector& reference) {
+  double error = 0, largest = 0;
+  for (Index a = 0; 3 * a < forces.size(); ++a) {
+    error = std::max(error, (forces.segment<3>(3 * a) - reference.segment<3>(3 * a)).norm() / 1e-3);
+    largest = std::max(largest, reference.segment<3>(3 * a).norm() / 1e-3);
+  }
+  return {error, largest};
+}
+
+/// The full model's run under one ramp: displacements and (spatulas) tool forces per step.
+struct Reference {
+  std::vector<Vector> u, forces;
+};
+
+/// The full model's trapezoidal run under one ramp: the reference per step.
+Reference run_reference(const PaperOptions& o, const PaperModel& m, double ramp, FieldRecord& record) {
   model::SecondOrderSystem system = m.full.system;
   system.load = m.full.system.load.with_ramp(model::Ramp{ramp});
-  std::vector<Vector> reference;
+  const model::ToolSet tools = m.full.tools.with_ramp(model::Ramp{ramp});
+  Reference reference;
   integrators::Trapezoid trapezoid(o.dt);
   model::State state = model::State::at_rest(system.size());
   trapezoid.reset(system, state);
   simulation::run(trapezoid, state, o.dt, o.steps, {[&](long k, const model::State& s, double) {
-                    reference.push_back(s.u);
+                    reference.u.push_back(s.u);
+                    if (!tools.empty()) reference.forces.push_back(tools.forces(s.u, s.t));
                     if (ramp == o.ramps_s.front() && k % o.field_every == 0)
                       record.add(record.full_series, format("fields/full/displacement_mm_%04ld", k), s,
-                                 io::displacement_field_mm(*m.full.dofs, s.u));
+                                 field_mm(m, tools, s.u, s.t));
                   }},
                   format("full model, ramp %.1f s", ramp));
   return reference;
 }
 
 /// One reduced setup under one ramp: its error against the reference per step.
-PaperCurve run_setup(const PaperOptions& o, const PaperModel& m, const Setup& setup, double ramp,
-                     const std::vector<Vector>& reference, bool record_fields, FieldRecord& record) {
+PaperCurve run_setup(const PaperOptions& o, const PaperModel& m, const Setup& setup, double ramp, const Reference& reference,
+                     bool record_fields, FieldRecord& record) {
   model::SecondOrderSystem reduced = setup.condensation->system();
   reduced.load = reduced.load.with_ramp(model::Ramp{ramp});
+  const model::ToolSet tools = setup.tools.with_ramp(model::Ramp{ramp});
   PaperCurve curve{.setup = setup.name,
                    .static_condensation = setup.reduction.is_static_condensation(),
                    .reduction = setup.label,
                    .ramp_s = ramp,
                    .mean_mm = {},
-                   .max_mm = {}};
+                   .max_mm = {},
+                   .force_err_mN = {},
+                   .force_full_mN = {}};
   integrators::Trapezoid trapezoid(o.dt);
   model::State state = model::State::at_rest(reduced.size());
   trapezoid.reset(reduced, state);
   simulation::run(trapezoid, state, o.dt, o.steps, {[&](long k, const model::State& s, double) {
-                    const RoiError e = roi_error(setup.node_dofs, s.u, reference[static_cast<std::size_t>(k - 1)]);
+                    const auto step = static_cast<std::size_t>(k - 1);
+                    const RoiError e = roi_error(setup.node_dofs, s.u, reference.u[step]);
                     curve.mean_mm.push_back(e.mean / mm);
                     curve.max_mm.push_back(e.max / mm);
+                    if (!tools.empty()) {
+                      const auto [error, largest] = force_error_mN(tools.forces(s.u, s.t), reference.forces[step]);
+                      curve.force_err_mN.push_back(error);
+                      curve.force_full_mN.push_back(largest);
+                    }
                     if (record_fields && k % o.field_every == 0)
                       record.add(record.roi_series, format("fields/setup1/displacement_mm_%04ld", k), s,
-                                 io::displacement_field_mm(*m.full.dofs, setup.condensation->expand(s.u, s.t)));
+                                 field_mm(m, tools, setup.condensation->expand(s.u, s.t), s.t));
                   }},
                   format("%s %s, ramp %.1f s", setup.name.c_str(), setup.label.c_str(), ramp));
   return curve;
@@ -284,7 +288,7 @@ PaperCurve run_setup(const PaperOptions& o, const PaperModel& m, const Setup& se
 void measure_accuracy(const PaperOptions& o, const PaperModel& m, const std::vector<Setup>& setups, PaperResults& results,
                       FieldRecord& record) {
   for (double ramp : o.ramps_s) {
-    const std::vector<Vector> reference = run_reference(o, m, ramp, record);
+    const Reference reference = run_reference(o, m, ramp, record);
     for (std::size_t si = 0; si < setups.size(); ++si) {
       const bool record_fields = si == 0 && ramp == o.ramps_s.front();  // setup1, the paper's reduction
       PaperCurve curve = run_setup(o, m, setups[si], ramp, reference, record_fields, record);
@@ -316,43 +320,19 @@ void measure_speed(const PaperOptions& o, const PaperModel& m, const std::vector
     const auto& curve = *std::find_if(results.reduction_curves.begin(), results.reduction_curves.end(), [&](const PaperCurve& c) {
       return c.setup == setup.name && c.reduction == setup.label && c.ramp_s == o.ramps_s.front();
     });
-    results.reductions.push_back({.setup = setup.name,
-                                  .reduction = setup.label,
-                                  .static_condensation = setup.reduction.is_static_condensation(),
-                                  .dofs = setup.condensation->system().size(),
-                                  .extra_dofs = setup.condensation->num_modes(),
-                                  .ramp_s = curve.ramp_s,
-                                  .peak_max_mm = *std::max_element(curve.max_mm.begin(), curve.max_mm.end()),
-                                  .steady_mean_mm = steady_mean(curve),
-                                  .step_s_median = simulation::median(seconds),
-                                  .setup_s = setup.setup_s});
-  }
-}
-
-void write_tables(const PaperOptions& o, const PaperResults& results) {
-  {
-    io::CsvWriter csv(o.out / "errors.csv", "setup,reduction,ramp_s,step,time_s,mean_mm,max_mm");
-    for (const auto& c : results.reduction_curves)
-      for (std::size_t k = 0; k < c.mean_mm.size(); ++k)
-        csv.row(format("%s,%s,%g,%zu,%.4f,%.9g,%.9g", c.setup.c_str(), c.reduction.c_str(), c.ramp_s, k + 1,
-                       static_cast<double>(k + 1) * o.dt, c.mean_mm[k], c.max_mm[k]));
-    csv.close();
-  }
-  {
-    io::CsvWriter csv(o.out / "reductions.csv",
-                      "setup,reduction,dofs,extra_dofs,ramp_s,peak_max_mm,steady_mean_mm,step_s_median,setup_s");
-    for (const auto& r : results.reductions)
-      csv.row(format("%s,%s,%lld,%lld,%g,%.9g,%.9g,%.6e,%.6e", r.setup.c_str(), r.reduction.c_str(),
-                     static_cast<long long>(r.dofs), static_cast<long long>(r.extra_dofs), r.ramp_s, r.peak_max_mm,
-                     r.steady_mean_mm, r.step_s_median, r.setup_s));
-    csv.close();
-  }
-  {
-    io::CsvWriter csv(o.out / "timing.csv", "model,nodes,dofs,step_s_median,frame_rate_hz");
-    for (const auto& t : results.timing)
-      csv.row(format("%s,%lld,%lld,%.6e,%.1f", t.model.c_str(), static_cast<long long>(t.nodes), static_cast<long long>(t.dofs),
-                     t.step_s_median, 1.0 / t.step_s_median));
-    csv.close();
+    results.reductions.push_back(
+        {.setup = setup.name,
+         .reduction = setup.label,
+         .static_condensation = setup.reduction.is_static_condensation(),
+         .dofs = setup.condensation->system().size(),
+         .extra_dofs = setup.condensation->num_modes(),
+         .ramp_s = curve.ramp_s,
+         .peak_max_mm = *std::max_element(curve.max_mm.begin(), curve.max_mm.end()),
+         .steady_mean_mm = steady_mean(curve),
+         .step_s_median = simulation::median(seconds),
+         .setup_s = setup.setup_s,
+         .peak_force_err_mN =
+             curve.force_err_mN.empty() ? 0.0 : *std::max_element(curve.force_err_mN.begin(), curve.force_err_mN.end())});
   }
 }
 
@@ -372,6 +352,10 @@ void write_results_h5(const PaperOptions& o, const PaperModel& m, const std::vec
       const std::string group = format("errors/%s/%s/ramp_%gs/", c.setup.c_str(), c.reduction.c_str(), c.ramp_s);
       h5.write(group + "mean_mm", c.mean_mm, {c.mean_mm.size()});
       h5.write(group + "max_mm", c.max_mm, {c.max_mm.size()});
+      if (!c.force_err_mN.empty()) {
+        h5.write(group + "force_err_mN", c.force_err_mN, {c.force_err_mN.size()});
+        h5.write(group + "force_full_mN", c.force_full_mN, {c.force_full_mN.size()});
+      }
     }
     std::vector<double> medians;
     std::string models;
@@ -384,6 +368,7 @@ void write_results_h5(const PaperOptions& o, const PaperModel& m, const std::vec
     h5.attribute("experiment", "Hansen & Larsen 1998, Section 5: full model vs condensed ROI setups");
     h5.attribute("mesh", o.mesh.string());
     h5.attribute("material", o.material);
+    h5.attribute("drive", o.drive == PaperDrive::spatulas ? "spatulas" : "forces");
     h5.attribute("force_per_wall_N", format("%.9g", results.force_N));
     h5.attribute("opening_mm", format("%g", o.opening_mm));
     h5.attribute("dt_s", format("%g", o.dt));
@@ -420,17 +405,17 @@ PaperResults run_paper_experiment(const PaperOptions& o, std::ostream& log) {
   record.roi_series = record.full_series;
   measure_accuracy(o, *model, setups, results, record);
   measure_speed(o, *model, setups, results);
-  write_tables(o, results);
+  write_paper_tables(o, results);
   write_results_h5(o, *model, setups, results, record);
 
-  print_findings(o, results, log);
-  print_table2(results, log);
-  print_reductions(results, log);
+  print_paper_report(o, results, log);
   if (o.plots && io::run_plot_script("plot_paper.py", o.out, log))
     log << "\nplots: " << (o.out / "mean_error.png").string() << ", " << (o.out / "max_error.png").string() << ", "
-        << (o.out / "step_time.png").string() << ", " << (o.out / "reductions.png").string() << '\n';
+        << (o.out / "step_time.png").string() << ", " << (o.out / "reductions.png").string()
+        << (o.drive == PaperDrive::spatulas ? ", " + (o.out / "force_error.png").string() : "") << '\n';
   log << "results: " << (o.out / "errors.csv").string() << ", " << (o.out / "timing.csv").string() << ", "
-      << (o.out / "reductions.csv").string() << ", " << (o.out / "results.h5").string()
+      << (o.out / "reductions.csv").string() << ", "
+      << (o.drive == PaperDrive::spatulas ? (o.out / "force_errors.csv").string() + ", " : "") << (o.out / "results.h5").string()
       << " (ParaView: results.xdmf, results_setup1.xdmf)\n";
   return results;
 }

@@ -8,6 +8,9 @@
 /// Beyond the paper, each setup is also reduced with the static part's inertia kept (Guyan, and
 /// Craig-Bampton with 5, 10 and 20 fixed-interface modes): the same errors and step costs, side by
 /// side with the paper's plain static condensation.
+/// Driven by spatulas instead (PaperDrive::spatulas): two rigid tools hold the walls' nodes and move
+/// them apart by opening_mm over the same ramps; beyond the displacement errors, the error of the
+/// force the surgeon feels (each spatula's force on the tissue, condensed against full).
 #include <filesystem>
 #include <iosfwd>
 #include <string>
@@ -18,12 +21,16 @@
 
 namespace roifem::experiments {
 
+/// What widens the opening: the paper's two forces, or two spatulas that move its walls.
+enum class PaperDrive { forces, spatulas };
+
 struct PaperOptions {
   std::filesystem::path mesh;      ///< the 800-node brain (meshes/brain-800.msh)
   std::filesystem::path out;       ///< output directory
   std::string material = "paper";  ///< preset
-  double opening_mm = 4.0;         ///< static widening of the opening the force is chosen for
-  double dt = 0.05;                ///< s
+  PaperDrive drive = PaperDrive::forces;
+  double opening_mm = 4.0;  ///< static widening of the opening the force is chosen for, or the spatulas impose
+  double dt = 0.05;         ///< s
   long steps = 200;
   std::vector<double> ramps_s{0.5, 1.0, 2.0};
   std::vector<Index> setup_nodes{306, 228};
@@ -47,6 +54,9 @@ struct PaperCurve {  ///< one setup, one reduction, one ramp
   std::string reduction = "static";  ///< its label
   double ramp_s = 0;
   std::vector<double> mean_mm, max_mm;  ///< per step 1..steps
+  /// Spatulas only, per step: the largest of the spatulas' force errors |F_reduced - F_full| and
+  /// the largest force |F_full| (mN).
+  std::vector<double> force_err_mN, force_full_mN;
 };
 
 struct PaperTiming {
@@ -61,10 +71,12 @@ struct ReductionRow {               ///< one setup, one reduction, at the fastes
   Index dofs = 0, extra_dofs = 0;   ///< of the reduced system; beyond the ROI's own
   double ramp_s = 0, peak_max_mm = 0, steady_mean_mm = 0;
   double step_s_median = 0, setup_s = 0;
+  double peak_force_err_mN = 0;  ///< spatulas only
 };
 
 struct PaperResults {
-  double force_N = 0;                        ///< per wall
+  PaperDrive drive = PaperDrive::forces;
+  double force_N = 0;                        ///< per wall: applied, or (spatulas) held at rest
   double opening_mm = 0;                     ///< static widening it gives
   std::vector<PaperCurve> curves;            ///< static condensation (the paper's), setup-major
   std::vector<PaperCurve> reduction_curves;  ///< every reduction (static included), every setup and ramp

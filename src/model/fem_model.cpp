@@ -97,9 +97,11 @@ std::string SetTool::describe() const {
          ")";
 }
 
-Vector FemModel::displacement(const Eigen::Ref<const Vector>& u_free, double t) const {
+Vector FemModel::displacement(const Eigen::Ref<const Vector>& u_free, double t) const { return displacement(u_free, tools, t); }
+
+Vector FemModel::displacement(const Eigen::Ref<const Vector>& u_free, const ToolSet& on_paths, double t) const {
   Vector u = dofs->expand(u_free);
-  for (const Tool& tool : tools.tools()) {
+  for (const Tool& tool : on_paths.tools()) {
     const Vec3 g = tool.path.at(t);
     for (const int n : tool.nodes) u.segment<3>(3 * n) = g;
   }

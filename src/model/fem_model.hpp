@@ -47,6 +47,8 @@ struct FemModel {
   std::vector<std::string> warnings;  ///< e.g. a load partly on fixed nodes, and how much it loses
   /// The displacement of every node (3N, m): u over the free dofs, the tools' paths at time t.
   Vector displacement(const Eigen::Ref<const Vector>& u_free, double t) const;
+  /// The same with the tools on other paths (the same tools, e.g. ToolSet::with_ramp).
+  Vector displacement(const Eigen::Ref<const Vector>& u_free, const ToolSet& on_paths, double t) const;
 };
 
 /// Builds the full model. Throws InputError for a missing set, a load wholly on fixed nodes, and a

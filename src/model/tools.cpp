@@ -50,4 +50,14 @@ ToolSet ToolSet::renumbered(Index new_size, const std::vector<Index>& new_index)
   return {tools_, coupling, self_, load_at_tools_};
 }
 
+ToolSet ToolSet::with_ramp(const Ramp& ramp) const {
+  ToolSet out = *this;
+  for (auto& tool : out.tools_) {
+    if (tool.path.trajectory) throw Error("tool '" + tool.name + "' follows a trajectory: its ramp cannot be replaced");
+    tool.path.ramp = ramp;
+  }
+  out.load_at_tools_ = load_at_tools_.with_ramp(ramp);
+  return out;
+}
+
 }  // namespace roifem::model

@@ -74,6 +74,9 @@ class ToolSet {
   double coupling_energy(const Eigen::Ref<const Vector>& u, double t) const;
   /// The same tools for a system whose unknown new_index[i] is this one's unknown i (all mapped).
   ToolSet renumbered(Index new_size, const std::vector<Index>& new_index) const;
+  /// The same tools with every path's ramp, and every load at the tools, on `ramp` (as
+  /// LoadHistory::with_ramp does for the system the tools drive). Throws Error for a trajectory.
+  ToolSet with_ramp(const Ramp& ramp) const;
   const SparseMatrix& coupling() const { return coupling_; }
 
  private:

@@ -11,24 +11,6 @@ namespace roifem::simulation {
 
 namespace {
 
-/// The tools in a reduced model's numbering (its first unknowns are the ROI dofs d). ModelError
-/// when a tool shares an element with a node of the static part: its force and its motion must
-/// reach the tissue through the ROI alone.
-model::ToolSet tools_in_reduced(const model::FemModel& full, const roi::Partition& partition, Index reduced_size) {
-  std::vector<Index> position(static_cast<std::size_t>(full.system.size()), -1);
-  for (std::size_t i = 0; i < partition.d.size(); ++i) position[static_cast<std::size_t>(partition.d[i])] = static_cast<Index>(i);
-  const SparseMatrix& coupling = full.tools.coupling();
-  for (Index j = 0; j < coupling.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(coupling, j); it; ++it)
-      if (position[static_cast<std::size_t>(j)] < 0) {
-        const auto& tool = full.tools.tools()[static_cast<std::size_t>(it.row() / 3)];
-        throw ModelError(full.mesh->source + ": tool '" + tool.name + "' shares an element with node " +
-                         std::to_string(full.dofs->full_dof(j) / 3) +
-                         ", which is in the static part: the ROI must hold the tool's nodes and their neighbours");
-      }
-  return full.tools.renumbered(reduced_size, position);
-}
-
 /// The condensed model's DAE form (static condensation): the full model with the tools' dofs as
 /// unknowns, condensed onto the ROI and the tools' nodes (the same static part, so the same
 /// dynamics), with the tools' dofs and the eliminated model's unknowns placed in it.
@@ -56,6 +38,21 @@ std::shared_ptr<const model::ConstrainedForm> condensed_constrained_form(const S
 }
 
 }  // namespace
+
+model::ToolSet tools_in_reduced(const model::FemModel& full, const roi::Partition& partition, Index reduced_size) {
+  std::vector<Index> position(static_cast<std::size_t>(full.system.size()), -1);
+  for (std::size_t i = 0; i < partition.d.size(); ++i) position[static_cast<std::size_t>(partition.d[i])] = static_cast<Index>(i);
+  const SparseMatrix& coupling = full.tools.coupling();
+  for (Index j = 0; j < coupling.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(coupling, j); it; ++it)
+      if (position[static_cast<std::size_t>(j)] < 0) {
+        const auto& tool = full.tools.tools()[static_cast<std::size_t>(it.row() / 3)];
+        throw ModelError(full.mesh->source + ": tool '" + tool.name + "' shares an element with node " +
+                         std::to_string(full.dofs->full_dof(j) / 3) +
+                         ", which is in the static part: the ROI must hold the tool's nodes and their neighbours");
+      }
+  return full.tools.renumbered(reduced_size, position);
+}
 
 std::unique_ptr<ScenarioModel> build_scenario_model(const scenario::Scenario& sc) {
   auto m = std::make_unique<ScenarioModel>();

@@ -24,6 +24,11 @@ struct ScenarioModel {
   roi::NodeDofs node_positions() const;
 };
 
+/// The full model's tools in a reduced model's numbering (its first unknowns are the ROI dofs d of
+/// `partition`). ModelError, naming the mesh and the node, when a tool shares an element with a
+/// node of the static part: its force and its motion must reach the tissue through the ROI alone.
+model::ToolSet tools_in_reduced(const model::FemModel& full, const roi::Partition& partition, Index reduced_size);
+
 /// Reads and checks the mesh, builds the model and condenses it. Held by unique_ptr: the model
 /// refers to its own mesh.
 std::unique_ptr<ScenarioModel> build_scenario_model(const scenario::Scenario& scenario);

@@ -1,0 +1,167 @@
+#include "experiments/paper_report.hpp"
+
+#include <algorithm>
+#include <ostream>
+
+#include "common/number_text.hpp"
+#include "io/csv.hpp"
+
+namespace roifem::experiments {
+
+using io::format;
+
+namespace {
+
+double mean_after_step_100(const std::vector<double>& values) {
+  double sum = 0;
+  long count = 0;
+  for (std::size_t k = 100; k < values.size(); ++k, ++count) sum += values[k];
+  return count ? sum / static_cast<double>(count) : 0.0;
+}
+
+}  // namespace
+
+double steady_mean(const PaperCurve& c) { return mean_after_step_100(c.mean_mm); }
+double steady_force_err(const PaperCurve& c) { return mean_after_step_100(c.force_err_mN); }
+
+namespace {
+
+double peak(const std::vector<double>& values) { return values.empty() ? 0.0 : *std::max_element(values.begin(), values.end()); }
+
+void print_reductions(const PaperResults& r, std::ostream& log) {
+  if (r.reductions.empty()) return;
+  log << format("\nBeyond the paper: the static part's inertia (ramp %.1f s; step cost of the trapezoidal rule, median)\n",
+                r.reductions.front().ramp_s);
+  const bool spatulas = r.drive == PaperDrive::spatulas;
+  log << format("  %-7s %-18s %5s %6s %15s %17s %11s %9s %9s%s\n", "setup", "reduction", "dofs", "extra", "peak max (mm)",
+                "steady mean (mm)", "step (ms)", "vs static", "peak /", spatulas ? "   force err (mN)" : "");
+  for (const auto& row : r.reductions) {
+    const auto& plain = *std::find_if(r.reductions.begin(), r.reductions.end(),
+                                      [&](const ReductionRow& x) { return x.setup == row.setup && x.static_condensation; });
+    log << format("  %-7s %-18s %5lld %6lld %15.4f %17.5f %11.4f %8.2fx %8.1fx", row.setup.c_str(), row.reduction.c_str(),
+                  static_cast<long long>(row.dofs), static_cast<long long>(row.extra_dofs), row.peak_max_mm, row.steady_mean_mm,
+                  row.step_s_median * 1e3, row.step_s_median / plain.step_s_median, plain.peak_max_mm / row.peak_max_mm);
+    log << (spatulas ? format(" %16.4f\n", row.peak_force_err_mN) : std::string("\n"));
+  }
+  log << "  (vs static: step cost relative to plain condensation; peak /: how many times lower the peak is"
+      << (spatulas ? ";\n   force err: the peak of the spatulas' force error)\n" : ")\n");
+}
+
+void print_findings(const PaperOptions& o, const PaperResults& r, std::ostream& log) {
+  log << "\nFindings (Hansen & Larsen 1998, Section 5), checked on this run"
+      << (r.drive == PaperDrive::spatulas ? ", driven by spatulas:\n" : ":\n");
+  bool steady_ok = true;
+  for (const auto& c : r.curves) {
+    const double steady = steady_mean(c);
+    steady_ok = steady_ok && steady < 0.2;
+    log << format(
+        "  %-8s ramp %.1f s: peak max error %6.3f mm, peak mean error %6.3f mm, steady mean error (steps > 100) %.4f mm\n",
+        c.setup.c_str(), c.ramp_s, peak(c.max_mm), peak(c.mean_mm), steady);
+  }
+  log << format("  [%s] steady-state mean error below 0.2 mm for every ramp and setup\n", steady_ok ? "yes" : "NO");
+  bool ramp_order = true, setup_order = true;
+  const std::size_t n_ramps = o.ramps_s.size();
+  for (std::size_t s = 0; s < o.setup_nodes.size(); ++s)
+    for (std::size_t k = 0; k + 1 < n_ramps; ++k)
+      ramp_order = ramp_order && peak(r.curves[s * n_ramps + k].max_mm) > peak(r.curves[s * n_ramps + k + 1].max_mm);
+  for (std::size_t k = 0; k < n_ramps && o.setup_nodes.size() > 1; ++k)
+    setup_order = setup_order && peak(r.curves[n_ramps + k].max_mm) > peak(r.curves[k].max_mm);
+  log << format("  [%s] the faster the ramp, the higher the max-error peak (0.5 s highest, 2 s lowest)\n",
+                ramp_order ? "yes" : "NO");
+  log << format("  [%s] setup 2 (smaller ROI) peaks above setup 1\n", setup_order ? "yes" : "NO");
+  bool faster = true;
+  for (std::size_t k = 1; k < r.timing.size(); ++k) faster = faster && r.timing[k].step_s_median < r.timing[0].step_s_median;
+  log << format("  [%s] the condensed models step faster than the full model\n", faster ? "yes" : "NO");
+  // The model is linear: every error scales with the force. Say at which scale this run is.
+  if (!r.curves.empty() && r.opening_mm > 0) {
+    const double scale = paper_peak_max_error_mm / peak(r.curves.front().max_mm);
+    log << format(
+        "  Scale: the model is linear, so the errors scale with the load. Here %s peaks at %.3g mm at the %.1f s ramp, the "
+        "paper's "
+        "Fig. 6 at about %.0f mm; --opening-mm %.4g gives the paper's scale.\n",
+        r.curves.front().setup.c_str(), peak(r.curves.front().max_mm), r.curves.front().ramp_s, paper_peak_max_error_mm,
+        r.opening_mm * scale);
+  }
+}
+
+/// Beyond the paper, driven by spatulas: the error of the force each spatula feels, per setup and
+/// ramp (the paper's reduction), against the full model's force.
+void print_tool_forces(const PaperResults& r, std::ostream& log) {
+  if (r.drive != PaperDrive::spatulas) return;
+  log << "\nThe force the surgeon feels (beyond the paper): each spatula's force on the tissue, condensed vs full\n";
+  log << format("  %-8s %6s %16s %16s %9s %18s\n", "setup", "ramp", "full peak (mN)", "peak err (mN)", "% of peak",
+                "steady err (mN)");
+  for (const auto& c : r.curves)
+    log << format("  %-8s %5.1fs %16.3f %16.4f %8.3f%% %18.3e\n", c.setup.c_str(), c.ramp_s, peak(c.force_full_mN),
+                  peak(c.force_err_mN), 100 * peak(c.force_err_mN) / peak(c.force_full_mN), steady_force_err(c));
+  log << "  (per step the larger of the two spatulas' |F_condensed - F_full|; % of the full model's peak force;\n"
+         "   steady: the mean over steps > 100, as the paper's steady error: the damped transient still rings there,\n"
+         "   and static condensation is exact only at rest)\n";
+}
+
+/// Hansen & Larsen's Table 2 figure for a model of ours, or 0 where the paper has none.
+double paper_step_s(const std::string& model) {
+  if (model == "full") return paper_full_step_s;
+  if (model == "setup1") return paper_setup1_step_s;
+  if (model == "setup2") return paper_setup2_step_s;
+  return 0.0;
+}
+
+void print_table2(const PaperResults& r, std::ostream& log) {
+  log << "\nTable 2: time per step (trapezoidal rule, dt = 0.05 s; real time at 20 Hz needs < 50 ms)\n";
+  log << format("  %-8s %6s %6s %12s %14s %11s %14s %10s\n", "model", "nodes", "dofs", "1998 (s)", "roifem (ms)", "p99 (ms)",
+                "frame rate", "vs full");
+  for (std::size_t k = 0; k < r.timing.size(); ++k) {
+    const auto& t = r.timing[k];
+    log << format("  %-8s %6lld %6lld %12.3f %14.4f %11.4f %11.0f Hz %9.2fx\n", t.model.c_str(), static_cast<long long>(t.nodes),
+                  static_cast<long long>(t.dofs), paper_step_s(t.model), t.step_s_median * 1e3, t.step_s_p99 * 1e3,
+                  1.0 / t.step_s_median, r.timing[0].step_s_median / t.step_s_median);
+  }
+  log << "  (1998: the paper's figures on its hardware; roifem: medians of per-step wall time on this machine)\n";
+}
+
+}  // namespace
+
+void print_paper_report(const PaperOptions& o, const PaperResults& r, std::ostream& log) {
+  print_findings(o, r, log);
+  print_tool_forces(r, log);
+  print_table2(r, log);
+  print_reductions(r, log);
+}
+
+void write_paper_tables(const PaperOptions& o, const PaperResults& results) {
+  {
+    io::CsvWriter csv(o.out / "errors.csv", "setup,reduction,ramp_s,step,time_s,mean_mm,max_mm");
+    for (const auto& c : results.reduction_curves)
+      for (std::size_t k = 0; k < c.mean_mm.size(); ++k)
+        csv.row(format("%s,%s,%g,%zu,%.4f,%.9g,%.9g", c.setup.c_str(), c.reduction.c_str(), c.ramp_s, k + 1,
+                       static_cast<double>(k + 1) * o.dt, c.mean_mm[k], c.max_mm[k]));
+    csv.close();
+  }
+  {
+    io::CsvWriter csv(o.out / "reductions.csv",
+                      "setup,reduction,dofs,extra_dofs,ramp_s,peak_max_mm,steady_mean_mm,step_s_median,setup_s");
+    for (const auto& r : results.reductions)
+      csv.row(format("%s,%s,%lld,%lld,%g,%.9g,%.9g,%.6e,%.6e", r.setup.c_str(), r.reduction.c_str(),
+                     static_cast<long long>(r.dofs), static_cast<long long>(r.extra_dofs), r.ramp_s, r.peak_max_mm,
+                     r.steady_mean_mm, r.step_s_median, r.setup_s));
+    csv.close();
+  }
+  {
+    io::CsvWriter csv(o.out / "timing.csv", "model,nodes,dofs,step_s_median,frame_rate_hz");
+    for (const auto& t : results.timing)
+      csv.row(format("%s,%lld,%lld,%.6e,%.1f", t.model.c_str(), static_cast<long long>(t.nodes), static_cast<long long>(t.dofs),
+                     t.step_s_median, 1.0 / t.step_s_median));
+    csv.close();
+  }
+  if (results.drive == PaperDrive::spatulas) {
+    io::CsvWriter csv(o.out / "force_errors.csv", "setup,reduction,ramp_s,step,time_s,force_full_mN,force_err_mN");
+    for (const auto& c : results.reduction_curves)
+      for (std::size_t k = 0; k < c.force_err_mN.size(); ++k)
+        csv.row(format("%s,%s,%g,%zu,%.4f,%.9g,%.9g", c.setup.c_str(), c.reduction.c_str(), c.ramp_s, k + 1,
+                       static_cast<double>(k + 1) * o.dt, c.force_full_mN[k], c.force_err_mN[k]));
+    csv.close();
+  }
+}
+
+}  // namespace roifem::experiments
