@@ -13,44 +13,12 @@
 #include "model/energy.hpp"
 #include "model/fem_model.hpp"
 #include "model/prescribed_motion.hpp"
+#include "test_models.hpp"
 
 namespace roifem::model {
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
-
-/// A point mass m on a spring k whose other end a tool moves by g(t) = d min(t / T, 1) in x:
-/// m x'' + k x = k g, from rest. Its exact response (undamped) and the tool's force on it.
-struct SpringMass {
-  double m = 0.5, k = 2 * pi * 2 * pi * 0.5, d = 1e-3, T = 0.4;  // 1 Hz
-  double omega() const { return std::sqrt(k / m); }
-  double ramp_response(double t) const {  // d/T (t - sin(w t) / w) for t >= 0
-    return t <= 0 ? 0.0 : d / T * (t - std::sin(omega() * t) / omega());
-  }
-  double x(double t) const { return ramp_response(t) - ramp_response(t - T); }
-  double g(double t) const { return d * std::min(t / T, 1.0); }
-  double force(double t) const { return k * (g(t) - x(t)); }  // on the mass, through the spring
-
-  /// The two nodes' six dofs: the mass's 0-2 and the tool's 3-5.
-  SecondOrderSystem all() const {
-    SecondOrderSystem s;
-    DenseMatrix K = DenseMatrix::Zero(6, 6);
-    K.topLeftCorner(3, 3).diagonal().setConstant(k);
-    K.bottomRightCorner(3, 3).diagonal().setConstant(k);
-    K.topRightCorner(3, 3).diagonal().setConstant(-k);
-    K.bottomLeftCorner(3, 3).diagonal().setConstant(-k);
-    s.K = K.sparseView();
-    s.M = diagonal_matrix(Vector::Constant(6, m));
-    s.C = diagonal_matrix(Vector::Zero(6));
-    s.damping = Damping::mass_proportional(0);
-    s.load = LoadHistory(6);
-    return s;
-  }
-  ToolElimination eliminated() const {
-    return eliminate_tools(all(),
-                           {{.tool = {.name = "hand", .nodes = {1}, .path = {Vec3(d, 0, 0), Ramp{T}}}, .dofs = {3, 4, 5}}});
-  }
-};
+using test::SpringMass;
 
 /// Max |F - F_exact| over [0, 3T] stepping the eliminated system by the trapezoidal rule at dt.
 double force_error(const SpringMass& sm, double dt, double* balance = nullptr) {

@@ -1,0 +1,108 @@
+#include "integrators/haptic_trapezoid.hpp"
+
+#include <algorithm>
+#include <string>
+
+#include "common/errors.hpp"
+#include "common/timer.hpp"
+
+namespace roifem::integrators {
+
+namespace {
+
+DirectSolve factor_effective_stiffness(const model::SecondOrderSystem& system, const model::AverageAcceleration& rule) {
+  try {
+    return {system, rule};
+  } catch (const solvers::NotPositiveDefinite& e) {
+    throw SolverError(std::string("haptic trapezoid: K + 2/dt C + 4/dt^2 M is not positive definite: ") + e.what());
+  }
+}
+
+}  // namespace
+
+HapticTrapezoid::HapticTrapezoid(const model::SecondOrderSystem& system, double dt)
+    : system_(system), rule_(dt), K_eff_(factor_effective_stiffness(system, rule_)) {
+  const Index n = system.size();
+  a_ = Vector::Zero(n);
+  f_.resize(n);
+  w_.resize(n);
+  u_next_.resize(n);
+  work_.resize(n);
+}
+
+void HapticTrapezoid::attach(const std::vector<std::array<Index, 3>>& node_dofs) {
+  const Stopwatch clock;
+  const Index n = system_.size();
+  if (node_dofs.empty()) throw InputError("haptic tool: holds no node");
+  std::vector<Index> held;
+  for (const auto& dofs : node_dofs)
+    for (const Index d : dofs) {
+      if (d < 0 || d >= n)
+        throw InputError("haptic tool: dof " + std::to_string(d) + " is not an unknown of the system (" + std::to_string(n) +
+                         " dofs)");
+      held.push_back(d);
+    }
+  std::vector<Index> sorted = held;
+  std::sort(sorted.begin(), sorted.end());
+  if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) throw InputError("haptic tool: a node is held twice");
+
+  const auto m3 = static_cast<Index>(held.size());
+  DenseMatrix Z(n, m3);
+  const Vector zero = Vector::Zero(n);
+  Vector unit = Vector::Zero(n), column(n);
+  for (Index j = 0; j < m3; ++j) {
+    unit[held[static_cast<std::size_t>(j)]] = 1.0;
+    K_eff_.solve(unit, zero, column);
+    Z.col(j) = column;
+    unit[held[static_cast<std::size_t>(j)]] = 0.0;
+  }
+  DenseMatrix W(m3, m3);
+  for (Index i = 0; i < m3; ++i) W.row(i) = Z.row(held[static_cast<std::size_t>(i)]);
+  W = 0.5 * (W + W.transpose()).eval();  // symmetric to rounding
+  Eigen::LLT<DenseMatrix> W_factor(W);
+  if (W_factor.info() != Eigen::Success) throw SolverError("haptic tool: its compliance W = H K_eff^-1 H^T is singular");
+
+  // K symmetric: the held dofs' rows are their columns.
+  std::vector<Eigen::Triplet<double>> entries;
+  for (std::size_t i = 0; i < held.size(); ++i)
+    for (SparseMatrix::InnerIterator it(system_.K, held[i]); it; ++it)
+      entries.emplace_back(static_cast<Index>(i % 3), it.row(), it.value());
+  rows_.resize(3, n);
+  rows_.setFromTriplets(entries.begin(), entries.end());
+  rows_.makeCompressed();
+  held_ = std::move(held);
+  Z_ = std::move(Z);
+  W_ = std::move(W);
+  W_factor_ = std::move(W_factor);
+  gap_.resize(m3);
+  attach_s_ = clock.seconds();
+}
+
+void HapticTrapezoid::reset(const model::State& initial) {
+  if (initial.u.size() != system_.size() || initial.v.size() != system_.size())
+    throw Error("internal: haptic trapezoid: state size mismatch");
+  t0_ = initial.t;
+  k_ = 0;
+  a_ = model::AverageAcceleration::consistent_acceleration(system_, initial);
+}
+
+Vec3 HapticTrapezoid::tick(const Vec3& g, model::State& s) {
+  if (held_.empty()) throw Error("internal: haptic trapezoid: tick before attach");
+  ++k_;
+  s.t = t0_ + static_cast<double>(k_) * rule_.dt();
+  system_.load.evaluate(s.t, f_);
+  Vec3 load_on_tool = Vec3::Zero();
+  for (std::size_t i = 0; i < held_.size(); ++i) load_on_tool[static_cast<Index>(i % 3)] += f_[held_[i]];
+  rule_.history(system_, s, a_, f_, w_);
+  K_eff_.solve(f_, w_, u_next_);  // the plain step
+  for (std::size_t i = 0; i < held_.size(); ++i) gap_[static_cast<Index>(i)] = u_next_[held_[i]] - g[static_cast<Index>(i % 3)];
+  W_factor_.solveInPlace(gap_);  // lambda
+  u_next_.noalias() -= Z_ * gap_;
+  rule_.advance(s, a_, u_next_, work_);
+  Vec3 force = -load_on_tool;
+  for (Index c = 0; c < 3; ++c)
+    for (decltype(rows_)::InnerIterator it(rows_, c); it; ++it) force[c] += it.value() * s.u[it.col()];
+  return force;
+}
+
+}  // namespace roifem::integrators

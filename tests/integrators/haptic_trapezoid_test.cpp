@@ -1,0 +1,174 @@
+// The haptic loop (a tool steered tick by tick through its compliance) against the analytic
+// spring-mass, against elimination (a second formulation of the same discrete problem), and its
+// compliance against the dense inverse of K_eff.
+#include "integrators/haptic_trapezoid.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/LU>
+#include <cmath>
+
+#include "common/errors.hpp"
+#include "condensation/reduced_model.hpp"
+#include "integrators/trapezoid.hpp"
+#include "simulation/scenario_model.hpp"
+#include "test_models.hpp"
+
+namespace roifem::integrators {
+namespace {
+
+/// Each node's (x, y, z) dofs in a free numbering.
+std::vector<std::array<Index, 3>> node_dofs(const fem::DofMap& dofs, const std::vector<int>& nodes) {
+  std::vector<std::array<Index, 3>> out;
+  for (int n : nodes) out.push_back({dofs.free_dof(n, 0), dofs.free_dof(n, 1), dofs.free_dof(n, 2)});
+  return out;
+}
+
+/// Max |F_haptic - F_exact| over [0, 3T] at dt, the tool's node held through its compliance.
+double spring_mass_force_error(const test::SpringMass& sm, double dt) {
+  const model::SecondOrderSystem all = sm.all();
+  HapticTrapezoid haptic(all, dt);
+  haptic.attach({{3, 4, 5}});
+  model::State s = model::State::at_rest(6);
+  haptic.reset(s);
+  double worst = 0;
+  const long steps = std::lround(3 * sm.T / dt);
+  for (long n = 1; n <= steps; ++n) {
+    const double t = static_cast<double>(n) * dt;
+    const Vec3 F = haptic.tick(Vec3(sm.g(t), 0, 0), s);
+    EXPECT_NEAR(s.u[3], sm.g(t), 1e-15);  // the held node is where the hand put it
+    worst = std::max(worst, std::abs(F[0] - sm.force(t)));
+    EXPECT_NEAR(F[1], 0.0, 1e-15);
+  }
+  return worst;
+}
+
+TEST(HapticTrapezoid, ASpringMassOnAHandFeelsTheAnalyticForceAtSecondOrder) {
+  const test::SpringMass sm;
+  const double coarse = spring_mass_force_error(sm, 0.01), fine = spring_mass_force_error(sm, 0.005);
+  EXPECT_NEAR(std::log2(coarse / fine), 2.0, 0.05);
+  EXPECT_LT(fine, 1e-3 * sm.k * sm.d);
+}
+
+/// The same tool twice: eliminated from `with_tool` (its path a ramp) and held through its
+/// compliance in `without` (the hand sent the path's positions tick by tick). Returns the largest
+/// force difference relative to the largest force, and checks the displacements agree.
+double haptic_against_elimination(const model::SecondOrderSystem& eliminated, const model::ToolSet& tools,
+                                  const model::SecondOrderSystem& without, const std::vector<std::array<Index, 3>>& held,
+                                  const std::function<Vector(const Vector&, double)>& eliminated_field,
+                                  const std::function<Vector(const Vector&)>& haptic_field, double dt, long steps) {
+  Trapezoid trapezoid(dt);
+  model::State a = model::State::at_rest(eliminated.size()), b = model::State::at_rest(without.size());
+  trapezoid.reset(eliminated, a);
+  HapticTrapezoid haptic(without, dt);
+  haptic.attach(held);
+  haptic.reset(b);
+  double worst = 0, largest = 0, field_worst = 0, field_largest = 0;
+  for (long n = 1; n <= steps; ++n) {
+    trapezoid.step(a);
+    const Vec3 F_haptic = haptic.tick(tools.tools()[0].path.at(a.t), b);
+    const Vector F = tools.forces(a.u, a.t);
+    worst = std::max(worst, (F_haptic - F.head<3>()).norm());
+    largest = std::max(largest, F.head<3>().norm());
+    const Vector ua = eliminated_field(a.u, a.t), ub = haptic_field(b.u);
+    field_worst = std::max(field_worst, (ua - ub).cwiseAbs().maxCoeff());
+    field_largest = std::max(field_largest, ua.cwiseAbs().maxCoeff());
+  }
+  EXPECT_LT(field_worst, 1e-10 * field_largest);
+  EXPECT_GT(largest, 0.0);
+  return worst / largest;
+}
+
+TEST(HapticTrapezoid, EqualsEliminationOnADampedBeamUnderGravity) {
+  const test::Beam beam;
+  const auto material = fem::Material::from_young_poisson(3000, 0.45, 1000, 0.8);
+  const std::vector<model::SetLoad> gravity{
+      {.set = "", .force = Vec3::Zero(), .ramp = model::Ramp{0.1}, .gravity = Vec3(0, 0, -9.81)}};
+  const model::SetTool tool{.name = "hand",
+                            .set = "x1",
+                            .center = Vec3::Zero(),
+                            .radius = 0,
+                            .path = {.displacement = Vec3(0, 1e-3, 2e-3),
+                                     .ramp = model::Ramp{.duration = 0.2, .shape = model::Ramp::Shape::smooth, .samples = {}}}};
+  const model::FemModel with_tool = model::build_fem_model(beam.mesh, material, {"x0"}, gravity, {tool});
+  const model::FemModel without = model::build_fem_model(beam.mesh, material, {"x0"}, gravity);
+  const double relative = haptic_against_elimination(
+      with_tool.system, with_tool.tools, without.system, node_dofs(*without.dofs, beam.mesh.set("x1").nodes),
+      [&](const Vector& u, double t) { return with_tool.displacement(u, t); },
+      [&](const Vector& u) { return Vector(without.dofs->expand(u)); }, 0.01, 60);
+  EXPECT_LT(relative, 1e-10);
+}
+
+TEST(HapticTrapezoid, EqualsEliminationOnTheCondensedPaperBrain) {
+  // Setup 1's ROI (306 nodes nearest the opening) condensed with and without a spatula on the
+  // right wall: the haptic loop on the tool-free condensed model (dense interface block) gives
+  // the eliminated model's force.
+  const test::PaperBrain brain;
+  const model::SetTool spatula{.name = "right",
+                               .set = "opening_right",
+                               .center = Vec3::Zero(),
+                               .radius = 0,
+                               .path = {.displacement = Vec3(2e-3, 0, 0), .ramp = model::Ramp{0.5}}};
+  const model::FemModel with_tool = model::build_fem_model(brain.mesh, fem::material_preset("paper"), {"base"}, {}, {spatula});
+  const roi::RoiSpec spec = test::nearest(306);
+  std::vector<int> roi_nodes = roi::select_roi_nodes(brain.mesh, *with_tool.dofs_with_tools, spec);
+  const roi::Partition without_partition = roi::partition_dofs(brain.model.system.K, brain.dofs(), roi_nodes);
+  const condensation::ReducedModel without(brain.model.system, without_partition, brain.dofs());
+  const std::vector<int>& wall = brain.mesh.set("opening_right").nodes;
+  std::erase_if(roi_nodes, [&](int n) { return std::binary_search(wall.begin(), wall.end(), n); });
+  const roi::Partition with_partition = roi::partition_dofs(with_tool.system.K, *with_tool.dofs, roi_nodes);
+  const condensation::ReducedModel eliminated(with_tool.system, with_partition, *with_tool.dofs);
+  const model::ToolSet tools = simulation::tools_in_reduced(with_tool, with_partition, eliminated.system().size());
+
+  // Compare the walls' loads-free models over the ROI nodes both integrate (the free ones).
+  const roi::NodeDofs in_eliminated = roi::node_dofs_in_reduced(roi_nodes, with_partition, *with_tool.dofs);
+  const roi::NodeDofs in_without = roi::node_dofs_in_reduced(roi_nodes, without_partition, brain.dofs());
+  auto gather = [](const roi::NodeDofs& nodes, const Vector& u) {
+    Vector out(3 * static_cast<Index>(nodes.size()));
+    for (std::size_t n = 0; n < nodes.size(); ++n)
+      for (std::size_t c = 0; c < 3; ++c) out[static_cast<Index>(3 * n + c)] = nodes[n][c] >= 0 ? u[nodes[n][c]] : 0.0;
+    return out;
+  };
+  // The tool-free model carries the paper's 1 mN forces: take them off, the eliminated one has none.
+  model::SecondOrderSystem unloaded = without.system();
+  unloaded.load = model::LoadHistory(unloaded.size());
+  const double relative = haptic_against_elimination(
+      eliminated.system(), tools, unloaded, roi::node_dofs_in_reduced(wall, without_partition, brain.dofs()),
+      [&](const Vector& u, double) { return gather(in_eliminated, u); }, [&](const Vector& u) { return gather(in_without, u); },
+      0.05, 40);
+  EXPECT_LT(relative, 1e-9);
+}
+
+TEST(HapticTrapezoid, ItsComplianceIsTheHeldBlockOfTheInverseEffectiveStiffness) {
+  const test::Beam beam;
+  const double dt = 0.01;
+  HapticTrapezoid haptic(beam.model.system, dt);
+  const std::vector<int>& nodes = beam.mesh.set("x1").nodes;
+  haptic.attach(node_dofs(*beam.model.dofs, nodes));
+  const model::AverageAcceleration rule(dt);
+  const DenseMatrix inverse = DenseMatrix(rule.effective_stiffness(beam.model.system)).inverse();
+  std::vector<Index> held;
+  for (const auto& d : node_dofs(*beam.model.dofs, nodes)) held.insert(held.end(), d.begin(), d.end());
+  const DenseMatrix& W = haptic.compliance();
+  ASSERT_EQ(W.rows(), static_cast<Index>(held.size()));
+  double worst = 0;
+  for (std::size_t i = 0; i < held.size(); ++i)
+    for (std::size_t j = 0; j < held.size(); ++j)
+      worst = std::max(worst, std::abs(W(static_cast<Index>(i), static_cast<Index>(j)) - inverse(held[i], held[j])));
+  EXPECT_LT(worst, 1e-10 * inverse.cwiseAbs().maxCoeff());
+}
+
+TEST(HapticTrapezoid, RefusesAToolOnNoNodeOutsideTheSystemOrHeldTwice) {
+  const test::Beam beam;
+  HapticTrapezoid haptic(beam.model.system, 0.01);
+  const Index n = beam.model.system.size();
+  EXPECT_THROW(haptic.attach({}), InputError);
+  EXPECT_THROW(haptic.attach({{0, 1, n}}), InputError);
+  EXPECT_THROW(haptic.attach({{0, 1, 2}, {3, 4, 2}}), InputError);
+  model::State s = model::State::at_rest(n);
+  haptic.reset(s);
+  EXPECT_THROW(haptic.tick(Vec3::Zero(), s), Error);  // nothing attached
+}
+
+}  // namespace
+}  // namespace roifem::integrators
