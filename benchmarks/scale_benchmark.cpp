@@ -63,24 +63,6 @@ std::string row_text(long nodes, const std::string& label, const std::optional<S
                     full ? io::format("%.3gx", vs_full).c_str() : "-", note.c_str());
 }
 
-/// The machine's DGEMM rate and read bandwidth, measured in a child (as the models are) and
-/// printed before the table: the VM behind one name differs between sessions by 2-3x in both.
-void report_machine_bounds(const std::filesystem::path& out) {
-  const ChildResult child = run_in_child([] { return measure_machine_bounds().serialize(); }, 300);
-  if (!child.ok) {
-    std::printf("Machine bounds: not measured (%s)\n", child.output.c_str());
-    return;
-  }
-  const MachineBounds b = MachineBounds::parse(child.output);
-  std::printf(
-      "Machine: %d threads, DGEMM %.1f GFLOP/s (a factorization's ceiling), streaming read %.1f GB/s (a direct "
-      "solve's)\n",
-      b.threads, b.dgemm_gflops, b.read_gb_per_s);
-  io::CsvWriter csv(out / "machine.csv", "threads,dgemm_gflops,read_gb_per_s");
-  csv.row(io::format("%d,%.6g,%.6g", b.threads, b.dgemm_gflops, b.read_gb_per_s));
-  csv.close();
-}
-
 int run(const Options& o) {
   std::filesystem::create_directories(o.out);
   report_machine_bounds(o.out);

@@ -3,11 +3,13 @@
 #include <cblas.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <sstream>
 #include <thread>
 #include <vector>
 
 #include "common/timer.hpp"
+#include "io/csv.hpp"
 #include "scale/child_process.hpp"
 #include "simulation/run_loop.hpp"
 
@@ -71,6 +73,22 @@ std::string MachineBounds::serialize() const {
 MachineBounds MachineBounds::parse(const std::string& text) {
   const auto f = parse_key_values(text);
   return {std::stoi(f.at("threads")), std::stod(f.at("dgemm_gflops")), std::stod(f.at("read_gb_per_s"))};
+}
+
+void report_machine_bounds(const std::filesystem::path& out) {
+  const ChildResult child = run_in_child([] { return measure_machine_bounds().serialize(); }, 300);
+  if (!child.ok) {
+    std::printf("Machine bounds: not measured (%s)\n", child.output.c_str());
+    return;
+  }
+  const MachineBounds b = MachineBounds::parse(child.output);
+  std::printf(
+      "Machine: %d threads, DGEMM %.1f GFLOP/s (a factorization's ceiling), streaming read %.1f GB/s (a direct "
+      "solve's)\n",
+      b.threads, b.dgemm_gflops, b.read_gb_per_s);
+  io::CsvWriter csv(out / "machine.csv", "threads,dgemm_gflops,read_gb_per_s");
+  csv.row(io::format("%d,%.6g,%.6g", b.threads, b.dgemm_gflops, b.read_gb_per_s));
+  csv.close();
 }
 
 }  // namespace roifem::bench

@@ -6,6 +6,7 @@
 ///     which reads its factor twice per step.
 /// Medians of repeated runs. The VM behind one name can differ between sessions by 2-3x in both,
 /// so the scale table prints them beside its figures.
+#include <filesystem>
 #include <string>
 
 namespace roifem::bench {
@@ -21,5 +22,10 @@ struct MachineBounds {
 };
 
 MachineBounds measure_machine_bounds();
+
+/// Measures the bounds in a child process (as the benchmarks measure their models), prints them
+/// before a benchmark's table (the VM behind one name differs between sessions by 2-3x in both)
+/// and writes DIR/machine.csv.
+void report_machine_bounds(const std::filesystem::path& out);
 
 }  // namespace roifem::bench

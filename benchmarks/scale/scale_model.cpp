@@ -13,6 +13,7 @@
 #include "mesh/gmsh_reader.hpp"
 #include "mesh/mesh_checks.hpp"
 #include "model/fem_model.hpp"
+#include "scale/brain_model.hpp"
 #include "scale/child_process.hpp"
 #include "simulation/run_loop.hpp"
 
@@ -20,34 +21,7 @@ namespace roifem::bench {
 
 namespace {
 
-constexpr double dt = 0.05;               // the paper's step
-constexpr double wall_force_N = 0.01601;  // as scenarios/paper-setup1.toml
-
-double peak_rss_mb() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // kB on Linux
-}
-
-struct Brain {
-  mesh::TetMesh mesh;
-  model::FemModel model;
-  double read_s = 0, assembly_s = 0;
-};
-
-std::unique_ptr<Brain> build_brain(const std::filesystem::path& mesh_file) {
-  auto brain = std::make_unique<Brain>();
-  Stopwatch clock;
-  brain->mesh = mesh::read_mesh(mesh_file);
-  mesh::check_mesh(brain->mesh);
-  brain->read_s = clock.seconds();
-  clock.restart();
-  brain->model = model::build_fem_model(brain->mesh, fem::material_preset("paper"), {"base"},
-                                        {{"opening_left", Vec3(-wall_force_N, 0, 0), model::Ramp{0.5}, {}},
-                                         {"opening_right", Vec3(wall_force_N, 0, 0), model::Ramp{0.5}, {}}});
-  brain->assembly_s = clock.seconds();
-  return brain;
-}
+constexpr double dt = 0.05;  // the paper's step
 
 /// Median and p99 of the per-tick time: load, step, displacement out.
 std::pair<double, double> time_steps(const model::SecondOrderSystem& system, integrators::Trapezoid& trapezoid,
@@ -93,25 +67,6 @@ void check_against_direct(const model::SecondOrderSystem& system, long steps, Sc
     worst = std::max(worst, (b.u - a.u).norm());
   }
   m.deviation_vs_direct = worst / peak;
-}
-
-roi::RoiSpec nearest_target(Index count) {
-  return {.kind = roi::RoiSpec::Kind::nearest, .center = Vec3(0, 0, 40 * mm), .radius = 0, .count = count, .set = {}};
-}
-
-struct Condensed {
-  std::unique_ptr<condensation::ReducedModel> condensation;
-  long interface_dofs = 0;
-};
-
-Condensed condense(const Brain& brain, Index roi_nodes) {
-  const auto& dofs = *brain.model.dofs;
-  const auto partition =
-      roi::partition_dofs(brain.model.system.K, dofs, roi::select_roi_nodes(brain.mesh, dofs, nearest_target(roi_nodes)));
-  Condensed c;
-  c.interface_dofs = static_cast<long>(partition.interface.size());
-  c.condensation = std::make_unique<condensation::ReducedModel>(brain.model.system, partition, dofs);
-  return c;
 }
 
 }  // namespace

@@ -1,0 +1,127 @@
+// Haptic: a surgeon's tool steered at the device's rate (1 kHz) on condensed brains. Per brain and
+// ROI (each in its own child process): the plain condensed step and the haptic tick (the hand's
+// new position in, the step, the tool's force out; integrators/haptic_trapezoid.hpp), 10,000 of
+// each taking turns in blocks, with their medians, tails and late ticks (over 1 ms) per 10,000 and
+// what the late ones met (preemption by another process, a page fault); and a control loop of
+// fixed arithmetic at the same tick length, the machine's own jitter. Writes DIR/haptic.csv.
+//   compile with: cmake --build --preset release --target roifem_haptic_benchmark
+//   sample run:   build/release/benchmarks/roifem_haptic_benchmark --nodes 20000 100000 --rois 300 1000
+//                   --out results/haptic
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+
+#include "brain_meshes.hpp"
+#include "haptic/haptic_model.hpp"
+#include "io/csv.hpp"
+#include "scale/child_process.hpp"
+#include "scale/machine_bounds.hpp"
+
+namespace roifem::bench {
+namespace {
+
+struct Options {
+  std::vector<long> nodes{20000, 100000};
+  std::vector<long> rois{300, 1000};
+  HapticOptions haptic;
+  std::filesystem::path out = "haptic-results";
+  double model_timeout_s = 1800;
+};
+
+/// "0.412 0.602 0.731 1.20 3" : median, p99, p99.9, max (ms), late per 10,000.
+std::string stats_text(const TickStats& t, long ticks) {
+  return io::format("%7.3f %7.3f %7.3f %7.2f %6.1f", t.median * 1e3, t.p99 * 1e3, t.p999 * 1e3, t.max * 1e3,
+                    1e4 * static_cast<double>(t.late) / static_cast<double>(ticks));
+}
+
+std::string stats_csv(const TickStats& t) {
+  return io::format("%.6g,%.6g,%.6g,%.6g,%ld,%ld,%ld,%ld,%ld", t.median * 1e3, t.p99 * 1e3, t.p999 * 1e3, t.max * 1e3, t.late,
+                    t.late_preempted, t.late_page_fault, t.page_faults, t.preemptions);
+}
+
+int run(const Options& o) {
+  std::filesystem::create_directories(o.out);
+  report_machine_bounds(o.out);
+  const long ticks = o.haptic.ticks;
+  const double deadline_ms = 1e3 / o.haptic.rate_hz;
+  std::string columns;
+  for (const char* who : {"plain", "haptic", "control"})
+    for (const char* what :
+         {"median_ms", "p99_ms", "p999_ms", "max_ms", "late", "late_preempted", "late_page_fault", "page_faults", "preemptions"})
+      columns += std::string(",") + who + "_" + what;
+  io::CsvWriter csv(o.out / "haptic.csv",
+                    "nodes,roi_nodes,system_dofs,interface_dofs,tool_nodes,setup_s,attach_ms,"
+                    "peak_force_N,ticks,rate_hz,blas_threads,memory_locked" +
+                        columns + ",tick_vs_step");
+  std::printf(
+      "Haptic: %ld ticks at %.0f Hz (dt = %.3g ms, deadline %.3g ms); a tool on the %ld wall nodes nearest the target; "
+      "plain = the condensed step (load, step, displacement out), tick = the hand's position in, the step, force and "
+      "displacement out; control = fixed arithmetic as long as the plain step\n",
+      ticks, o.haptic.rate_hz, deadline_ms, deadline_ms, o.haptic.tool_nodes);
+  std::printf("%8s %5s %6s %6s %5s %8s | %-38s | %-38s | %-38s | %6s  %s\n", "nodes", "ROI", "dofs", "iface", "tool", "attach",
+              "plain step: median p99 p99.9 max (ms) late", "haptic tick: median p99 p99.9 max late",
+              "control: median p99 p99.9 max late", "tick/", "late ticks met");
+  for (long n : o.nodes) {
+    const auto mesh_file = brain_mesh_file(n);
+    for (long roi : o.rois) {
+      const ChildResult child =
+          run_in_child([&] { return measure_haptic(mesh_file, roi, o.haptic).serialize(); }, o.model_timeout_s);
+      if (!child.ok) {
+        std::printf("%8ld %5ld  failed: %s\n", n, roi, child.output.c_str());
+        csv.row(io::format("%ld,%ld,,,,,,,,,,", n, roi));
+        continue;
+      }
+      const HapticMeasurement m = HapticMeasurement::parse(child.output);
+      const double ratio = m.haptic.median / m.plain.median;
+      std::printf("%8ld %5ld %6ld %6ld %5ld %6.0fms | %-38s | %-38s | %-38s | %5.2fx  %ld preempted, %ld page fault%s\n", m.nodes,
+                  m.roi_nodes, m.system_dofs, m.interface_dofs, m.tool_nodes, m.attach_s * 1e3,
+                  stats_text(m.plain, ticks).c_str(), stats_text(m.haptic, ticks).c_str(), stats_text(m.control, ticks).c_str(),
+                  ratio, m.haptic.late_preempted, m.haptic.late_page_fault, m.memory_locked ? " (memory locked)" : "");
+      std::fflush(stdout);
+      csv.row(io::format("%ld,%ld,%ld,%ld,%ld,%.6g,%.6g,%.6g,%ld,%.6g,%d,%d,", m.nodes, m.roi_nodes, m.system_dofs,
+                         m.interface_dofs, m.tool_nodes, m.setup_s, m.attach_s * 1e3, m.peak_force_N, ticks, o.haptic.rate_hz,
+                         m.blas_threads, m.memory_locked ? 1 : 0) +
+              stats_csv(m.plain) + "," + stats_csv(m.haptic) + "," + stats_csv(m.control) + io::format(",%.6g", ratio));
+    }
+  }
+  csv.close();
+  std::printf(
+      "(late: ticks over %.3g ms per 10,000; late ticks met: of the haptic tick's late ones, how many saw an "
+      "involuntary context switch or a page fault)\nwrote %s\n",
+      deadline_ms, (o.out / "haptic.csv").c_str());
+  return 0;
+}
+
+}  // namespace
+}  // namespace roifem::bench
+
+int main(int argc, char** argv) {
+  using namespace roifem::bench;
+  Options o;
+  CLI::App app{
+      "roifem haptic benchmark: a tool steered at a haptic device's rate on condensed brains; the tick\n"
+      "(position in, condensed step, force out) beside the plain condensed step, with tails and late\n"
+      "ticks. Meshes are generated once and cached in $ROIFEM_MESH_CACHE (default ./bench-meshes)."};
+  app.add_option("--nodes", o.nodes, "brain sizes (nodes)")->capture_default_str();
+  app.add_option("--rois", o.rois, "ROI sizes (nodes nearest the target)")->capture_default_str();
+  app.add_option("--tool-nodes", o.haptic.tool_nodes, "wall nodes the tool holds")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app.add_option("--ticks", o.haptic.ticks, "timed ticks of each kind")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_option("--rate", o.haptic.rate_hz, "the device's rate (Hz): the time step and the deadline")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app.add_option("--blas-threads", o.haptic.blas_threads, "BLAS threads (0: as the BLAS starts)")->capture_default_str();
+  app.add_flag("--lock-memory", o.haptic.lock_memory, "mlockall the model before timing (no page faults from paging)");
+  app.add_option("--out", o.out, "directory for haptic.csv")->capture_default_str();
+  app.add_option("--model-timeout", o.model_timeout_s, "seconds after which one model is stopped and its row marked failed")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  CLI11_PARSE(app, argc, argv);
+  try {
+    return run(o);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "roifem_haptic_benchmark: %s\n", e.what());
+    return 1;
+  }
+}
