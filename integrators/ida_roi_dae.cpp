@@ -110,6 +110,11 @@ void IdaRoiDae::advance_to(double t_out, Vector& u_d, Vector& u_s) {
   u_s = y.tail(ns);
 }
 
+Vector IdaRoiDae::velocity_d() const {
+  const Index nd = K_dd_.rows();
+  return sundials::view(y_.get()).segment(nd, nd);
+}
+
 Stats IdaRoiDae::stats() const {
   Stats s = sundials::ida_stats(memory_.get());
   if (solver_) s.factorization_s = solver_->setup_seconds();

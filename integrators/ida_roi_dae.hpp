@@ -29,6 +29,9 @@ class IdaRoiDae {
   void reset(double t0);
   /// Advances to t_out; u_d (ROI) and u_s (static part) on return.
   void advance_to(double t_out, Vector& u_d, Vector& u_s);
+  /// v_d (ROI) at the last advance_to.
+  Vector velocity_d() const;
+  double t() const { return t_; }
   Stats stats() const;
 
  private:

@@ -11,6 +11,7 @@
 #include "integrators/arkode.hpp"
 #include "integrators/gsl_odeiv2.hpp"
 #include "integrators/ida.hpp"
+#include "integrators/roi_dae.hpp"
 #include "integrators/tool_dae.hpp"
 #include "integrators/trapezoid.hpp"
 
@@ -143,6 +144,19 @@ std::vector<IntegratorInfo> build_table() {
                   .tableau = nullptr,
                   .make = make_ida,
                   .summary = "IDA with BDF capped at order 2 (A-stable)"});
+  rows.push_back({.name = "ida-roi-dae",
+                  .family = Family::ida,
+                  .order = 5,
+                  .is_explicit = false,
+                  .fixed_step = false,
+                  .adaptive = true,
+                  .linear_solver = LS::klu,
+                  .method_id = 5,
+                  .tableau = nullptr,
+                  .make = make_roi_dae,
+                  .summary = "IDA on the ROI model uncondensed: the static part kept as algebraic unknowns "
+                             "(scenarios with an [roi] and static condensation; tools eliminated), KLU",
+                  .needs_uncondensed = true});
   auto tool_dae = [&](const char* name, ToolFormulation formulation, const char* summary) {
     rows.push_back({.name = name,
                     .family = Family::ida,

@@ -49,8 +49,9 @@ struct IntegratorInfo {
   int method_id = -1;  ///< the family's own choice: an ARKODE table ID, IDA's maximum BDF order, an index of GSL's steppers
   ButcherTableau (*tableau)() = nullptr;  ///< explicit Runge-Kutta methods: the tableau the stability search reads
   IntegratorMaker make = nullptr;
-  std::string summary;       ///< one line for --help and the README
-  bool needs_tools = false;  ///< a DAE formulation of a model with tools: runs only where there are some
+  std::string summary;             ///< one line for --help and the README
+  bool needs_tools = false;        ///< a DAE formulation of a model with tools: runs only where there are some
+  bool needs_uncondensed = false;  ///< integrates a static condensation's full system: runs only on one
 };
 
 /// Every integrator, in the order `compare` runs them and `--help` lists them.

@@ -54,6 +54,9 @@ class ReducedModel {
   const model::SecondOrderSystem& system() const { return reduced_; }
   /// Gives the reduced system its DAE form with the tools' dofs kept (system().constrained).
   void attach_constrained_form(std::shared_ptr<const model::ConstrainedForm> form) { reduced_.constrained = std::move(form); }
+  /// Gives the reduced system (a static condensation) the full system it came from
+  /// (system().uncondensed).
+  void attach_uncondensed_form(std::shared_ptr<const model::UncondensedForm> form) { reduced_.uncondensed = std::move(form); }
   const roi::Partition& partition() const { return partition_; }
   const Reduction& reduction() const { return reduction_; }
   /// Static-part vectors kept (Craig-Bampton modes or POD vectors), and their (Ritz) frequencies (rad/s).

@@ -318,15 +318,23 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
   const long outputs = std::lround(t_end / sc.dt);
   if (outputs < 1) throw InputError("compare: --t-end must cover at least one output step of " + number_text(sc.dt) + " s");
   std::vector<std::string> names = o.integrators;
-  if (names.empty())  // every integrator that applies: the tools' DAE forms where there are tools
+  auto applies = [&](const integrators::IntegratorInfo& info) {
+    return (!info.needs_tools || system.constrained) && (!info.needs_uncondensed || system.uncondensed);
+  };
+  if (names.empty())  // every integrator that applies: the tools' DAE forms where there are tools, ...
     for (const auto& info : integrators::integrator_table())
-      if (!info.needs_tools || system.constrained) names.push_back(info.name);
-  for (const auto& name : names)  // unknown names, and a DAE form without tools, fail before any work
-    if (integrators::integrator_info(name).needs_tools && !system.constrained)
+      if (applies(info)) names.push_back(info.name);
+  for (const auto& name : names) {  // unknown names, and a DAE form that does not apply, fail before any work
+    const integrators::IntegratorInfo& info = integrators::integrator_info(name);
+    if (info.needs_tools && !system.constrained)
       throw InputError("compare: " + name + " integrates a model with tools ([[tool]]) as a DAE, and " + sc.file.string() +
                        (built->condensation
                             ? " reduces it with mass carried (the DAE forms need the full model or static condensation)"
                             : " has none"));
+    if (info.needs_uncondensed && !system.uncondensed)
+      throw InputError("compare: " + name + " integrates an ROI model with its static part uncondensed, and " + sc.file.string() +
+                       (built->condensation ? " reduces it otherwise than by static condensation" : " has no [roi]"));
+  }
 
   const Stopwatch clock;
   const model::ModalReference modal(system, model::State::at_rest(system.size()));

@@ -45,6 +45,7 @@ struct ModalBlock {
 };
 
 struct ConstrainedForm;  // prescribed_motion.hpp
+struct UncondensedForm;  // uncondensed_form.hpp
 
 struct SecondOrderSystem {
   SparseMatrix M, C, K;  ///< in full, for factorizations
@@ -56,6 +57,9 @@ struct SecondOrderSystem {
   /// Set where tools were eliminated from a larger system: that system and its tools, for the
   /// DAE formulations that keep the tools' dofs as unknowns (integrators/ida_tool_dae.hpp).
   std::shared_ptr<const ConstrainedForm> constrained;
+  /// Set on a static condensation: the full system it came from, for the DAE that keeps the static
+  /// part as algebraic unknowns (integrators/ida_roi_dae.hpp).
+  std::shared_ptr<const UncondensedForm> uncondensed;
   Index size() const { return K.rows(); }
   /// y = K x, through K_split when there is one.
   void apply_stiffness(const Eigen::Ref<const Vector>& x, Eigen::Ref<Vector> y) const;

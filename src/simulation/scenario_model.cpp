@@ -6,6 +6,7 @@
 #include "mesh/gmsh_reader.hpp"
 #include "mesh/mesh_checks.hpp"
 #include "model/prescribed_motion.hpp"
+#include "model/uncondensed_form.hpp"
 
 namespace roifem::simulation {
 
@@ -74,6 +75,11 @@ std::unique_ptr<ScenarioModel> build_scenario_model(const scenario::Scenario& sc
                                : m->full.tools;
   if (m->condensation && !m->full.tools.empty() && sc.reduction.is_static_condensation())
     m->condensation->attach_constrained_form(condensed_constrained_form(*m, sc.reduction));
+  if (m->condensation && sc.reduction.is_static_condensation()) {
+    const roi::Partition& p = m->condensation->partition();
+    m->condensation->attach_uncondensed_form(std::make_shared<const model::UncondensedForm>(
+        model::UncondensedForm{.full = &m->full.system, .roi = p.d, .static_part = p.s}));
+  }
   return m;
 }
 

@@ -1,0 +1,42 @@
+#include "integrators/roi_dae.hpp"
+
+#include "common/errors.hpp"
+#include "integrators/integrator_table.hpp"
+#include "model/uncondensed_form.hpp"
+
+namespace roifem::integrators {
+
+std::unique_ptr<Integrator> make_roi_dae(const IntegratorInfo&, const StepControl& control) {
+  return std::make_unique<RoiDae>(control);
+}
+
+RoiDae::RoiDae(StepControl control) : control_(control) {
+  if (!(control_.rtol > 0 && control_.atol > 0)) throw InputError("ida-roi-dae: tolerances rtol and atol must be positive");
+}
+
+void RoiDae::reset(const model::SecondOrderSystem& system, const model::State& initial) {
+  if (!system.uncondensed)
+    throw InputError(
+        "ida-roi-dae integrates an ROI model with its static part kept as algebraic unknowns: it needs a scenario with "
+        "an [roi] reduced by static condensation (reduction = \"static\")");
+  if (initial.u.squaredNorm() != 0 || initial.v.squaredNorm() != 0)
+    throw InputError("ida-roi-dae: starts at rest only (IDA makes the static part consistent)");
+  const model::UncondensedForm& form = *system.uncondensed;
+  roi::Partition partition;
+  partition.d = form.roi;
+  partition.s = form.static_part;
+  dae_ = std::make_unique<IdaRoiDae>(*form.full, partition, control_);
+  dae_->reset(initial.t);
+}
+
+void RoiDae::advance_to(double t_out, model::State& state) {
+  if (!dae_) throw Error("internal: ida-roi-dae: advance_to before reset");
+  dae_->advance_to(t_out, u_d_, u_s_);
+  state.u = u_d_;
+  state.v = dae_->velocity_d();
+  state.t = dae_->t();
+}
+
+Stats RoiDae::stats() const { return dae_ ? dae_->stats() : Stats{}; }
+
+}  // namespace roifem::integrators
