@@ -2,8 +2,8 @@
 // ROI (each in its own child process): the plain condensed step and the haptic tick (the hand's
 // new position in, the step, the tool's force out; integrators/haptic_trapezoid.hpp), 10,000 of
 // each taking turns in blocks, with their medians, tails and late ticks (over 1 ms) per 10,000 and
-// what the late ones met (preemption by another process, a page fault); and a control loop of
-// fixed arithmetic at the same tick length, the machine's own jitter. Writes DIR/haptic.csv.
+// what the late ones met (preemption by another process, a page fault); and a control loop that
+// streams the factor's bytes at the same tick length, the machine's own jitter. Writes DIR/haptic.csv.
 //   compile with: cmake --build --preset release --target roifem_haptic_benchmark
 //   sample run:   build/release/benchmarks/roifem_haptic_benchmark --nodes 20000 100000 --rois 300 1000
 //                   --out results/haptic
@@ -56,7 +56,7 @@ int run(const Options& o) {
   std::printf(
       "Haptic: %ld ticks at %.0f Hz (dt = %.3g ms, deadline %.3g ms); a tool on the %ld wall nodes nearest the target; "
       "plain = the condensed step (load, step, displacement out), tick = the hand's position in, the step, force and "
-      "displacement out; control = fixed arithmetic as long as the plain step\n",
+      "displacement out; control = a read of the factor's dense block's bytes, as long as the plain step\n",
       ticks, o.haptic.rate_hz, deadline_ms, deadline_ms, o.haptic.tool_nodes);
   std::printf("%8s %5s %6s %6s %5s %8s | %-38s | %-38s | %-38s | %6s  %s\n", "nodes", "ROI", "dofs", "iface", "tool", "attach",
               "plain step: median p99 p99.9 max (ms) late", "haptic tick: median p99 p99.9 max late",

@@ -58,8 +58,14 @@ IdaToolDae::IdaToolDae(const model::SecondOrderSystem& all, const std::vector<mo
     }
   }
   if (tool_dofs_.empty()) throw Error("internal: IDA tool DAE without tools");
-  if (!(model::is_diagonal(all.M) && model::is_diagonal(all.C)))
-    throw ModelError("IDA tool DAE: needs the lumped (diagonal) M and C");
+  // The tools' nodes' own inertia moves with them: M and C must not couple their dofs to others
+  // (lumped there; a Guyan or Craig-Bampton mass couples only the interface and modal coordinates).
+  for (const Index dof : tool_dofs_)
+    for (const SparseMatrix* A : {&all.M, &all.C})
+      for (SparseMatrix::InnerIterator it(*A, dof); it; ++it)
+        if (it.row() != dof && it.value() != 0.0)
+          throw ModelError("IDA tool DAE: M or C couples a tool's dof to another (it must be lumped at the tools' nodes)");
+  mass_inverse_ = std::make_unique<model::MassInverse>(all.M);
   H_ = model::selection_matrix(tool_dofs_, n());
   Ht_ = H_.transpose();
   S_ = SparseMatrix(3 * static_cast<Index>(tools.size()), p());
@@ -142,7 +148,8 @@ void IdaToolDae::make_consistent(double t, const Vector& u_in, const Vector& v_i
   }
   all_.load.evaluate(t, f_);
   const Vector rest = f_ - all_.C * v - all_.K * u;  // M a = rest + H^T lambda
-  Vector a = rest.cwiseQuotient(all_.M.diagonal());
+  Vector a(n);
+  mass_inverse_->apply(rest, a);  // M is block diagonal between the tools' dofs and the rest
   for (Index i = 0; i < p; ++i) a[tool_dofs_[static_cast<std::size_t>(i)]] = ddG[i];
   const Vector lambda = H_ * (all_.M * a - rest);
   auto y = sundials::view(y_.get()), yp = sundials::view(yp_.get());

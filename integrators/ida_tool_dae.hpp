@@ -22,6 +22,7 @@
 #include "integrators/step_control.hpp"
 #include "integrators/sundials/handles.hpp"
 #include "integrators/sundials/klu_solver.hpp"
+#include "model/mass_inverse.hpp"
 #include "model/prescribed_motion.hpp"
 
 namespace roifem::integrators {
@@ -34,7 +35,8 @@ ToolFormulation parse_formulation(std::string_view name);
 
 class IdaToolDae {
  public:
-  /// `all`: the system with the tools' dofs among its unknowns (M, C lumped there); `rtol`/`atol`
+  /// `all`: the system with the tools' dofs among its unknowns (M, C lumped at them: a full model,
+  /// or one reduced with or without the static part's mass); `rtol`/`atol`
   /// from `control` (IDA's steps are error-controlled); `baumgarte_rate`: a (1/s), index 1 only.
   IdaToolDae(const model::SecondOrderSystem& all, const std::vector<model::ToolDofs>& tools, ToolFormulation formulation,
              StepControl control, double baumgarte_rate = 100.0);
@@ -79,6 +81,7 @@ class IdaToolDae {
   std::vector<int> tool_component_;  ///< x, y or z of each tool dof
   std::vector<Index> tool_of_dof_;
   SparseMatrix H_, Ht_, S_;
+  std::unique_ptr<model::MassInverse> mass_inverse_;  ///< for consistent accelerations
   SparseMatrix dF_dy_, dF_dyp_;
   Vector f_;
   sundials::Context context_;

@@ -17,9 +17,9 @@ ToolDae::ToolDae(std::string name, ToolFormulation formulation, StepControl cont
 void ToolDae::reset(const model::SecondOrderSystem& system, const model::State& initial) {
   if (!system.constrained)
     throw InputError(name_ + " integrates a model with tools ([[tool]]) as a constrained DAE, and this one has " +
-                     (system.modal || !system.M_split.empty() ? "its tools eliminated by a reduction that carries mass: the DAE "
-                                                                "forms run the full model or static condensation"
-                                                              : "none: choose an integrator of the plain equations (ida-bdf5)"));
+                     (system.modal ? "its tools eliminated by a reduction whose basis is learnt from the eliminated model's "
+                                     "loads (POD): the tool-kept model would learn another; use craig-bampton"
+                                   : "none: choose an integrator of the plain equations (ida-bdf5)"));
   if (initial.u.squaredNorm() != 0 || initial.v.squaredNorm() != 0)
     throw InputError(name_ + ": starts at rest only (the tools' nodes on their paths)");
   form_ = system.constrained.get();

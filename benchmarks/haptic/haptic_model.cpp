@@ -98,31 +98,35 @@ std::vector<std::array<Index, 3>> tool_dofs(const Brain& brain, const condensati
   return dofs;
 }
 
-/// Fixed arithmetic (a dependent chain in registers: no memory, no calls) of about `seconds`.
+/// The machine's own jitter at the tick's length and memory traffic: reads `bytes` (about the
+/// condensed factor's dense block, which a solve reads twice), as many passes as take about
+/// `seconds`; no solver, no BLAS, no allocation.
 class Control {
  public:
-  explicit Control(double seconds) {
-    auto time_run = [this] {
-      const Stopwatch clock;
-      run();
-      return clock.seconds();
+  Control(double seconds, std::size_t bytes) : data_(std::max<std::size_t>(bytes / sizeof(double), 1 << 17), 1.0) {
+    auto median_of_runs = [this] {
+      std::vector<double> times;
+      for (int k = 0; k < 9; ++k) {
+        const Stopwatch clock;
+        run();
+        times.push_back(clock.seconds());
+      }
+      return simulation::median(times);
     };
-    double took = time_run();
-    while (took < 1e-4) {
-      iterations_ *= 2;
-      took = time_run();
-    }
-    iterations_ = std::max(1000L, std::lround(static_cast<double>(iterations_) * seconds / took));
+    for (int round = 0; round < 3; ++round)
+      passes_ = std::max(1L, std::lround(static_cast<double>(passes_) * seconds / median_of_runs()));
   }
   void run() {
-    double x = sink_;
-    for (long k = 0; k < iterations_; ++k) x = x * 0.999999 + 1e-6;
-    sink_ = x;
+    double sum = 0;
+    for (long pass = 0; pass < passes_; ++pass)
+      for (const double x : data_) sum += x;
+    sink_ = sum;
   }
 
  private:
-  long iterations_ = 1000;
-  volatile double sink_ = 1.0;
+  std::vector<double> data_;
+  long passes_ = 1;
+  volatile double sink_ = 0;
 };
 
 }  // namespace
@@ -227,11 +231,13 @@ HapticMeasurement measure_haptic(const std::filesystem::path& mesh_file, Index r
     timed(plain_step, plain_ticks, false);
     timed(haptic_tick, haptic_ticks, false);
   }
+  const auto interface_dofs = static_cast<std::size_t>(condensed.interface_dofs);
   Control control(simulation::median([&] {
-    TickSamples probe;
-    for (int k = 0; k < 50; ++k) timed(plain_step, probe, true);
-    return probe.seconds;
-  }()));
+                    TickSamples probe;
+                    for (int k = 0; k < 50; ++k) timed(plain_step, probe, true);
+                    return probe.seconds;
+                  }()),
+                  interface_dofs * interface_dofs * sizeof(double) / 2);
   constexpr long block = 500;  // ticks of each in turn
   for (long done = 0; done < o.ticks; done += block) {
     const long count = std::min(block, o.ticks - done);

@@ -8,8 +8,8 @@
 /// Beside each tick's wall time the benchmark reads the thread's page faults and context switches
 /// (getrusage, outside the timed interval), so that a late tick can be told apart: preempted by
 /// another process (an involuntary context switch), a page fault, or neither (the work itself,
-/// caches, the BLAS). A control loop of fixed arithmetic with no solver shows the machine's own
-/// jitter at the same tick length.
+/// caches, the BLAS). A control loop that reads as many bytes as the condensed factor's dense block
+/// (what a solve reads twice), with no solver, shows the machine's own jitter at the tick's length.
 #include <filesystem>
 #include <string>
 

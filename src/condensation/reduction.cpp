@@ -13,12 +13,13 @@ namespace roifem::condensation {
 namespace {
 
 constexpr std::array<ReductionInfo, 4> table{{
-    {"static", false, false, false, nullptr,
+    {"static", false, false, false, nullptr, false,
      "the paper's static condensation: K~ = K_dd - K_ds K_ss^-1 K_sd; the static part answers without inertia"},
-    {"guyan", false, false, true, nullptr, "the static part's mass carried into the ROI through the static modes, M~ = T^T M T"},
-    {"craig-bampton", true, true, true, fixed_interface_modes,
+    {"guyan", false, false, true, nullptr, false,
+     "the static part's mass carried into the ROI through the static modes, M~ = T^T M T"},
+    {"craig-bampton", true, true, true, fixed_interface_modes, false,
      "K fixed-interface modes of (K_ss, M_ss) as extra generalized coordinates"},
-    {"pod", true, false, true, pod_modes,
+    {"pod", true, false, true, pod_modes, true,
      "K fixed-interface vectors learnt from the full model's step responses (mass-weighted POD)"},
 }};
 

@@ -22,11 +22,12 @@ struct BasisRequest;  // static_basis.hpp
 using BasisMaker = model::Modes (*)(const BasisRequest&);
 
 struct ReductionInfo {
-  std::string_view key;   ///< scenario: [roi] reduction = "<key>"; CLI label: <key> or <key>-K
-  bool counted;           ///< the CLI label takes a count K (modes or vectors): scenario key `modes`
-  bool takes_cutoff;      ///< instead of K, every mode below a frequency: scenario key `cutoff_rad_s`
-  bool carries_mass;      ///< the static part's inertia moves with the ROI (needs a lumped M, C)
-  BasisMaker make_basis;  ///< nullptr: no coordinates beyond the static modes
+  std::string_view key;    ///< scenario: [roi] reduction = "<key>"; CLI label: <key> or <key>-K
+  bool counted;            ///< the CLI label takes a count K (modes or vectors): scenario key `modes`
+  bool takes_cutoff;       ///< instead of K, every mode below a frequency: scenario key `cutoff_rad_s`
+  bool carries_mass;       ///< the static part's inertia moves with the ROI (needs a lumped M, C)
+  BasisMaker make_basis;   ///< nullptr: no coordinates beyond the static modes
+  bool learns_from_loads;  ///< the basis is learnt from the model's own response to its loads (POD)
   std::string_view description;
 };
 

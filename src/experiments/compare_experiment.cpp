@@ -329,7 +329,7 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
     if (info.needs_tools && !system.constrained)
       throw InputError("compare: " + name + " integrates a model with tools ([[tool]]) as a DAE, and " + sc.file.string() +
                        (built->condensation
-                            ? " reduces it with mass carried (the DAE forms need the full model or static condensation)"
+                            ? " reduces it by a basis learnt from its loads (POD): the DAE forms need another reduction"
                             : " has none"));
     if (info.needs_uncondensed && !system.uncondensed)
       throw InputError("compare: " + name + " integrates an ROI model with its static part uncondensed, and " + sc.file.string() +

@@ -12,9 +12,9 @@ namespace roifem::simulation {
 
 namespace {
 
-/// The condensed model's DAE form (static condensation): the full model with the tools' dofs as
-/// unknowns, condensed onto the ROI and the tools' nodes (the same static part, so the same
-/// dynamics), with the tools' dofs and the eliminated model's unknowns placed in it.
+/// The reduced model's DAE form: the full model with the tools' dofs as unknowns, reduced onto the
+/// ROI and the tools' nodes (the same static part, so the same dynamics and, for Craig-Bampton, the
+/// same modes), with the tools' dofs and the eliminated model's unknowns placed in it.
 std::shared_ptr<const model::ConstrainedForm> condensed_constrained_form(const ScenarioModel& m,
                                                                          const condensation::Reduction& r) {
   const model::ConstrainedForm& full_form = *m.full.system.constrained;
@@ -35,6 +35,10 @@ std::shared_ptr<const model::ConstrainedForm> condensed_constrained_form(const S
     const Index full = m.full.dofs->full_dof(e);
     form->kept.push_back(position[static_cast<std::size_t>(all_dofs.free_dof(full / 3, static_cast<int>(full % 3)))]);
   }
+  // The same static part, so the same coordinates beyond the ROI (Craig-Bampton's modes), last in both.
+  const Index modes = m.condensation->num_modes();
+  if (reduced.num_modes() != modes) throw Error("internal: the tools' DAE form has other modal coordinates");
+  for (Index j = 0; j < modes; ++j) form->kept.push_back(static_cast<Index>(partition.d.size()) + j);
   return form;
 }
 
@@ -73,7 +77,8 @@ std::unique_ptr<ScenarioModel> build_scenario_model(const scenario::Scenario& sc
   if (!m->full.tools.empty())
     m->tools = m->condensation ? tools_in_reduced(m->full, m->condensation->partition(), m->condensation->system().size())
                                : m->full.tools;
-  if (m->condensation && !m->full.tools.empty() && sc.reduction.is_static_condensation())
+  // (Not for a basis learnt from the loads: the tool-kept model has other loads, so another basis.)
+  if (m->condensation && !m->full.tools.empty() && !sc.reduction.kind->learns_from_loads)
     m->condensation->attach_constrained_form(condensed_constrained_form(*m, sc.reduction));
   if (m->condensation && sc.reduction.is_static_condensation()) {
     const roi::Partition& p = m->condensation->partition();
