@@ -26,6 +26,7 @@ struct Options {
   HapticOptions haptic;
   std::filesystem::path out = "haptic-results";
   double model_timeout_s = 1800;
+  bool machine_bounds = true;
 };
 
 /// "0.412 0.602 0.731 1.20 3" : median, p99, p99.9, max (ms), late per 10,000.
@@ -41,7 +42,7 @@ std::string stats_csv(const TickStats& t) {
 
 int run(const Options& o) {
   std::filesystem::create_directories(o.out);
-  report_machine_bounds(o.out);
+  if (o.machine_bounds) report_machine_bounds(o.out);
   const long ticks = o.haptic.ticks;
   const double deadline_ms = 1e3 / o.haptic.rate_hz;
   std::string columns;
@@ -117,6 +118,7 @@ int main(int argc, char** argv) {
   app.add_option("--model-timeout", o.model_timeout_s, "seconds after which one model is stopped and its row marked failed")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  app.add_flag("!--no-machine-bounds", o.machine_bounds, "skip measuring the machine's bounds (smoke tests)");
   CLI11_PARSE(app, argc, argv);
   try {
     return run(o);

@@ -36,6 +36,7 @@ struct Options {
   std::filesystem::path out = "scale-results";
   TimingOptions timing;
   double model_timeout_s = 1800;
+  bool machine_bounds = true;
 };
 
 /// "300" -> 300 nodes; "3%" -> 3% of the brain's nodes.
@@ -65,7 +66,7 @@ std::string row_text(long nodes, const std::string& label, const std::optional<S
 
 int run(const Options& o) {
   std::filesystem::create_directories(o.out);
-  report_machine_bounds(o.out);
+  if (o.machine_bounds) report_machine_bounds(o.out);
   io::CsvWriter csv(o.out / "scale.csv",
                     "nodes,model,roi_nodes,system_dofs,interface_dofs,read_s,assembly_s,factorization_s,condensation_s,"
                     "integrator_setup_s,setup_s,step_median_ms,step_p99_ms,frame_rate_hz,steps_timed,peak_rss_mb,"
@@ -183,6 +184,7 @@ int main(int argc, char** argv) {
   app.add_option("--model-timeout", o.model_timeout_s, "seconds after which one model is stopped and its row marked failed")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  app.add_flag("!--no-machine-bounds", o.machine_bounds, "skip measuring the machine's bounds (smoke tests)");
   CLI11_PARSE(app, argc, argv);
   try {
     return run(o);

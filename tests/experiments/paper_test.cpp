@@ -29,6 +29,7 @@ class PaperExperiment : public ::testing::Test {
     o.mesh = std::string(ROIFEM_MESH_DIR) + "/brain-800.msh";
     o.out = dir->path();
     o.plots = false;
+    o.timing_steps = 50;  // (timing is not asserted here)
     std::ostringstream log;
     results = new PaperResults(run_paper_experiment(o, log));
   }
