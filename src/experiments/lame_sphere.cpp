@@ -5,6 +5,7 @@
 #include "fem/assembly.hpp"
 #include "fem/dof_map.hpp"
 #include "fem/material.hpp"
+#include "fem/nodal_pressure.hpp"
 #include "fem/static_solve.hpp"
 #include "solvers/cholesky.hpp"
 
@@ -34,14 +35,15 @@ Vector inner_pressure(const mesh::TetMesh& mesh, double pressure) {
 
 }  // namespace
 
-LameError solve_lame_sphere(const mesh::TetMesh& mesh, const LameSphere& s) {
+LameError solve_lame_sphere(const mesh::TetMesh& mesh, const LameSphere& s, std::optional<double> nodal_pressure) {
   fem::Constraints constraints(mesh.num_nodes());
   const char* planes[] = {"x0", "y0", "z0"};
   for (int c = 0; c < 3; ++c)
     for (const int n : mesh.set(planes[c]).nodes) constraints.prescribe(n, c);
   const fem::DofMap dofs(constraints);
   const fem::Material material = fem::Material::from_young_poisson(s.young, s.poisson, 1000, 0);
-  const SparseMatrix K = fem::StiffnessAssembler(mesh, dofs).stiffness(material);
+  const SparseMatrix K = nodal_pressure ? fem::nodal_pressure_stiffness(mesh, dofs, material, *nodal_pressure)
+                                        : fem::StiffnessAssembler(mesh, dofs).stiffness(material);
   solvers::Cholesky factor;
   fem::factorize_stiffness(factor, K, dofs);
   const Vector u = dofs.expand(factor.solve(dofs.restrict_to_free(inner_pressure(mesh, s.pressure))));

@@ -7,6 +7,7 @@
 /// error at nu = 0.49, 0.499, 0.4999 against nu = 0.3 on the same meshes, with observed orders.
 /// Solved on one octant (mesh/sphere_shell_mesh.hpp) with symmetry (each plane's normal
 /// component held) and p on the inner face, consistently lumped (p A / 3 per node of each facet).
+#include <optional>
 #include <vector>
 
 #include "common/types.hpp"
@@ -28,8 +29,10 @@ struct LameError {
   double inner_mean = 0;  ///< (mean u_r on the inner face - exact u_r(a)) / u_r(a)
 };
 
-/// Solves the octant `mesh` (sets shell, inner, x0, y0, z0) with linear tetrahedra and measures
-/// the error. Throws InputError for a mesh without those sets.
-LameError solve_lame_sphere(const mesh::TetMesh& mesh, const LameSphere& sphere);
+/// Solves the octant `mesh` (sets shell, inner, x0, y0, z0) and measures the error: with linear
+/// tetrahedra, or with nodal-pressure ones (fem/nodal_pressure.hpp) of stabilization s when
+/// `nodal_pressure` is set. Throws InputError for a mesh without those sets.
+LameError solve_lame_sphere(const mesh::TetMesh& mesh, const LameSphere& sphere,
+                            std::optional<double> nodal_pressure = std::nullopt);
 
 }  // namespace roifem::experiments
