@@ -66,10 +66,10 @@ std::vector<Tool> attach_tools(const mesh::TetMesh& mesh, const fem::Constraints
   return attached;
 }
 
-SecondOrderSystem assemble(const mesh::TetMesh& mesh, const fem::Material& material, const fem::DofMap& dofs) {
+SecondOrderSystem assemble(const mesh::TetMesh& mesh, const fem::Material& material, fem::Element element,
+                           const fem::DofMap& dofs) {
   SecondOrderSystem system;
-  const fem::StiffnessAssembler assembler(mesh, dofs);
-  system.K = assembler.stiffness(material);
+  system.K = fem::stiffness(mesh, dofs, material, element);
   const Vector m = fem::lumped_mass(mesh, dofs, material.rho);
   system.M = diagonal_matrix(m);
   system.C = diagonal_matrix(material.alpha * m);
@@ -109,11 +109,12 @@ Vector FemModel::displacement(const Eigen::Ref<const Vector>& u_free, const Tool
 }
 
 FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::Material& material, const std::vector<std::string>& fixed_sets,
-                         const std::vector<SetLoad>& loads, const std::vector<SetTool>& tools) {
+                         const std::vector<SetLoad>& loads, const std::vector<SetTool>& tools, fem::Element element) {
   material.validate();
   FemModel model;
   model.mesh = &mesh;
   model.material = material;
+  model.element = element;
   fem::Constraints constraints = fixed_constraints(mesh, fixed_sets);
   const fem::DofMap fixed_only(constraints);
   if (fixed_only.num_constrained() == 0)
@@ -121,12 +122,12 @@ FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::Material& materia
   const std::vector<Tool> attached = attach_tools(mesh, constraints, tools);
   if (attached.empty()) {
     model.dofs = std::make_unique<fem::DofMap>(constraints);
-    model.system = assemble(mesh, material, *model.dofs);
+    model.system = assemble(mesh, material, element, *model.dofs);
     model.system.load = loads_on(mesh, material, *model.dofs, loads, model.warnings);
     return model;
   }
   // With tools: the model over every unfixed dof, then the tools' dofs eliminated.
-  SecondOrderSystem all = assemble(mesh, material, fixed_only);
+  SecondOrderSystem all = assemble(mesh, material, element, fixed_only);
   // Over these dofs only the fixed nodes take a load's share (one on tools' nodes is theirs to carry).
   all.load = loads_on(mesh, material, fixed_only, loads, model.warnings);
   std::vector<ToolDofs> tool_dofs;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "fem/dof_map.hpp"
+#include "fem/element.hpp"
 #include "fem/material.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "model/second_order_system.hpp"
@@ -38,6 +39,7 @@ struct SetTool {
 struct FemModel {
   const mesh::TetMesh* mesh = nullptr;
   fem::Material material;
+  fem::Element element = fem::Element::tet4;
   std::unique_ptr<fem::DofMap> dofs;  ///< tools' nodes are constrained here (their motion: tools)
   SecondOrderSystem system;
   ToolSet tools;  ///< in the free numbering
@@ -54,6 +56,7 @@ struct FemModel {
 /// Builds the full model. Throws InputError for a missing set, a load wholly on fixed nodes, and a
 /// tool on no node, on a fixed node or on another tool's node; ModelError when nothing is fixed.
 FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::Material& material, const std::vector<std::string>& fixed_sets,
-                         const std::vector<SetLoad>& loads, const std::vector<SetTool>& tools = {});
+                         const std::vector<SetLoad>& loads, const std::vector<SetTool>& tools = {},
+                         fem::Element element = fem::Element::tet4);
 
 }  // namespace roifem::model

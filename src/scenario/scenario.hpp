@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "condensation/reduction.hpp"
+#include "fem/element.hpp"
 #include "fem/material.hpp"
 #include "model/fem_model.hpp"
 #include "roi/roi.hpp"
@@ -18,6 +19,7 @@ struct Scenario {
   std::filesystem::path mesh;           ///< resolved against the scenario's directory
   std::string material_name = "paper";  ///< preset, or "custom"
   fem::Material material;
+  fem::Element element = fem::Element::tet4;  ///< top-level `element`: tet4 or nodal-pressure
   std::vector<std::string> fixed_sets{"base"};
   std::vector<model::SetLoad> loads;
   std::vector<model::SetTool> tools;  ///< [[tool]]: attached nodes follow a prescribed path

@@ -337,6 +337,13 @@ Scenario parse_scenario(std::string_view text, const std::string& source, const 
   const auto mesh = top.string("mesh");
   if (!mesh) top.missing("mesh");
   s.mesh = std::filesystem::path(*mesh).is_absolute() ? std::filesystem::path(*mesh) : directory / *mesh;
+  if (const auto element = top.string("element")) {
+    try {
+      s.element = fem::parse_element(*element);
+    } catch (const InputError& e) {
+      throw InputError(source + ": key 'element': " + e.what());
+    }
+  }
 
   if (const toml::table* t = top.subtable("material")) {
     StrictTable material(*t, source, "material");
@@ -414,9 +421,10 @@ Scenario read_scenario(const std::filesystem::path& file) {
 
 std::string Scenario::resolved_toml() const {
   std::ostringstream o;
-  o << "mesh = \"" << mesh.string() << "\"\n\n[material]  # " << material_name << "\nlambda_Pa = " << toml_number(material.lambda)
-    << "\nmu_Pa = " << toml_number(material.mu) << "\nrho_kg_m3 = " << toml_number(material.rho)
-    << "\nalpha_per_s = " << toml_number(material.alpha) << "\n\n[boundary]\nfixed = [";
+  o << "mesh = \"" << mesh.string() << "\"\nelement = \"" << fem::element_name(element) << "\"\n\n[material]  # " << material_name
+    << "\nlambda_Pa = " << toml_number(material.lambda) << "\nmu_Pa = " << toml_number(material.mu)
+    << "\nrho_kg_m3 = " << toml_number(material.rho) << "\nalpha_per_s = " << toml_number(material.alpha)
+    << "\n\n[boundary]\nfixed = [";
   for (std::size_t i = 0; i < fixed_sets.size(); ++i) o << (i ? ", " : "") << '"' << fixed_sets[i] << '"';
   o << "]\n";
   for (const auto& l : loads) {

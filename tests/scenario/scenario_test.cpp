@@ -76,6 +76,17 @@ TEST(ScenarioReader, ResolvedTomlReadsBackToTheSameScenario) {
   EXPECT_EQ(again.steps, s.steps);
 }
 
+TEST(ScenarioReader, ReadsTheElementAndNamesAnUnknownOne) {
+  EXPECT_EQ(parse_scenario(valid, "s.toml", "/data").element, fem::Element::tet4);
+  const std::string nodal = replaced(valid, "mesh = \"brain.msh\"", "mesh = \"brain.msh\"\nelement = \"nodal-pressure\"");
+  const Scenario s = parse_scenario(nodal, "s.toml", "/data");
+  EXPECT_EQ(s.element, fem::Element::nodal_pressure);
+  EXPECT_EQ(parse_scenario(s.resolved_toml(), "resolved.toml", "/data").element, fem::Element::nodal_pressure);
+  EXPECT_EQ(error_of(replaced(valid, "mesh = \"brain.msh\"", "mesh = \"brain.msh\"\nelement = \"nodal_pressure\"")),
+            "s.toml: key 'element': unknown element 'nodal_pressure' (did you mean 'nodal-pressure'?): use tet4 or "
+            "nodal-pressure");
+}
+
 TEST(ScenarioReader, ReadsTheReductionOfTheStaticPart) {
   EXPECT_EQ(parse_scenario(valid, "s.toml", "/data").reduction.kind, &condensation::reduction_named("static"));
   const Scenario cb = parse_scenario(
