@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Builds the whole project with AddressSanitizer + UndefinedBehaviorSanitizer (the asan preset) and
-# runs the test suite under them. CI runs it after the Release tests. Third-party leaks (Gmsh,
-# OpenCASCADE) are suppressed in tests/sanitizers/lsan.supp.
+# Builds the project with AddressSanitizer + UndefinedBehaviorSanitizer (the asan preset: line
+# tables only, and no benchmarks, whose smoke tests run in Release) and runs the test suite under
+# them. CI runs it after the Release tests. Third-party leaks (Gmsh, OpenCASCADE) are suppressed in
+# tests/sanitizers/lsan.supp.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
