@@ -1,7 +1,5 @@
 #include "scale/scale_model.hpp"
 
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <memory>
 #include <sstream>
@@ -10,8 +8,6 @@
 #include "common/timer.hpp"
 #include "condensation/reduced_model.hpp"
 #include "integrators/trapezoid.hpp"
-#include "mesh/gmsh_reader.hpp"
-#include "mesh/mesh_checks.hpp"
 #include "model/fem_model.hpp"
 #include "scale/brain_model.hpp"
 #include "scale/child_process.hpp"
