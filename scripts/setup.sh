@@ -13,6 +13,7 @@ packages=(
   libgsl-dev               # odeiv2
   libhdf5-dev              # results files
   libgmsh-dev              # mesh generation and reading
+  calculix-ccx             # geometrically nonlinear reference (roifem model-error)
   libtomlplusplus-dev      # scenario files
   libcli11-dev             # command line
   libgtest-dev libgmock-dev

@@ -28,6 +28,19 @@ Vector set_force(const mesh::TetMesh& mesh, const std::string& set_name, const V
   return f;
 }
 
+Vec3 set_mean_displacement(const mesh::TetMesh& mesh, const std::string& set_name, const Vector& u) {
+  double area = 0;
+  Vec3 sum = Vec3::Zero();
+  for (const auto& f : mesh.set(set_name).triangles) {
+    const Vec3 a = mesh.node(f[0]), b = mesh.node(f[1]), c = mesh.node(f[2]);
+    const double A = 0.5 * (b - a).cross(c - a).norm();
+    area += A;
+    sum += A / 3 * (u.segment<3>(3 * f[0]) + u.segment<3>(3 * f[1]) + u.segment<3>(3 * f[2]));
+  }
+  if (area <= 0) throw InputError(mesh.source + ": set '" + set_name + "' has no boundary triangles to average over");
+  return sum / area;
+}
+
 Vector gravity_force(const mesh::TetMesh& mesh, double rho, const Vec3& g) {
   const Vector m = lumped_node_mass(mesh, rho);
   Vector f(3 * mesh.num_nodes());

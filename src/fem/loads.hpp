@@ -10,6 +10,9 @@ namespace roifem::fem {
 /// Spreads `total_force` (N) over a named set: by triangle area (a uniform traction, consistent
 /// for linear triangles) on a 2D set, by volume on a 3D set, evenly over the nodes otherwise.
 Vector set_force(const mesh::TetMesh& mesh, const std::string& set_name, const Vec3& total_force);
+/// The area-weighted mean displacement of a 2D set (m): the displacement a uniform traction on the
+/// set does work on. `u` over all nodes (3N). InputError for a set without boundary triangles.
+Vec3 set_mean_displacement(const mesh::TetMesh& mesh, const std::string& set_name, const Vector& u);
 /// Gravity on the lumped masses: rho V/4 g at each node of each tetrahedron.
 Vector gravity_force(const mesh::TetMesh& mesh, double rho, const Vec3& g);
 

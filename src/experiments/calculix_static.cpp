@@ -1,0 +1,116 @@
+#include "experiments/calculix_static.hpp"
+
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <ostream>
+#include <sstream>
+
+#include "common/errors.hpp"
+#include "io/csv.hpp"
+
+namespace roifem::experiments {
+
+namespace fs = std::filesystem;
+using io::format;
+
+namespace {
+
+/// The deck, in mm, N and MPa. Node and element numbers are 1-based; roifem's positive
+/// orientation is C3D4's. Numbers keep 13 digits: ccx reads a field of at most 20 characters.
+void write_deck(const CalculixProblem& p, const std::vector<double>& fractions, bool nlgeom, const fs::path& file) {
+  std::ofstream out(file);
+  const auto& mesh = *p.mesh;
+  out << "** roifem: the static problem for CalculiX (mm, N, MPa)\n*NODE, NSET=NALL\n";
+  for (Index n = 0; n < mesh.num_nodes(); ++n) {
+    const Vec3 x = mesh.node(static_cast<int>(n)) / mm;
+    out << format("%lld, %.13g, %.13g, %.13g\n", static_cast<long long>(n) + 1, x.x(), x.y(), x.z());
+  }
+  out << "*ELEMENT, TYPE=C3D4, ELSET=EALL\n";
+  for (Index e = 0; e < mesh.num_tets(); ++e) {
+    const auto& t = mesh.tets[static_cast<std::size_t>(e)];
+    out << format("%lld, %d, %d, %d, %d\n", static_cast<long long>(e) + 1, t[0] + 1, t[1] + 1, t[2] + 1, t[3] + 1);
+  }
+  out << "*NSET, NSET=FIXED\n";
+  for (std::size_t i = 0; i < p.fixed_nodes.size(); ++i) out << p.fixed_nodes[i] + 1 << (i % 16 == 15 ? ",\n" : ", ");
+  out << "\n*BOUNDARY\nFIXED, 1, 3\n";
+  out << "*MATERIAL, NAME=TISSUE\n*ELASTIC\n" << format("%.13g, %.13g\n", p.material.young() * 1e-6, p.material.poisson());
+  out << "*SOLID SECTION, ELSET=EALL, MATERIAL=TISSUE\n";
+  // The load is scaled to the largest fraction and ramped over the step time 0..1; the time
+  // points are the fractions over it.
+  const double top = fractions.back();
+  out << "*TIME POINTS, NAME=FRACTIONS\n";
+  for (double f : fractions) out << format("%.13g\n", f / top);
+  out << (nlgeom ? "*STEP, NLGEOM, INC=10000\n" : "*STEP\n");
+  out << format("*STATIC\n%.6g, 1.0, 1e-6, %.6g\n", fractions.front() / top / 2, fractions.front() / top);
+  out << "*CLOAD\n";
+  for (Index n = 0; n < mesh.num_nodes(); ++n)
+    for (int c = 0; c < 3; ++c)
+      if (const double f = p.forces[3 * n + c] * top; f != 0)
+        out << format("%lld, %d, %.13g\n", static_cast<long long>(n) + 1, c + 1, f);
+  out << "*NODE PRINT, NSET=NALL, TIME POINTS=FRACTIONS\nU\n*END STEP\n";
+  if (!out.flush()) throw InputError(file.string() + ": cannot write the CalculiX deck");
+}
+
+/// The displacement blocks of the .dat file, by step time.
+std::map<double, Vector> read_dat(const fs::path& file, Index nodes) {
+  std::ifstream in(file);
+  std::map<double, Vector> blocks;
+  Vector* current = nullptr;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.find("displacements (vx,vy,vz)") != std::string::npos) {
+      const auto at = line.find("time");
+      const double t = std::stod(line.substr(at + 4));
+      current = &blocks.emplace(t, Vector::Zero(3 * nodes)).first->second;
+      continue;
+    }
+    std::istringstream fields(line);
+    long long node = 0;
+    double u[3];
+    if (current && fields >> node >> u[0] >> u[1] >> u[2]) {
+      if (node < 1 || node > nodes) throw SolverError(file.string() + ": node " + std::to_string(node) + " out of range");
+      for (int c = 0; c < 3; ++c) (*current)[3 * (node - 1) + c] = u[c] * mm;
+    } else if (!line.empty() && line.find_first_not_of(' ') != std::string::npos) {
+      current = nullptr;
+    }
+  }
+  return blocks;
+}
+
+}  // namespace
+
+bool calculix_available() { return std::system("command -v ccx >/dev/null 2>&1") == 0; }
+
+std::vector<CalculixSolution> solve_with_calculix(const CalculixProblem& p, const std::vector<double>& fractions, bool nlgeom,
+                                                  const fs::path& work_dir, std::ostream& log) {
+  if (fractions.empty()) throw InputError("CalculiX: no load fractions asked for");
+  for (std::size_t i = 0; i < fractions.size(); ++i)
+    if (!(fractions[i] > 0) || (i > 0 && !(fractions[i] > fractions[i - 1])))
+      throw InputError("CalculiX: load fractions must be positive and ascending");
+  if (!calculix_available()) throw SolverError("CalculiX (ccx) is not on the PATH: install calculix-ccx (scripts/setup.sh)");
+  fs::create_directories(work_dir);
+  const std::string job = nlgeom ? "nlgeom" : "linear";
+  for (const char* ext : {".dat", ".frd", ".sta", ".cvg"}) fs::remove(work_dir / (job + ext));
+  write_deck(p, fractions, nlgeom, work_dir / (job + ".inp"));
+  const std::string command = "cd '" + work_dir.string() + "' && OMP_NUM_THREADS=2 ccx -i " + job + " > " + job + ".log 2>&1";
+  const int status = std::system(command.c_str());
+  const auto blocks = read_dat(work_dir / (job + ".dat"), p.mesh->num_nodes());
+  std::vector<CalculixSolution> solutions;
+  const double top = fractions.back();
+  for (double f : fractions) {
+    // ccx prints the step time with 7 digits.
+    const auto it = blocks.lower_bound(f / top - 1e-6);
+    if (it == blocks.end() || std::abs(it->first - f / top) > 1e-6) break;
+    solutions.push_back({f, it->second});
+  }
+  if (solutions.empty())
+    throw SolverError(
+        format("CalculiX returned no solution (exit status %d): see %s", status, (work_dir / (job + ".log")).c_str()));
+  if (solutions.size() < fractions.size())
+    log << format("  CalculiX (%s) stopped at %.3g of the load (asked up to %.3g): see %s\n", job.c_str(),
+                  solutions.back().fraction, top, (work_dir / (job + ".log")).c_str());
+  return solutions;
+}
+
+}  // namespace roifem::experiments

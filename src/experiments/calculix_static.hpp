@@ -1,0 +1,40 @@
+#pragma once
+/// A geometrically nonlinear reference from an existing solver: CalculiX (Debian's calculix-ccx)
+/// solves the same mesh (C3D4, the same linear tetrahedra), material (*ELASTIC: with NLGEOM the
+/// St. Venant-Kirchhoff law, linear in Green-Lagrange strain), supports and nodal forces, with
+/// *STATIC and NLGEOM: the deck is written here, ccx run in a work directory, and its printed
+/// displacements read back at each requested load fraction. Without NLGEOM the same deck is the
+/// small-strain problem roifem solves, a check of the deck itself.
+#include <filesystem>
+#include <iosfwd>
+#include <vector>
+
+#include "common/types.hpp"
+#include "fem/material.hpp"
+#include "mesh/tet_mesh.hpp"
+
+namespace roifem::experiments {
+
+struct CalculixProblem {
+  const mesh::TetMesh* mesh = nullptr;
+  fem::Material material;
+  std::vector<int> fixed_nodes;  ///< held in all three components
+  Vector forces;                 ///< N, 3N: the full load (fraction 1)
+};
+
+struct CalculixSolution {
+  double fraction = 0;
+  Vector u;  ///< m, 3N
+};
+
+/// Whether `ccx` is on the PATH.
+bool calculix_available();
+
+/// Solves the problem at each load fraction (ascending, positive), NLGEOM or not, in `work_dir`
+/// (deck, log and results stay there). Returns the fractions reached: when CalculiX stops early
+/// (the increment shrinks below its minimum), the solutions before it, and a line in `log`.
+/// Throws SolverError when ccx is missing, fails to start, or returns no solution at all.
+std::vector<CalculixSolution> solve_with_calculix(const CalculixProblem& problem, const std::vector<double>& fractions,
+                                                  bool nlgeom, const std::filesystem::path& work_dir, std::ostream& log);
+
+}  // namespace roifem::experiments

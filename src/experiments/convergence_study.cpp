@@ -1,0 +1,188 @@
+#include "experiments/convergence_study.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <ostream>
+
+#include "common/errors.hpp"
+#include "common/timer.hpp"
+#include "experiments/richardson.hpp"
+#include "fem/loads.hpp"
+#include "fem/static_solve.hpp"
+#include "integrators/trapezoid.hpp"
+#include "io/csv.hpp"
+#include "io/plots.hpp"
+#include "mesh/brain_mesh.hpp"
+#include "mesh/gmsh_reader.hpp"
+#include "mesh/mesh_checks.hpp"
+#include "mesh/point_locator.hpp"
+#include "model/fem_model.hpp"
+#include "model/spectrum.hpp"
+#include "scenario/scenario.hpp"
+
+namespace roifem::experiments {
+
+namespace {
+
+using io::format;
+
+/// Refuses a scenario whose mesh is not the brain `roifem mesh` generates: the study regenerates it.
+void check_generated_brain(const scenario::Scenario& s) {
+  const mesh::TetMesh m = mesh::read_mesh(s.mesh);
+  const mesh::BrainShape shape;
+  const Vec3 lo = m.nodes.rowwise().minCoeff() / mm, hi = m.nodes.rowwise().maxCoeff() / mm;
+  const Vec3 expected(shape.semi_axis_x, shape.semi_axis_y, shape.semi_axis_z);
+  for (int d = 0; d < 3; ++d)
+    if (std::abs(hi[d] - expected[d]) > 0.05 * expected[d] || std::abs(lo[d] + expected[d]) > 0.05 * expected[d])
+      throw InputError(
+          format("%s: the convergence study regenerates the brain of `roifem mesh` (%g x %g x %g mm), but the "
+                 "scenario's mesh %s spans [%.1f, %.1f] x [%.1f, %.1f] x [%.1f, %.1f] mm",
+                 s.file.c_str(), 2 * expected.x(), 2 * expected.y(), 2 * expected.z(), s.mesh.c_str(), lo.x(), hi.x(), lo.y(),
+                 hi.y(), lo.z(), hi.z()));
+  for (const char* set : {"opening_left", "opening_right"})
+    if (!m.sets.contains(set)) throw InputError(s.mesh.string() + ": no set '" + set + "': not the generated brain");
+}
+
+Vec3 default_probe(const scenario::Scenario& s) {
+  if (!s.roi || s.roi->kind == roi::RoiSpec::Kind::all || s.roi->kind == roi::RoiSpec::Kind::set)
+    throw InputError(s.file.string() + ": the scenario's [roi] gives no target point; give one with --probe-mm X Y Z");
+  return s.roi->center;
+}
+
+mesh::TetMesh brain_of(Index nodes, const std::filesystem::path& dir, std::ostream& log) {
+  const auto file = dir / ("brain-" + std::to_string(nodes) + ".msh");
+  if (std::filesystem::exists(file)) {
+    log << "  reusing " << file.string() << "\n";
+    return mesh::read_mesh(file);
+  }
+  const Stopwatch clock;
+  auto generated = mesh::generate_brain_mesh(nodes, file);
+  log << format("  meshed %s: %lld nodes in %.1f s\n", file.c_str(), static_cast<long long>(generated.mesh.num_nodes()),
+                clock.seconds());
+  return std::move(generated.mesh);
+}
+
+MeshQuantities measure(const scenario::Scenario& s, const fem::Material& material, fem::Element element, const Vec3& probe,
+                       const ConvergenceOptions& o, Index nodes, std::ostream& log) {
+  const Stopwatch clock;
+  const mesh::TetMesh mesh = brain_of(nodes, o.out / "meshes", log);
+  mesh::check_mesh(mesh);
+  const model::FemModel full = model::build_fem_model(mesh, material, s.fixed_sets, s.loads, s.tools, element);
+  const auto& system = full.system;
+  MeshQuantities q;
+  q.nodes = mesh.num_nodes();
+  q.tets = mesh.num_tets();
+  q.dofs = system.size();
+  q.h_mm = std::cbrt(6 * std::numbers::sqrt2 * mesh::total_volume(mesh) / static_cast<double>(q.tets)) / mm;
+  const mesh::PointLocator locator(mesh);
+  const mesh::PointLocation at_probe = locator.locate(probe);
+  q.probe_outside_mm = at_probe.outside_distance / mm;
+  const double t_end = s.dt * static_cast<double>(s.steps);
+  {
+    solvers::Cholesky K;
+    fem::factorize_stiffness(K, system.K, *full.dofs);
+    const Vector u = full.displacement(K.solve(system.load.at(t_end)), t_end);
+    q.opening_mm = opening_widening(mesh, u) / mm;
+    q.probe_mm = mesh::PointLocator::interpolate(at_probe, u).norm() / mm;
+    const model::Modes modes = model::lowest_modes(system.M.diagonal(), K, o.modes);
+    for (Index i = 0; i < modes.omega.size(); ++i) q.frequencies_hz.push_back(modes.omega[i] / (2 * std::numbers::pi));
+  }
+  if (o.dynamic) {
+    integrators::Trapezoid trapezoid(s.dt);
+    model::State state = model::State::at_rest(system.size());
+    trapezoid.reset(system, state);
+    for (long k = 0; k < s.steps; ++k) {
+      trapezoid.step(state);
+      q.probe_history_mm.push_back(mesh::PointLocator::interpolate(at_probe, full.displacement(state.u, state.t)).norm() / mm);
+    }
+  }
+  q.seconds = clock.seconds();
+  log << format("  %lld nodes, %lld dofs, h %.2f mm: opening %.4f mm, probe %.4f mm, f1 %.4f Hz (%.1f s)\n",
+                static_cast<long long>(q.nodes), static_cast<long long>(q.dofs), q.h_mm, q.opening_mm, q.probe_mm,
+                q.frequencies_hz.front(), q.seconds);
+  return q;
+}
+
+QuantityConvergence converge(std::string name, std::string unit, const std::vector<double>& h, std::vector<double> values) {
+  QuantityConvergence c{.name = std::move(name), .unit = std::move(unit), .values = std::move(values)};
+  const auto e = richardson(h, c.values, 2.0);
+  if (e.observed) c.observed_order = e.order;
+  c.order_used = e.order;
+  c.extrapolated = e.value;
+  for (double v : c.values) c.errors.push_back(std::abs(v - e.value));
+  return c;
+}
+
+/// The probe's history extrapolated step by step with the static probe's order; per mesh, the
+/// largest distance over the run from it.
+void converge_history(ConvergenceResults& r, const std::vector<double>& h, double order) {
+  const std::size_t n = r.meshes.size(), steps = r.meshes.front().probe_history_mm.size();
+  QuantityConvergence c{.name = "dynamic peak", .unit = "mm"};
+  c.order_used = order;
+  for (std::size_t k = 0; k < steps; ++k)
+    r.extrapolated_history_mm.push_back(
+        extrapolate(h[n - 2], h[n - 1], r.meshes[n - 2].probe_history_mm[k], r.meshes[n - 1].probe_history_mm[k], order));
+  for (const auto& m : r.meshes) {
+    c.values.push_back(*std::max_element(m.probe_history_mm.begin(), m.probe_history_mm.end()));
+    double worst = 0;
+    for (std::size_t k = 0; k < steps; ++k)
+      worst = std::max(worst, std::abs(m.probe_history_mm[k] - r.extrapolated_history_mm[k]));
+    c.errors.push_back(worst);
+  }
+  c.extrapolated = *std::max_element(r.extrapolated_history_mm.begin(), r.extrapolated_history_mm.end());
+  if (n >= 3) c.observed_order = observed_order(h[n - 3], h[n - 2], h[n - 1], c.values[n - 3], c.values[n - 2], c.values[n - 1]);
+  r.quantities.push_back(std::move(c));
+}
+
+}  // namespace
+
+double opening_widening(const mesh::TetMesh& mesh, const Vector& u) {
+  return fem::set_mean_displacement(mesh, "opening_right", u).x() - fem::set_mean_displacement(mesh, "opening_left", u).x();
+}
+
+ConvergenceResults run_convergence_study(const ConvergenceOptions& o, std::ostream& log) {
+  if (o.nodes.size() < 2) throw InputError("--nodes: a convergence study needs at least two mesh sizes");
+  if (!std::is_sorted(o.nodes.begin(), o.nodes.end()) || std::adjacent_find(o.nodes.begin(), o.nodes.end()) != o.nodes.end())
+    throw InputError("--nodes: give the sizes in increasing order, each once");
+  if (o.modes < 1) throw InputError("--modes: at least one eigenfrequency");
+  const scenario::Scenario s = scenario::read_scenario(o.scenario);
+  check_generated_brain(s);
+  ConvergenceResults r;
+  const fem::Material material = o.material ? fem::material_preset(*o.material) : s.material;
+  const fem::Element element = o.element.value_or(s.element);
+  r.material = o.material.value_or(s.material_name);
+  r.element = std::string(fem::element_name(element));
+  r.probe = o.probe.value_or(default_probe(s));
+  r.dt = s.dt;
+  std::filesystem::create_directories(o.out / "meshes");
+  log << format("convergence study: %s, element %s, material '%s', probe (%.1f, %.1f, %.1f) mm, %zu meshes\n", o.scenario.c_str(),
+                r.element.c_str(), r.material.c_str(), r.probe.x() / mm, r.probe.y() / mm, r.probe.z() / mm, o.nodes.size());
+  for (const Index n : o.nodes) r.meshes.push_back(measure(s, material, element, r.probe, o, n, log));
+
+  std::vector<double> h;
+  for (const auto& m : r.meshes) h.push_back(m.h_mm);
+  auto values = [&](auto pick) {
+    std::vector<double> v;
+    for (const auto& m : r.meshes) v.push_back(pick(m));
+    return v;
+  };
+  r.quantities.push_back(converge("opening", "mm", h, values([](const MeshQuantities& m) { return m.opening_mm; })));
+  r.quantities.push_back(converge("probe", "mm", h, values([](const MeshQuantities& m) { return m.probe_mm; })));
+  for (int i = 0; i < o.modes; ++i)
+    r.quantities.push_back(converge("f" + std::to_string(i + 1), "Hz", h, values([i](const MeshQuantities& m) {
+                                      return m.frequencies_hz[static_cast<std::size_t>(i)];
+                                    })));
+  if (o.dynamic) converge_history(r, h, std::clamp(r.quantities[1].order_used, 0.3, 4.0));
+
+  print_convergence_table(r, log);
+  write_convergence_csv(r, o.out);
+  if (o.plots && io::run_plot_script("plot_convergence.py", o.out, log))
+    log << "plots: " << (o.out / "convergence.png").string() << '\n';
+  log << "results: " << (o.out / "convergence.csv").string()
+      << (o.dynamic ? ", " + (o.out / "probe_history.csv").string() : std::string()) << ", meshes in "
+      << (o.out / "meshes").string() << '\n';
+  return r;
+}
+
+}  // namespace roifem::experiments
