@@ -46,8 +46,18 @@ void add_paper_command(CLI::App& app, Action& action) {
          "Reductions of the static part compared at the fastest ramp (static first): " + condensation::reduction_label_forms())
       ->capture_default_str();
   cmd->add_flag("!--no-plots", o->plots, "Skip the PNG plots");
-  cmd->callback([&action, o, reductions, drive] {
-    action = [o, reductions, drive] {
+  cmd->add_flag("!--no-error-budget", o->error_budget,
+                "Skip the error budget (forces drive): space (against a finer reference), time (against the exact modal "
+                "solution), reduction and model (against CalculiX NLGEOM) error on the ROI nodes, side by side");
+  cmd->add_option("--budget-nodes", o->budget.reference_nodes,
+                  "Nodes of the finer brain the space error is measured against (0: no space error)")
+      ->capture_default_str();
+  auto budget_element = std::make_shared<std::string>("nodal-pressure");
+  cmd->add_option("--budget-element", *budget_element, "The reference's element: nodal-pressure or tet4")->capture_default_str();
+  cmd->add_flag("!--no-model-error", o->budget.model_error, "Leave CalculiX's nonlinear model error out of the budget");
+  cmd->callback([&action, o, reductions, drive, budget_element] {
+    action = [o, reductions, drive, budget_element] {
+      o->budget.reference_element = fem::parse_element(*budget_element);
       o->drive = *drive == "spatulas" ? experiments::PaperDrive::spatulas : experiments::PaperDrive::forces;
       o->reductions.clear();
       for (const auto& label : *reductions) o->reductions.push_back(condensation::parse_reduction(label));

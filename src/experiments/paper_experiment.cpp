@@ -383,6 +383,28 @@ void write_results_h5(const PaperOptions& o, const PaperModel& m, const std::vec
   if (!record.roi_series.fields.empty()) io::write_xdmf(o.out / "results_setup1.xdmf", record.roi_series);
 }
 
+/// The error budget's inputs from the paper's run: the static condensation's ROI nodes and curves.
+ErrorBudget measure_budget(const PaperOptions& o, const PaperModel& m, const std::vector<Setup>& setups,
+                           const PaperResults& results, std::ostream& log) {
+  BudgetInput in{.full = &m.full,
+                 .fixed_sets = {"base"},
+                 .force_N = results.force_N,
+                 .dt = o.dt,
+                 .steps = o.steps,
+                 .ramps_s = o.ramps_s,
+                 .setups = {},
+                 .reduction = {}};
+  for (const auto& setup : setups) {
+    if (!setup.reduction.is_static_condensation()) continue;
+    in.setups.emplace_back(setup.name, setup.condensation->partition().roi_nodes);
+    auto& curves = in.reduction.emplace_back();
+    for (double ramp : o.ramps_s)
+      for (const auto& c : results.curves)
+        if (c.setup == setup.name && c.ramp_s == ramp) curves.push_back({c.mean_mm, c.max_mm});
+  }
+  return measure_error_budget(in, o.budget, o.out, log);
+}
+
 void check_options(const PaperOptions& o) {
   if (!(o.dt > 0)) throw InputError("paper: dt = " + number_text(o.dt) + " s must be positive");
   if (o.steps <= 0) throw InputError("paper: steps must be positive");
@@ -404,18 +426,23 @@ PaperResults run_paper_experiment(const PaperOptions& o, std::ostream& log) {
   record.full_series = {.h5_name = "results.h5", .nodes = model->mesh.num_nodes(), .tets = model->mesh.num_tets()};
   record.roi_series = record.full_series;
   measure_accuracy(o, *model, setups, results, record);
+  if (o.error_budget && o.drive == PaperDrive::forces) results.budget = measure_budget(o, *model, setups, results, log);
   measure_speed(o, *model, setups, results);
   write_paper_tables(o, results);
+  if (results.budget) write_error_budget_csv(*results.budget, o.dt, o.out);
   write_results_h5(o, *model, setups, results, record);
 
   print_paper_report(o, results, log);
+  if (results.budget) print_error_budget(*results.budget, log);
   if (o.plots && io::run_plot_script("plot_paper.py", o.out, log))
     log << "\nplots: " << (o.out / "mean_error.png").string() << ", " << (o.out / "max_error.png").string() << ", "
         << (o.out / "step_time.png").string() << ", " << (o.out / "reductions.png").string()
-        << (o.drive == PaperDrive::spatulas ? ", " + (o.out / "force_error.png").string() : "") << '\n';
+        << (o.drive == PaperDrive::spatulas ? ", " + (o.out / "force_error.png").string() : "")
+        << (results.budget ? ", " + (o.out / "error_budget.png").string() : "") << '\n';
   log << "results: " << (o.out / "errors.csv").string() << ", " << (o.out / "timing.csv").string() << ", "
       << (o.out / "reductions.csv").string() << ", "
-      << (o.drive == PaperDrive::spatulas ? (o.out / "force_errors.csv").string() + ", " : "") << (o.out / "results.h5").string()
+      << (o.drive == PaperDrive::spatulas ? (o.out / "force_errors.csv").string() + ", " : "")
+      << (results.budget ? (o.out / "error_budget.csv").string() + ", " : "") << (o.out / "results.h5").string()
       << " (ParaView: results.xdmf, results_setup1.xdmf)\n";
   return results;
 }

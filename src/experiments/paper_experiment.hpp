@@ -13,11 +13,13 @@
 /// force the surgeon feels (each spatula's force on the tissue, condensed against full).
 #include <filesystem>
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "common/types.hpp"
 #include "condensation/reduction.hpp"
+#include "experiments/error_budget.hpp"
 
 namespace roifem::experiments {
 
@@ -38,6 +40,9 @@ struct PaperOptions {
   long timing_steps = 1000;
   long field_every = 10;  ///< full displacement field in results.h5 every k steps
   bool plots = true;
+  /// The error budget (forces drive): space, time, reduction and model error side by side.
+  bool error_budget = true;
+  ErrorBudgetOptions budget;
   /// Reductions of the static part compared (the first is the paper's, static condensation).
   std::vector<condensation::Reduction> reductions{condensation::parse_reduction("static"),
                                                   condensation::parse_reduction("guyan"),
@@ -83,6 +88,7 @@ struct PaperResults {
   std::vector<ReductionRow> reductions;
   std::vector<PaperTiming> timing;     ///< full first, then the setups
   std::vector<Index> interface_nodes;  ///< per setup
+  std::optional<ErrorBudget> budget;   ///< forces drive, when asked
 };
 
 /// Runs the experiment, writes errors.csv, timing.csv, results.h5, results.xdmf and (if asked and

@@ -1,5 +1,7 @@
 #include "model/modal_reference.hpp"
 
+#include <algorithm>
+
 #include <Eigen/Eigenvalues>
 #include <complex>
 
@@ -88,6 +90,13 @@ Vector ModalReference::modal(double t, bool d) const {
     q[i] = value;
   }
   return modes_ * q;
+}
+
+ModalReference ModalReference::with_ramp(double duration) const {
+  if (!(duration >= 0)) throw InputError("modal reference: a ramp's duration must be non-negative");
+  ModalReference ramped = *this;
+  std::fill(ramped.ramp_duration_.begin(), ramped.ramp_duration_.end(), duration);
+  return ramped;
 }
 
 Vector ModalReference::displacement(double t) const { return modal(t, false); }

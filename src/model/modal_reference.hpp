@@ -15,6 +15,9 @@ class ModalReference {
  public:
   /// Throws InputError unless C = alpha M and every ramp is linear; ModelError above `max_dofs`.
   ModalReference(const SecondOrderSystem& system, const State& initial, Index max_dofs = 6000);
+  /// The same system under every load term ramped over `duration` (LoadHistory::with_ramp), its
+  /// modes reused: a study of several ramps pays for one eigensolution.
+  ModalReference with_ramp(double duration) const;
   Vector displacement(double t) const;
   Vector velocity(double t) const;
   /// The angular eigenfrequencies w_i (rad/s), ascending.

@@ -29,7 +29,8 @@ class PaperExperiment : public ::testing::Test {
     o.mesh = std::string(ROIFEM_MESH_DIR) + "/brain-800.msh";
     o.out = dir->path();
     o.plots = false;
-    o.timing_steps = 50;  // (timing is not asserted here)
+    o.timing_steps = 50;     // (timing is not asserted here)
+    o.error_budget = false;  // (error_budget_test.cpp and the CLI test cover it)
     std::ostringstream log;
     results = new PaperResults(run_paper_experiment(o, log));
   }

@@ -83,3 +83,17 @@ TEST(ModalReference, VelocityIsTheTimeDerivativeOfDisplacement) {
 
 }  // namespace
 }  // namespace roifem::model
+
+namespace roifem::model {
+namespace {
+
+TEST(ModalReference, AnotherRampReusesTheModesAndEqualsAFreshSolution) {
+  const SecondOrderSystem slow = single_dof(2.0, 50.0, 0.4, 3.0, 0.8), fast = single_dof(2.0, 50.0, 0.4, 3.0, 0.2);
+  const ModalReference from_slow = ModalReference(slow, State::at_rest(1)).with_ramp(0.2);
+  const ModalReference fresh(fast, State::at_rest(1));
+  for (double t : {0.1, 0.2, 0.55, 2.0}) EXPECT_NEAR(from_slow.displacement(t)[0], fresh.displacement(t)[0], 1e-15) << t;
+  EXPECT_GT(std::abs(from_slow.displacement(0.55)[0] - ModalReference(slow, State::at_rest(1)).displacement(0.55)[0]), 1e-3);
+}
+
+}  // namespace
+}  // namespace roifem::model

@@ -1,0 +1,241 @@
+#include "experiments/error_budget.hpp"
+
+#include <algorithm>
+#include <numeric>
+#include <ostream>
+
+#include "common/errors.hpp"
+#include "common/timer.hpp"
+#include "experiments/calculix_static.hpp"
+#include "experiments/convergence_study.hpp"
+#include "experiments/model_error.hpp"
+#include "fem/static_solve.hpp"
+#include "integrators/trapezoid.hpp"
+#include "io/csv.hpp"
+#include "mesh/brain_mesh.hpp"
+#include "mesh/mesh_checks.hpp"
+#include "mesh/point_locator.hpp"
+#include "model/modal_reference.hpp"
+
+namespace roifem::experiments {
+
+using io::format;
+
+double ErrorCurve::peak() const { return max.empty() ? 0 : *std::max_element(max.begin(), max.end()); }
+
+double ErrorCurve::steady_mean() const {
+  const std::size_t from = mean.size() > 100 ? 100 : 0;
+  if (mean.size() == from) return 0;
+  return std::accumulate(mean.begin() + static_cast<std::ptrdiff_t>(from), mean.end(), 0.0) /
+         static_cast<double>(mean.size() - from);
+}
+
+namespace {
+
+/// The walls pulled apart by force_N each, ramped (the paper's load).
+std::vector<model::SetLoad> opening_loads(double force_N) {
+  return {{"opening_left", Vec3(-force_N, 0, 0), model::Ramp{0}, std::nullopt},
+          {"opening_right", Vec3(force_N, 0, 0), model::Ramp{0}, std::nullopt}};
+}
+
+/// The full model's trapezoidal run under one ramp: every node's displacement (3N, m) per step.
+std::vector<Vector> run_full(const model::FemModel& full, double ramp, double dt, long steps) {
+  model::SecondOrderSystem system = full.system;
+  system.load = full.system.load.with_ramp(model::Ramp{ramp});
+  integrators::Trapezoid trapezoid(dt);
+  model::State state = model::State::at_rest(system.size());
+  trapezoid.reset(system, state);
+  std::vector<Vector> u;
+  for (long k = 0; k < steps; ++k) {
+    trapezoid.step(state);
+    u.push_back(full.displacement(state.u, state.t));
+  }
+  return u;
+}
+
+/// Per step, the mean and max over `nodes` of |a(node) - b(node)|; b gives the other field at a node.
+template <class Other>
+ErrorCurve distances(const std::vector<int>& nodes, const std::vector<Vector>& a, Other b) {
+  ErrorCurve c;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    double sum = 0, worst = 0;
+    for (int n : nodes) {
+      const double d = (a[k].segment<3>(3 * static_cast<Index>(n)) - b(k, n)).norm() / mm;
+      sum += d;
+      worst = std::max(worst, d);
+    }
+    c.mean.push_back(sum / static_cast<double>(nodes.size()));
+    c.max.push_back(worst);
+  }
+  return c;
+}
+
+/// The finer reference of the same body and load.
+struct Reference {
+  mesh::TetMesh mesh;
+  model::FemModel full;
+};
+
+std::unique_ptr<Reference> build_reference(const BudgetInput& in, const ErrorBudgetOptions& o, const std::filesystem::path& out,
+                                           std::ostream& log) {
+  const Stopwatch clock;
+  auto r = std::make_unique<Reference>();
+  r->mesh = std::move(mesh::generate_brain_mesh(o.reference_nodes, out / "reference" / "brain.msh").mesh);
+  mesh::check_mesh(r->mesh);
+  r->full = model::build_fem_model(r->mesh, in.full->material, in.fixed_sets, opening_loads(in.force_N), {}, o.reference_element);
+  log << format("  space reference: the brain at %lld nodes (%lld dofs), element %s, built in %.1f s\n",
+                static_cast<long long>(r->mesh.num_nodes()), static_cast<long long>(r->full.system.size()),
+                std::string(fem::element_name(o.reference_element)).c_str(), clock.seconds());
+  return r;
+}
+
+double static_opening_mm(const model::FemModel& full) {
+  const Vector u = full.dofs->expand(fem::solve_static(full.system.K, full.system.load.at(1e30), *full.dofs));
+  return opening_widening(*full.mesh, u) / mm;
+}
+
+void model_error_into(const BudgetInput& in, const std::filesystem::path& out, ErrorBudget& budget, std::ostream& log) {
+  if (!calculix_available()) {
+    budget.model_note = "not measured: CalculiX (ccx) is not installed (scripts/setup.sh installs calculix-ccx)";
+    return;
+  }
+  const auto study = measure_model_error(*in.full->mesh, in.full->material, in.fixed_sets, opening_loads(in.force_N), {1.0},
+                                         out / "calculix", log);
+  if (!study.full_load_reached) {
+    budget.model_note = "not measured: CalculiX's nonlinear solution stopped before the full load";
+    return;
+  }
+  for (std::size_t s = 0; s < in.setups.size(); ++s) {
+    double sum = 0, worst = 0;
+    for (int n : in.setups[s].second) {
+      const double d = (study.u_linear.segment<3>(3 * n) - study.u_nonlinear.segment<3>(3 * n)).norm() / mm;
+      sum += d;
+      worst = std::max(worst, d);
+    }
+    for (auto& e : budget.entries)
+      if (e.setup == in.setups[s].first) {
+        e.model_max_mm = worst;
+        e.model_mean_mm = sum / static_cast<double>(in.setups[s].second.size());
+      }
+  }
+}
+
+void rank(BudgetEntry& e) {
+  std::vector<std::pair<double, std::string>> peaks{
+      {e.space.peak(), "space"}, {e.time.peak(), "time"}, {e.reduction.peak(), "reduction"}};
+  if (e.model_max_mm) peaks.emplace_back(*e.model_max_mm, "model");
+  std::sort(peaks.rbegin(), peaks.rend());
+  e.dominant = peaks[0].second;
+  e.dominance = peaks[1].first > 0 ? peaks[0].first / peaks[1].first : 0;
+}
+
+}  // namespace
+
+ErrorBudget measure_error_budget(const BudgetInput& in, const ErrorBudgetOptions& o, const std::filesystem::path& out,
+                                 std::ostream& log) {
+  if (in.setups.size() != in.reduction.size()) throw Error("internal: error budget: a reduction curve per setup is needed");
+  log << "\nerror budget: space, time, reduction and model error on the ROI nodes\n";
+  ErrorBudget budget;
+  const mesh::TetMesh& mesh = *in.full->mesh;
+  std::unique_ptr<Reference> reference;
+  std::vector<int> probed;  // every ROI node, and where each lies in the reference
+  std::vector<mesh::PointLocation> located;
+  std::vector<Index> slot(static_cast<std::size_t>(mesh.num_nodes()), -1);
+  if (o.reference_nodes > 0) {
+    reference = build_reference(in, o, out, log);
+    budget.reference_nodes = reference->mesh.num_nodes();
+    budget.reference_element = fem::element_name(o.reference_element);
+    const mesh::PointLocator locator(reference->mesh);
+    for (const auto& [name, nodes] : in.setups)
+      for (int n : nodes)
+        if (slot[static_cast<std::size_t>(n)] < 0) {
+          slot[static_cast<std::size_t>(n)] = static_cast<Index>(probed.size());
+          probed.push_back(n);
+          located.push_back(locator.locate(mesh.node(n)));
+        }
+    const double coarse = static_opening_mm(*in.full), fine = static_opening_mm(reference->full);
+    budget.reference_opening_error_pct = 100 * (coarse - fine) / fine;
+    log << format("  static opening: %.3f mm on the paper mesh, %.3f mm on the reference (%+.1f%%)\n", coarse, fine,
+                  budget.reference_opening_error_pct);
+  }
+  std::optional<model::ModalReference> modal;
+  for (double ramp : in.ramps_s) {
+    const Stopwatch clock;
+    const std::vector<Vector> coarse = run_full(*in.full, ramp, in.dt, in.steps);
+    // Time: the exact modal solution of the same mesh (one eigensolution for every ramp).
+    if (!modal) modal.emplace(in.full->system, model::State::at_rest(in.full->system.size()));
+    const model::ModalReference exact = modal->with_ramp(ramp);
+    std::vector<Vector> exact_u;
+    for (long k = 1; k <= in.steps; ++k) {
+      const double t = in.dt * static_cast<double>(k);
+      exact_u.push_back(in.full->displacement(exact.displacement(t), t));
+    }
+    // Space: the reference read at the ROI nodes' positions.
+    std::vector<std::vector<Vec3>> fine;
+    if (reference)
+      for (const Vector& u : run_full(reference->full, ramp, in.dt, in.steps)) {
+        std::vector<Vec3> at(probed.size());
+        for (std::size_t i = 0; i < probed.size(); ++i) at[i] = mesh::PointLocator::interpolate(located[i], u);
+        fine.push_back(std::move(at));
+      }
+    const auto ramp_index = static_cast<std::size_t>(std::find(in.ramps_s.begin(), in.ramps_s.end(), ramp) - in.ramps_s.begin());
+    for (std::size_t s = 0; s < in.setups.size(); ++s) {
+      BudgetEntry e{.setup = in.setups[s].first, .ramp_s = ramp};
+      const auto& nodes = in.setups[s].second;
+      e.time = distances(nodes, coarse, [&](std::size_t k, int n) -> Vec3 { return exact_u[k].segment<3>(3 * n); });
+      if (reference)
+        e.space = distances(nodes, coarse, [&](std::size_t k, int n) {
+          return fine[k][static_cast<std::size_t>(slot[static_cast<std::size_t>(n)])];
+        });
+      e.reduction = in.reduction[s][ramp_index];
+      budget.entries.push_back(std::move(e));
+    }
+    log << format("  ramp %.1f s: full model, exact modal solution%s in %.1f s\n", ramp, reference ? " and reference" : "",
+                  clock.seconds());
+  }
+  if (o.model_error)
+    model_error_into(in, out, budget, log);
+  else
+    budget.model_note = "not measured (switched off)";
+  for (auto& e : budget.entries) rank(e);
+  std::stable_sort(budget.entries.begin(), budget.entries.end(),
+                   [](const BudgetEntry& a, const BudgetEntry& b) { return a.setup < b.setup; });
+  return budget;
+}
+
+void print_error_budget(const ErrorBudget& b, std::ostream& log) {
+  log << "\nError budget on the ROI nodes (mm): peak over the run of the largest nodal error / steady mean (after step 100)\n";
+  if (b.reference_nodes > 0)
+    log << format(
+        "  space: the paper mesh against the brain at %lld nodes (%s); the paper mesh's static opening differs "
+        "from the reference's by %+.1f%%\n",
+        static_cast<long long>(b.reference_nodes), b.reference_element.c_str(), b.reference_opening_error_pct);
+  log << "  time: trapezoidal rule at the paper's dt against the exact modal solution; reduction: condensed against full;\n"
+         "  model: small strain against CalculiX NLGEOM, static at the full load"
+      << (b.model_note.empty() ? "" : " (" + b.model_note + ")") << "\n";
+  log << format("%-7s %5s  %17s  %17s  %17s  %15s  %s\n", "setup", "ramp", "space", "time", "reduction", "model (static)",
+                "dominant");
+  for (const auto& e : b.entries) {
+    auto pair = [](const ErrorCurve& c) { return format("%7.3f / %7.3f", c.peak(), c.steady_mean()); };
+    const std::string model = e.model_max_mm ? format("%6.3f / %6.3f", *e.model_max_mm, *e.model_mean_mm) : std::string("-");
+    log << format("%-7s %4.1fs  %17s  %17s  %17s  %15s  %s (%.1fx the next)\n", e.setup.c_str(), e.ramp_s,
+                  (b.reference_nodes > 0 ? pair(e.space) : std::string("-")).c_str(), pair(e.time).c_str(),
+                  pair(e.reduction).c_str(), model.c_str(), e.dominant.c_str(), e.dominance);
+  }
+}
+
+void write_error_budget_csv(const ErrorBudget& b, double dt, const std::filesystem::path& out) {
+  io::CsvWriter csv(out / "error_budget.csv",
+                    "setup,ramp_s,step,t_s,space_mean_mm,space_max_mm,time_mean_mm,time_max_mm,reduction_mean_mm,"
+                    "reduction_max_mm,model_max_mm");
+  for (const auto& e : b.entries)
+    for (std::size_t k = 0; k < e.time.max.size(); ++k) {
+      auto at = [k](const std::vector<double>& v) { return k < v.size() ? format("%.6g", v[k]) : std::string(); };
+      csv.row(format("%s,%g,%zu,%g,", e.setup.c_str(), e.ramp_s, k + 1, dt * static_cast<double>(k + 1)) + at(e.space.mean) +
+              "," + at(e.space.max) + "," + at(e.time.mean) + "," + at(e.time.max) + "," + at(e.reduction.mean) + "," +
+              at(e.reduction.max) + "," + (e.model_max_mm ? format("%.6g", *e.model_max_mm) : std::string()));
+    }
+  csv.close();
+}
+
+}  // namespace roifem::experiments

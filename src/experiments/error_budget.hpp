@@ -1,0 +1,74 @@
+#pragma once
+/// Where the paper's error comes from, on the ROI nodes, per setup and ramp, side by side:
+///   space      the paper mesh's full model against a finer reference of the same body and load
+///              (the brain regenerated at reference_nodes nodes, with a chosen element), both
+///              integrated alike (trapezoidal rule, the same dt); the reference is read at each ROI
+///              node's position (mesh/point_locator.hpp)
+///   time       the trapezoidal rule at the paper's dt against the exact modal solution of the same
+///              mesh (model/modal_reference.hpp)
+///   reduction  condensed against full: the paper's own error
+///   model      small strain against geometrically nonlinear (CalculiX NLGEOM,
+///              experiments/model_error.hpp), static at the full load
+/// Each as the peak over the run of the largest nodal distance over the ROI, and the steady mean
+/// (the ROI mean after step 100, as the paper's table).
+#include <filesystem>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/types.hpp"
+#include "fem/element.hpp"
+#include "model/fem_model.hpp"
+
+namespace roifem::experiments {
+
+struct ErrorBudgetOptions {
+  Index reference_nodes = 20000;  ///< 0: no space error
+  fem::Element reference_element = fem::Element::nodal_pressure;
+  bool model_error = true;  ///< CalculiX, when installed
+};
+
+struct ErrorCurve {  ///< per step 1..steps, mm
+  std::vector<double> mean, max;
+  double peak() const;         ///< the largest max
+  double steady_mean() const;  ///< the mean of `mean` after step 100 (all steps when fewer)
+};
+
+struct BudgetEntry {  ///< one setup, one ramp
+  std::string setup;
+  double ramp_s = 0;
+  ErrorCurve space, time, reduction;
+  std::optional<double> model_max_mm, model_mean_mm;  ///< static, full load
+  std::string dominant;                               ///< by peak
+  double dominance = 0;                               ///< its peak over the next largest
+};
+
+struct ErrorBudget {
+  Index reference_nodes = 0;
+  std::string reference_element;
+  double reference_opening_error_pct = 0;  ///< the paper mesh's static opening against the reference's
+  std::vector<BudgetEntry> entries;        ///< setup-major
+  std::string model_note;                  ///< why there is no model error, when there is none
+};
+
+/// What the paper's run supplies: its mesh and full model (forces drive: two opposite set forces
+/// of force_N on the walls), the setups' ROI nodes, and each setup's reduction error per ramp.
+struct BudgetInput {
+  const model::FemModel* full = nullptr;
+  std::vector<std::string> fixed_sets{"base"};
+  double force_N = 0, dt = 0;
+  long steps = 0;
+  std::vector<double> ramps_s;
+  std::vector<std::pair<std::string, std::vector<int>>> setups;  ///< name, ROI nodes
+  /// Per setup (same order) and ramp: the reduction's error curve.
+  std::vector<std::vector<ErrorCurve>> reduction;
+};
+
+ErrorBudget measure_error_budget(const BudgetInput& input, const ErrorBudgetOptions& options, const std::filesystem::path& out,
+                                 std::ostream& log);
+void print_error_budget(const ErrorBudget& budget, std::ostream& log);
+/// error_budget.csv: per setup, ramp and step, each source's mean and max (mm).
+void write_error_budget_csv(const ErrorBudget& budget, double dt, const std::filesystem::path& out);
+
+}  // namespace roifem::experiments
