@@ -1,6 +1,8 @@
 #include "experiments/error_budget.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <functional>
 #include <numeric>
 #include <ostream>
 
@@ -36,21 +38,6 @@ namespace {
 std::vector<model::SetLoad> opening_loads(double force_N) {
   return {{"opening_left", Vec3(-force_N, 0, 0), model::Ramp{0}, std::nullopt},
           {"opening_right", Vec3(force_N, 0, 0), model::Ramp{0}, std::nullopt}};
-}
-
-/// The full model's trapezoidal run under one ramp: every node's displacement (3N, m) per step.
-std::vector<Vector> run_full(const model::FemModel& full, double ramp, double dt, long steps) {
-  model::SecondOrderSystem system = full.system;
-  system.load = full.system.load.with_ramp(model::Ramp{ramp});
-  integrators::Trapezoid trapezoid(dt);
-  model::State state = model::State::at_rest(system.size());
-  trapezoid.reset(system, state);
-  std::vector<Vector> u;
-  for (long k = 0; k < steps; ++k) {
-    trapezoid.step(state);
-    u.push_back(full.displacement(state.u, state.t));
-  }
-  return u;
 }
 
 /// Per step, the mean and max over `nodes` of |a(node) - b(node)|; b gives the other field at a node.
@@ -131,6 +118,32 @@ void rank(BudgetEntry& e) {
 
 }  // namespace
 
+std::vector<Vector> unit_slope_run(const model::FemModel& full, double dt, long steps,
+                                   const std::function<Vector(const Vector&)>& read) {
+  const double t_end = dt * static_cast<double>(steps);
+  model::SecondOrderSystem system = full.system;
+  system.load = full.system.load.with_ramp(model::Ramp{t_end});  // f t / t_end up to t_end
+  integrators::Trapezoid trapezoid(dt);
+  model::State state = model::State::at_rest(system.size());
+  trapezoid.reset(system, state);
+  std::vector<Vector> w{Vector(t_end * read(full.displacement(state.u, 0.0)))};
+  for (long k = 0; k < steps; ++k) {
+    trapezoid.step(state);
+    w.emplace_back(t_end * read(full.displacement(state.u, state.t)));
+  }
+  return w;
+}
+
+std::vector<Vector> ramp_response(const std::vector<Vector>& w, double T, double dt) {
+  const auto m = static_cast<long>(std::lround(T / dt));
+  if (m < 1 || std::abs(static_cast<double>(m) * dt - T) > 1e-9 * T)
+    throw InputError(format("error budget: the ramp %g s is not a positive multiple of dt = %g s", T, dt));
+  std::vector<Vector> u;
+  for (std::size_t k = 1; k < w.size(); ++k)
+    u.emplace_back((w[k] - w[k >= static_cast<std::size_t>(m) ? k - static_cast<std::size_t>(m) : 0]) / T);
+  return u;
+}
+
 ErrorBudget measure_error_budget(const BudgetInput& in, const ErrorBudgetOptions& o, const std::filesystem::path& out,
                                  std::ostream& log) {
   if (in.setups.size() != in.reduction.size()) throw Error("internal: error budget: a reduction curve per setup is needed");
@@ -158,40 +171,42 @@ ErrorBudget measure_error_budget(const BudgetInput& in, const ErrorBudgetOptions
     log << format("  static opening: %.3f mm on the paper mesh, %.3f mm on the reference (%+.1f%%)\n", coarse, fine,
                   budget.reference_opening_error_pct);
   }
-  std::optional<model::ModalReference> modal;
+  // One unit-slope run of each model serves every ramp (ramp_response); one eigensolution too.
+  const Stopwatch clock;
+  const auto whole = [](const Vector& u) -> Vector { return u; };
+  const std::vector<Vector> coarse_slope = unit_slope_run(*in.full, in.dt, in.steps, whole);
+  std::vector<Vector> fine_slope;  // the reference at the ROI nodes' positions, 3 per node in `probed` order
+  if (reference)
+    fine_slope = unit_slope_run(reference->full, in.dt, in.steps, [&](const Vector& u) {
+      Vector at(3 * static_cast<Index>(probed.size()));
+      for (std::size_t i = 0; i < probed.size(); ++i)
+        at.segment<3>(3 * static_cast<Index>(i)) = mesh::PointLocator::interpolate(located[i], u);
+      return at;
+    });
+  const model::ModalReference modal(in.full->system, model::State::at_rest(in.full->system.size()));
+  log << format("  full model%s, unit-slope runs, and the exact modal solution in %.1f s\n", reference ? " and reference" : "",
+                clock.seconds());
   for (double ramp : in.ramps_s) {
-    const Stopwatch clock;
-    const std::vector<Vector> coarse = run_full(*in.full, ramp, in.dt, in.steps);
-    // Time: the exact modal solution of the same mesh (one eigensolution for every ramp).
-    if (!modal) modal.emplace(in.full->system, model::State::at_rest(in.full->system.size()));
-    const model::ModalReference exact = modal->with_ramp(ramp);
+    const std::vector<Vector> coarse = ramp_response(coarse_slope, ramp, in.dt);
+    const model::ModalReference exact = modal.with_ramp(ramp);
     std::vector<Vector> exact_u;
     for (long k = 1; k <= in.steps; ++k) {
       const double t = in.dt * static_cast<double>(k);
       exact_u.push_back(in.full->displacement(exact.displacement(t), t));
     }
-    // Space: the reference read at the ROI nodes' positions.
-    std::vector<std::vector<Vec3>> fine;
-    if (reference)
-      for (const Vector& u : run_full(reference->full, ramp, in.dt, in.steps)) {
-        std::vector<Vec3> at(probed.size());
-        for (std::size_t i = 0; i < probed.size(); ++i) at[i] = mesh::PointLocator::interpolate(located[i], u);
-        fine.push_back(std::move(at));
-      }
+    const std::vector<Vector> fine = reference ? ramp_response(fine_slope, ramp, in.dt) : std::vector<Vector>{};
     const auto ramp_index = static_cast<std::size_t>(std::find(in.ramps_s.begin(), in.ramps_s.end(), ramp) - in.ramps_s.begin());
     for (std::size_t s = 0; s < in.setups.size(); ++s) {
       BudgetEntry e{.setup = in.setups[s].first, .ramp_s = ramp};
       const auto& nodes = in.setups[s].second;
       e.time = distances(nodes, coarse, [&](std::size_t k, int n) -> Vec3 { return exact_u[k].segment<3>(3 * n); });
       if (reference)
-        e.space = distances(nodes, coarse, [&](std::size_t k, int n) {
-          return fine[k][static_cast<std::size_t>(slot[static_cast<std::size_t>(n)])];
+        e.space = distances(nodes, coarse, [&](std::size_t k, int n) -> Vec3 {
+          return fine[k].segment<3>(3 * slot[static_cast<std::size_t>(n)]);
         });
       e.reduction = in.reduction[s][ramp_index];
       budget.entries.push_back(std::move(e));
     }
-    log << format("  ramp %.1f s: full model, exact modal solution%s in %.1f s\n", ramp, reference ? " and reference" : "",
-                  clock.seconds());
   }
   if (o.model_error)
     model_error_into(in, out, budget, log);

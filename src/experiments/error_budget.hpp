@@ -9,9 +9,12 @@
 ///   reduction  condensed against full: the paper's own error
 ///   model      small strain against geometrically nonlinear (CalculiX NLGEOM,
 ///              experiments/model_error.hpp), static at the full load
-/// Each as the peak over the run of the largest nodal distance over the ROI, and the steady mean
+/// Both models run once, from rest under the load rising at unit slope; every ramp's response
+/// follows by superposition, exactly for the trapezoidal rule's linear recurrence (ramps that are
+/// multiples of dt). Each as the peak over the run of the largest nodal distance over the ROI, and the steady mean
 /// (the ROI mean after step 100, as the paper's table).
 #include <filesystem>
+#include <functional>
 #include <iosfwd>
 #include <optional>
 #include <string>
@@ -64,6 +67,17 @@ struct BudgetInput {
   /// Per setup (same order) and ramp: the reduction's error curve.
   std::vector<std::vector<ErrorCurve>> reduction;
 };
+
+/// The full model's trapezoidal run from rest under its loads rising at unit slope (f t): what
+/// `read` gives of every node's displacement (3N, m) at each step 0..steps.
+std::vector<Vector> unit_slope_run(const model::FemModel& full, double dt, long steps,
+                                   const std::function<Vector(const Vector&)>& read);
+/// The response at steps 1..steps to the loads ramped over T, from the unit-slope one: the
+/// trapezoidal rule's recurrence is linear and time-invariant and starts from rest, so with
+/// min(t / T, 1) = (t - max(t - T, 0)) / T it superposes exactly, u_k = (w_k - w_{k-m}) / T for
+/// T = m dt. One run then serves every ramp. Throws InputError for a T that is not a positive
+/// multiple of dt.
+std::vector<Vector> ramp_response(const std::vector<Vector>& w, double T, double dt);
 
 ErrorBudget measure_error_budget(const BudgetInput& input, const ErrorBudgetOptions& options, const std::filesystem::path& out,
                                  std::ostream& log);

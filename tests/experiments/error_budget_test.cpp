@@ -7,6 +7,7 @@
 
 #include <sstream>
 
+#include "common/errors.hpp"
 #include "integrators/trapezoid.hpp"
 #include "mesh/gmsh_reader.hpp"
 #include "roi/roi.hpp"
@@ -80,6 +81,26 @@ TEST(ErrorBudget, SpaceErrorVanishesAgainstTheSameMeshAndTimeErrorIsTheTrapezoid
     EXPECT_GT(worst, 1e-3);  // mm: the rule's error at dt = 0.05 s is real
     EXPECT_NEAR(e.time.max[static_cast<std::size_t>(k)] / worst, 1.0, 0.1) << "step " << k + 1;
   }
+}
+
+TEST(ErrorBudget, OneUnitSlopeRunGivesEveryRampsTrapezoidalRunBySuperposition) {
+  const Brain brain;
+  const auto slope = unit_slope_run(brain.full, 0.05, 30, [](const Vector& u) { return u; });
+  for (const double ramp : {0.05, 0.5, 1.0}) {
+    model::SecondOrderSystem system = brain.full.system;
+    system.load = brain.full.system.load.with_ramp(model::Ramp{ramp});
+    integrators::Trapezoid trapezoid(0.05);
+    model::State state = model::State::at_rest(system.size());
+    trapezoid.reset(system, state);
+    const auto superposed = ramp_response(slope, ramp, 0.05);
+    ASSERT_EQ(superposed.size(), 30u);
+    for (const auto& u : superposed) {
+      trapezoid.step(state);
+      const Vector direct = brain.full.displacement(state.u, state.t);
+      EXPECT_LT((u - direct).norm(), 1e-11 * direct.norm()) << "ramp " << ramp << ", t = " << state.t;
+    }
+  }
+  EXPECT_THROW(ramp_response(slope, 0.07, 0.05), InputError);
 }
 
 }  // namespace
