@@ -17,14 +17,15 @@ void print_convergence_table(const ConvergenceResults& r, std::ostream& log) {
   for (const auto& q : r.quantities) {
     log << format("%-13s %-4s", q.name.c_str(), q.unit.c_str());
     for (double v : q.values) log << format(" %12.5g", v);
-    const std::string order = q.observed_order ? format("%.2f", *q.observed_order) : format("(%.0f)", q.order_used);
+    const std::string order = q.observed_order ? format("%.2f", *q.observed_order) : format("(%.3g)", q.order_used);
     log << format(" %12.5g %7s\n", q.extrapolated, order.c_str());
     log << format("%-13s %-4s", "  error", "%");
     for (double e : q.errors) log << format(" %12.3g", 100 * e / std::abs(q.extrapolated));
     log << "\n";
   }
-  log << "order: observed from the three finest meshes; (2) where they are not yet in the asymptotic range and the\n"
-         "formal order was used. dynamic peak's error: the largest distance over the run from the extrapolated history.\n";
+  log << "order: observed from the three finest meshes; in brackets, the order used where none was observed: the\n"
+         "formal order 2 where the meshes are not yet in the asymptotic range, and for the dynamic peak the probe's, with\n"
+         "which its history is extrapolated step by step (its error: the largest distance over the run from that history).\n";
   const auto& opening = r.quantities.front();
   log << format(
       "The %lld-node model's spatial error on the opening: %.3f mm of %.3f mm (%.1f%%); at %lld nodes %.3f mm (%.1f%%)\n",

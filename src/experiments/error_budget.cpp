@@ -58,15 +58,15 @@ ErrorCurve distances(const std::vector<int>& nodes, const std::vector<Vector>& a
 }
 
 /// The finer reference of the same body and load.
-struct Reference {
+struct FinerReference {
   mesh::TetMesh mesh;
   model::FemModel full;
 };
 
-std::unique_ptr<Reference> build_reference(const BudgetInput& in, const ErrorBudgetOptions& o, const std::filesystem::path& out,
-                                           std::ostream& log) {
+std::unique_ptr<FinerReference> build_reference(const BudgetInput& in, const ErrorBudgetOptions& o,
+                                                const std::filesystem::path& out, std::ostream& log) {
   const Stopwatch clock;
-  auto r = std::make_unique<Reference>();
+  auto r = std::make_unique<FinerReference>();
   r->mesh = std::move(mesh::generate_brain_mesh(o.reference_nodes, out / "reference" / "brain.msh").mesh);
   mesh::check_mesh(r->mesh);
   r->full = model::build_fem_model(r->mesh, in.full->material, in.fixed_sets, opening_loads(in.force_N), {}, o.reference_element);
@@ -150,7 +150,7 @@ ErrorBudget measure_error_budget(const BudgetInput& in, const ErrorBudgetOptions
   log << "\nerror budget: space, time, reduction and model error on the ROI nodes\n";
   ErrorBudget budget;
   const mesh::TetMesh& mesh = *in.full->mesh;
-  std::unique_ptr<Reference> reference;
+  std::unique_ptr<FinerReference> reference;
   std::vector<int> probed;  // every ROI node, and where each lies in the reference
   std::vector<mesh::PointLocation> located;
   std::vector<Index> slot(static_cast<std::size_t>(mesh.num_nodes()), -1);
