@@ -186,7 +186,8 @@ ErrorBudget measure_error_budget(const BudgetInput& in, const ErrorBudgetOptions
   const model::ModalReference modal(in.full->system, model::State::at_rest(in.full->system.size()));
   log << format("  full model%s, unit-slope runs, and the exact modal solution in %.1f s\n", reference ? " and reference" : "",
                 clock.seconds());
-  for (double ramp : in.ramps_s) {
+  for (std::size_t r = 0; r < in.ramps_s.size(); ++r) {
+    const double ramp = in.ramps_s[r];
     const std::vector<Vector> coarse = ramp_response(coarse_slope, ramp, in.dt);
     const model::ModalReference exact = modal.with_ramp(ramp);
     std::vector<Vector> exact_u;
@@ -195,7 +196,6 @@ ErrorBudget measure_error_budget(const BudgetInput& in, const ErrorBudgetOptions
       exact_u.push_back(in.full->displacement(exact.displacement(t), t));
     }
     const std::vector<Vector> fine = reference ? ramp_response(fine_slope, ramp, in.dt) : std::vector<Vector>{};
-    const auto ramp_index = static_cast<std::size_t>(std::find(in.ramps_s.begin(), in.ramps_s.end(), ramp) - in.ramps_s.begin());
     for (std::size_t s = 0; s < in.setups.size(); ++s) {
       BudgetEntry e{.setup = in.setups[s].first, .ramp_s = ramp};
       const auto& nodes = in.setups[s].second;
@@ -204,7 +204,7 @@ ErrorBudget measure_error_budget(const BudgetInput& in, const ErrorBudgetOptions
         e.space = distances(nodes, coarse, [&](std::size_t k, int n) -> Vec3 {
           return fine[k].segment<3>(3 * slot[static_cast<std::size_t>(n)]);
         });
-      e.reduction = in.reduction[s][ramp_index];
+      e.reduction = in.reduction[s][r];
       budget.entries.push_back(std::move(e));
     }
   }
