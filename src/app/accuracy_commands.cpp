@@ -29,6 +29,9 @@ void add_convergence_command(CLI::App& app, Action& action) {
   cmd->add_option("--element", *element, "Override the scenario's element: tet4 or nodal-pressure");
   cmd->add_option("--material", *material, "Override the scenario's material with a preset: paper or brain");
   cmd->add_option("--probe-mm", *probe_mm, "Probe point X Y Z in mm (default: the ROI's target)")->expected(3);
+  cmd->add_option("--slit-refinement", o->slit_refinement,
+                  "Element size at the opening's faces relative to the rest, graded back over 30 mm (1: uniform meshes)")
+      ->capture_default_str();
   cmd->add_option("--modes", o->modes, "Eigenfrequencies compared")->capture_default_str();
   cmd->add_flag("!--no-dynamic", o->dynamic, "Skip the dynamic run on each mesh");
   cmd->add_flag("!--no-plots", o->plots, "Skip the PNG plot");

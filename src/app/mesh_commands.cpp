@@ -16,6 +16,7 @@ void add_mesh_command(CLI::App& app, Action& action) {
     Index nodes = 800;
     std::string out;
     double tolerance = 3;
+    double slit_refinement = 1;
   };
   auto opts = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("mesh",
@@ -25,10 +26,15 @@ void add_mesh_command(CLI::App& app, Action& action) {
       ->capture_default_str();
   cmd->add_option("--out", opts->out, "Output mesh file (.msh, Gmsh 4.1 ASCII)")->required();
   cmd->add_option("--tolerance", opts->tolerance, "Allowed deviation from --nodes, in percent")->capture_default_str();
+  cmd->add_option("--slit-refinement", opts->slit_refinement,
+                  "Element size at the opening's faces relative to the rest, graded back over 30 mm (1: uniform)")
+      ->capture_default_str();
   cmd->callback([&action, opts] {
     action = [opts] {
       Stopwatch clock;
-      const auto result = mesh::generate_brain_mesh(opts->nodes, opts->out, {}, opts->tolerance / 100.0);
+      mesh::BrainShape shape;
+      shape.slit_refinement = opts->slit_refinement;
+      const auto result = mesh::generate_brain_mesh(opts->nodes, opts->out, shape, opts->tolerance / 100.0);
       std::printf("wrote %s: %lld nodes, %lld tetrahedra (element size %.2f mm, %d meshings, %.1f s)\n", opts->out.c_str(),
                   static_cast<long long>(result.mesh.num_nodes()), static_cast<long long>(result.mesh.num_tets()),
                   result.element_size_mm, result.attempts, clock.seconds());

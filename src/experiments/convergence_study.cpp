@@ -50,14 +50,17 @@ Vec3 default_probe(const scenario::Scenario& s) {
   return s.roi->center;
 }
 
-mesh::TetMesh brain_of(Index nodes, const std::filesystem::path& dir, std::ostream& log) {
-  const auto file = dir / ("brain-" + std::to_string(nodes) + ".msh");
+mesh::TetMesh brain_of(Index nodes, double slit_refinement, const std::filesystem::path& dir, std::ostream& log) {
+  const auto file = dir / ("brain-" + std::to_string(nodes) +
+                           (slit_refinement < 1 ? format("-slit%g", slit_refinement) : std::string()) + ".msh");
   if (std::filesystem::exists(file)) {
     log << "  reusing " << file.string() << "\n";
     return mesh::read_mesh(file);
   }
   const Stopwatch clock;
-  auto generated = mesh::generate_brain_mesh(nodes, file);
+  mesh::BrainShape shape;
+  shape.slit_refinement = slit_refinement;
+  auto generated = mesh::generate_brain_mesh(nodes, file, shape);
   log << format("  meshed %s: %lld nodes in %.1f s\n", file.c_str(), static_cast<long long>(generated.mesh.num_nodes()),
                 clock.seconds());
   return std::move(generated.mesh);
@@ -66,7 +69,7 @@ mesh::TetMesh brain_of(Index nodes, const std::filesystem::path& dir, std::ostre
 MeshQuantities measure(const scenario::Scenario& s, const fem::Material& material, fem::Element element, const Vec3& probe,
                        const ConvergenceOptions& o, Index nodes, std::ostream& log) {
   const Stopwatch clock;
-  const mesh::TetMesh mesh = brain_of(nodes, o.out / "meshes", log);
+  const mesh::TetMesh mesh = brain_of(nodes, o.slit_refinement, o.out / "meshes", log);
   mesh::check_mesh(mesh);
   const model::FemModel full = model::build_fem_model(mesh, material, s.fixed_sets, s.loads, s.tools, element);
   const auto& system = full.system;

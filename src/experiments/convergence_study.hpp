@@ -33,6 +33,7 @@ struct ConvergenceOptions {
   std::optional<std::string> material;  ///< a preset overriding the scenario's
   std::optional<fem::Element> element;  ///< overriding the scenario's
   std::optional<Vec3> probe;            ///< m; default the ROI's target (or ball centre)
+  double slit_refinement = 1;           ///< mesh/brain_mesh.hpp: element size at the slit relative to the rest
   int modes = 6;
   bool dynamic = true;  ///< run the full dynamic model on each mesh
   bool plots = true;

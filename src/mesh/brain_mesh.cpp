@@ -24,10 +24,14 @@ void validate(const BrainShape& s, Index target_nodes) {
   if (s.slit_width <= 0 || s.slit_width >= s.semi_axis_x) throw InputError("slit width must lie in (0, semi_axis_x)");
   if (s.slit_depth <= 0 || s.slit_depth >= s.semi_axis_z) throw InputError("slit depth must lie in (0, semi_axis_z)");
   if (s.slit_length <= 0 || s.slit_length >= s.semi_axis_y) throw InputError("slit length must lie in (0, semi_axis_y)");
+  if (!(s.slit_refinement > 0 && s.slit_refinement <= 1))
+    throw InputError("--slit-refinement " + std::to_string(s.slit_refinement) + ": must lie in (0, 1] (1: a uniform mesh)");
+  if (!(s.slit_grading_mm > 0)) throw InputError("slit grading distance must be positive");
 }
 
-/// Builds the geometry in the current Gmsh model and names the physical groups.
-void build_geometry(const BrainShape& s) {
+/// Builds the geometry in the current Gmsh model and names the physical groups; returns the slit's
+/// faces (left, right, floor).
+std::vector<int> build_geometry(const BrainShape& s) {
   namespace occ = gmsh::model::occ;
   gmsh::model::add("brain");
   const int ellipsoid = occ::addSphere(0, 0, 0, 1);
@@ -91,10 +95,30 @@ void build_geometry(const BrainShape& s) {
   name_surfaces(left, "opening_left");
   name_surfaces(right, "opening_right");
   name_surfaces(floor, "opening_floor");
+  return {left[0], right[0], floor[0]};
 }
 
-Index mesh_with_size(double h) {
+/// A size field smaller by slit_refinement at the slit's faces, growing linearly back to the full
+/// size over slit_grading_mm; returns the threshold field, whose sizes follow h (set_sizes).
+int add_slit_field(const BrainShape& s, const std::vector<int>& slit_faces) {
+  namespace field = gmsh::model::mesh::field;
+  const int distance = field::add("Distance");
+  field::setNumbers(distance, "SurfacesList", std::vector<double>(slit_faces.begin(), slit_faces.end()));
+  field::setNumber(distance, "NumPointsPerCurve", 60);
+  const int threshold = field::add("Threshold");
+  field::setNumber(threshold, "InField", distance);
+  field::setNumber(threshold, "DistMin", s.slit_width / 2);
+  field::setNumber(threshold, "DistMax", s.slit_width / 2 + s.slit_grading_mm);
+  field::setAsBackgroundMesh(threshold);
+  return threshold;
+}
+
+Index mesh_with_size(double h, int slit_field, double slit_refinement) {
   gmsh::model::mesh::clear();
+  if (slit_field > 0) {
+    gmsh::model::mesh::field::setNumber(slit_field, "SizeMin", slit_refinement * h);
+    gmsh::model::mesh::field::setNumber(slit_field, "SizeMax", h);
+  }
   gmsh::option::setNumber("Mesh.MeshSizeMax", h);
   gmsh::option::setNumber("Mesh.MeshSizeMin", 0.05 * h);
   gmsh::model::mesh::generate(3);
@@ -112,7 +136,8 @@ BrainMesh generate_brain_mesh(Index target_nodes, const std::filesystem::path& o
   GmshSession session;
   BrainMesh result;
   gmsh_call("brain mesh generation", [&] {
-    build_geometry(shape);
+    const std::vector<int> slit_faces = build_geometry(shape);
+    const int slit_field = shape.slit_refinement < 1 ? add_slit_field(shape, slit_faces) : 0;
     gmsh::option::setNumber("Mesh.ElementOrder", 1);
     gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
     gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 1);
@@ -142,7 +167,7 @@ BrainMesh generate_brain_mesh(Index target_nodes, const std::filesystem::path& o
       double slope = -2.5, prev_h = 0, prev_n = 0;
       double h_fine = 0, h_coarse = 0;  // bracket: h_fine gave too many nodes, h_coarse too few
       for (int attempt = 0; attempt < 12; ++attempt) {
-        const auto n = static_cast<double>(mesh_with_size(h));
+        const auto n = static_cast<double>(mesh_with_size(h, slit_field, shape.slit_refinement));
         ++result.attempts;
         if (std::abs(n / target - 1) <= tolerance) {
           result.element_size_mm = h;

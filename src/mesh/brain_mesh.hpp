@@ -18,6 +18,11 @@ struct BrainShape {  // millimetres
   double semi_axis_x = 70, semi_axis_y = 85, semi_axis_z = 50;
   double slit_width = 4, slit_length = 30, slit_depth = 20;
   double base_fraction = 0.15;
+  /// Element size at the slit's faces relative to the rest (1: uniform; 0.25: four times smaller),
+  /// growing back to the full size over slit_grading_mm: the slit's walls and corners carry the
+  /// loads and a stress singularity, which a uniform mesh resolves only at very small sizes.
+  double slit_refinement = 1.0;
+  double slit_grading_mm = 30;
 };
 
 struct BrainMesh {

@@ -1,6 +1,8 @@
 // Reading meshes, and every kind of bad mesh input stopping with a message that names the fault.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "common/errors.hpp"
 #include "mesh/brain_mesh.hpp"
 #include "mesh/gmsh_reader.hpp"
@@ -188,6 +190,35 @@ TEST(BrainMesh, GeneratesTheRequestedNodeCountAndWritesAReadableFile) {
   int files = 0;
   for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir.path())) ++files;
   EXPECT_EQ(files, 1);
+}
+
+/// The mean edge length (m) of the tetrahedra with a node on one of the slit's walls.
+double mean_edge_at_the_slit(const TetMesh& m) {
+  std::vector<char> on_wall(static_cast<std::size_t>(m.num_nodes()), 0);
+  for (const char* set : {"opening_left", "opening_right"})
+    for (int n : m.set(set).nodes) on_wall[static_cast<std::size_t>(n)] = 1;
+  double sum = 0;
+  int edges = 0;
+  for (const Tet& t : m.tets) {
+    if (!std::any_of(t.begin(), t.end(), [&](int n) { return on_wall[static_cast<std::size_t>(n)] != 0; })) continue;
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b, ++edges)
+        sum += (m.node(t[static_cast<std::size_t>(a)]) - m.node(t[static_cast<std::size_t>(b)])).norm();
+  }
+  return sum / edges;
+}
+
+TEST(BrainMesh, SlitRefinementShrinksTheElementsAtTheOpeningAtTheSameNodeCount) {
+  BrainShape graded;
+  graded.slit_refinement = 0.25;
+  const TetMesh uniform = generate_brain_mesh(2000).mesh, refined = generate_brain_mesh(2000, {}, graded).mesh;
+  check_mesh(refined);
+  EXPECT_NEAR(static_cast<double>(refined.num_nodes()), 2000.0, 0.05 * 2000);
+  EXPECT_NEAR(total_volume(refined), total_volume(uniform), 0.01 * total_volume(uniform));
+  // A quarter of the size at the walls, against elements grown elsewhere to keep the node count.
+  EXPECT_LT(mean_edge_at_the_slit(refined), 0.5 * mean_edge_at_the_slit(uniform));
+  graded.slit_refinement = 0;
+  EXPECT_THROW(generate_brain_mesh(2000, {}, graded), InputError);
 }
 
 }  // namespace
