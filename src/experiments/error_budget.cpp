@@ -92,17 +92,14 @@ void model_error_into(const BudgetInput& in, const std::filesystem::path& out, E
     budget.model_note = "not measured: CalculiX's nonlinear solution stopped before the full load";
     return;
   }
-  for (std::size_t s = 0; s < in.setups.size(); ++s) {
-    double sum = 0, worst = 0;
-    for (int n : in.setups[s].second) {
-      const double d = (study.u_linear.segment<3>(3 * n) - study.u_nonlinear.segment<3>(3 * n)).norm() / mm;
-      sum += d;
-      worst = std::max(worst, d);
-    }
+  for (const auto& [name, nodes] : in.setups) {
+    // The same measure as the other sources, at one "step": the static full load.
+    const ErrorCurve model =
+        distances(nodes, {study.u_linear}, [&](std::size_t, int n) -> Vec3 { return study.u_nonlinear.segment<3>(3 * n); });
     for (auto& e : budget.entries)
-      if (e.setup == in.setups[s].first) {
-        e.model_max_mm = worst;
-        e.model_mean_mm = sum / static_cast<double>(in.setups[s].second.size());
+      if (e.setup == name) {
+        e.model_max_mm = model.max.front();
+        e.model_mean_mm = model.mean.front();
       }
   }
 }
