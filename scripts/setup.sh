@@ -14,6 +14,9 @@ packages=(
   libhdf5-dev              # results files
   libgmsh-dev              # mesh generation and reading
   calculix-ccx             # geometrically nonlinear reference (roifem model-error)
+  libcgal-dev libgmp-dev libmpfr-dev libboost-dev   # CGAL Mesh_3: brains from images (roifem mesh --image)
+  libnifti2-dev            # NIfTI-1/2 images
+  mricron-data             # the Colin27 brain template and the AAL atlas (BSD-3)
   libtomlplusplus-dev      # scenario files
   libcli11-dev             # command line
   libgtest-dev libgmock-dev

@@ -2,7 +2,9 @@
 #include <cstdio>
 #include <iostream>
 
+#include "anatomy/brain_image_mesh.hpp"
 #include "app/commands.hpp"
+#include "common/errors.hpp"
 #include "common/timer.hpp"
 #include "common/types.hpp"
 #include "mesh/brain_mesh.hpp"
@@ -11,26 +13,122 @@
 
 namespace roifem::app {
 
+namespace {
+
+/// "X,Y" or "X,Y,WIDTH,LENGTH,DEPTH" (mm) -> the opening carved into an image brain.
+anatomy::SurgicalOpening parse_opening(const std::vector<double>& v) {
+  if (v.size() != 2 && v.size() != 5)
+    throw InputError("--opening: give X,Y (mm; the slit's centre over the brain) or X,Y,WIDTH,LENGTH,DEPTH");
+  anatomy::SurgicalOpening opening;
+  opening.centre_x_mm = v[0];
+  opening.centre_y_mm = v[1];
+  if (v.size() == 5) {
+    opening.width_mm = v[2];
+    opening.length_mm = v[3];
+    opening.depth_mm = v[4];
+  }
+  return opening;
+}
+
+void mesh_image(anatomy::BrainImageOptions options, const std::vector<std::string>& regions, const std::vector<double>& opening,
+                const std::string& out) {
+  for (const auto& r : regions) options.regions.push_back(anatomy::parse_region(r));
+  if (!opening.empty()) options.opening = parse_opening(opening);
+  Stopwatch clock;
+  const auto result = anatomy::mesh_brain_image(options, out, [](const std::string& line) {
+    std::printf("  %s\n", line.c_str());
+    std::fflush(stdout);
+  });
+  const auto s = mesh::mesh_statistics(result.mesh);
+  std::printf("wrote %s: %lld nodes, %lld tetrahedra from %s (size %.2f mm, %d meshings, %.1f s)\n", out.c_str(),
+              static_cast<long long>(s.nodes), static_cast<long long>(s.tets), options.image.c_str(), result.size_mm,
+              result.attempts, clock.seconds());
+  std::printf("volume %.1f cm^3 (the cleaned mask: %.1f cm^3, %+.2f%%), quality min %.3f (%.3f before smoothing), median %.3f\n",
+              s.volume * 1e6, result.mask_volume_mm3 * 1e-3, 100 * (s.volume * 1e9 / result.mask_volume_mm3 - 1), s.quality_min,
+              result.quality_min_meshed, s.quality_median);
+  std::printf("mask: %zu loose pieces (%zu voxels) dropped, %zu voxels of holes filled; bottom cut at z = %.1f mm\n",
+              result.dropped_pieces, result.dropped_voxels, result.filled_voxels, result.cut_plane_z_mm);
+  if (result.opening_centre_mm)
+    std::printf("opening: centre (%.1f, %.1f, %.1f) mm (roifem paper --target-mm %.1f,%.1f,%.1f)\n",
+                result.opening_centre_mm->x(), result.opening_centre_mm->y(), result.opening_centre_mm->z(),
+                result.opening_centre_mm->x(), result.opening_centre_mm->y(), result.opening_centre_mm->z());
+  for (const auto& [name, set] : result.mesh.sets)
+    std::printf("  %-16s %dD  %6zu nodes  %6zu tetrahedra  %6zu triangles\n", name.c_str(), set.dim, set.nodes.size(),
+                set.tets.size(), set.triangles.size());
+}
+
+}  // namespace
+
 void add_mesh_command(CLI::App& app, Action& action) {
   struct Options {
     Index nodes = 800;
     std::string out;
     double tolerance = 3;
     double slit_refinement = 1;
+    std::string image;
+    bool colin27 = false;
+    anatomy::BrainImageOptions anatomy;
+    std::vector<std::string> regions;
+    std::vector<double> opening;
   };
   auto opts = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("mesh",
-                                 "Generate a simplified brain mesh (ellipsoid 14 x 17 x 10 cm with a "
-                                 "surgical opening) with Gmsh, in millimetres");
+                                 "Generate a brain mesh in millimetres: the simplified brain (ellipsoid 14 x 17 x 10 cm with a "
+                                 "surgical opening, Gmsh), or a real brain from an image (--colin27 or --image, CGAL Mesh_3)");
   cmd->add_option("--nodes", opts->nodes, "Number of nodes wanted (e.g. 800, 5000, 20000, 100000, 300000)")
       ->capture_default_str();
   cmd->add_option("--out", opts->out, "Output mesh file (.msh, Gmsh 4.1 ASCII)")->required();
-  cmd->add_option("--tolerance", opts->tolerance, "Allowed deviation from --nodes, in percent")->capture_default_str();
-  cmd->add_option("--slit-refinement", opts->slit_refinement,
-                  "Element size at the opening's faces relative to the rest, graded back over 30 mm (1: uniform)")
+  cmd->add_option("--tolerance", opts->tolerance, "Allowed deviation from --nodes, in percent (images: at least 3)")
       ->capture_default_str();
-  cmd->callback([&action, opts] {
-    action = [opts] {
+  cmd->add_option("--slit-refinement", opts->slit_refinement,
+                  "Ellipsoid only: element size at the opening's faces relative to the rest, graded back over 30 mm (1: uniform)")
+      ->capture_default_str();
+  auto* image = cmd->add_option("--image", opts->image,
+                                "A brain image (NIfTI .nii or .nii.gz; skull-stripped, or a mask): mesh the voxels above "
+                                "--threshold, largest piece, holes filled, cut flat at the bottom");
+  auto* colin = cmd->add_flag("--colin27", opts->colin27,
+                              "The Colin27 brain of Debian's mricron-data (ch2better.nii.gz, MNI millimetres), with the AAL "
+                              "atlas for --region NAME=label:...");
+  image->excludes(colin);
+  cmd->add_option("--threshold", opts->anatomy.threshold, "Image: the mask is the voxels above this value")
+      ->capture_default_str();
+  cmd->add_option("--cut-mm", opts->anatomy.cut_height_mm,
+                  "Image: height of the brain's bottom cut away; its flat face is the set 'brainstem_cut' (0: none)")
+      ->capture_default_str();
+  cmd->add_option("--atlas", opts->anatomy.atlas, "Image: a label image on the same space (its names in <atlas>.txt)");
+  cmd->add_option("--region", opts->regions,
+                  "Image: a named surface set, NAME=sphere:X,Y,Z,R (mm), NAME=label:LABEL[,LABEL...] (atlas names or "
+                  "numbers, e.g. motor=label:Precentral_R) or NAME=below:Z (mm, e.g. base=below:-42); repeat for more");
+  cmd->add_option("--opening", opts->opening,
+                  "Image: carve a surgical opening (like the ellipsoid's) at X,Y (mm), walls x = X -+ 2 mm, 30 mm along y, "
+                  "20 mm deep from the top; or X,Y,WIDTH,LENGTH,DEPTH. Sets opening_left/right/floor")
+      ->delimiter(',');
+  cmd->add_flag("!--no-tissues", opts->anatomy.tissues, "Image: skip the grey_matter / white_matter / csf volume sets");
+  cmd->add_option("--seed", opts->anatomy.seed, "Image: CGAL's random seed (the same seed gives the same file)")
+      ->capture_default_str();
+  cmd->callback([&action, opts, cmd] {
+    action = [opts, cmd] {
+      const bool from_image = opts->colin27 || !opts->image.empty();
+      for (const char* image_only : {"--threshold", "--cut-mm", "--atlas", "--region", "--opening", "--no-tissues", "--seed"})
+        if (!from_image && cmd->count(image_only) > 0)
+          throw InputError(std::string(image_only) + " applies to image meshes: add --colin27 or --image FILE");
+      if (from_image && cmd->count("--slit-refinement") > 0)
+        throw InputError("--slit-refinement applies to the ellipsoid brain, not to image meshes");
+      if (from_image) {
+        anatomy::BrainImageOptions options = opts->anatomy;
+        options.target_nodes = opts->nodes;
+        options.tolerance = (cmd->count("--tolerance") > 0 ? opts->tolerance : 5.0) / 100.0;
+        options.image = opts->image;
+        if (opts->colin27) {
+          options.image = anatomy::colin27_image();
+          if (options.image.empty())
+            throw InputError(
+                "--colin27: the template is not installed (Debian's mricron-data: sudo apt-get install mricron-data)");
+          if (options.atlas.empty()) options.atlas = anatomy::colin27_atlas();
+        }
+        mesh_image(options, opts->regions, opts->opening, opts->out);
+        return;
+      }
       Stopwatch clock;
       mesh::BrainShape shape;
       shape.slit_refinement = opts->slit_refinement;

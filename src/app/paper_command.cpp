@@ -27,6 +27,14 @@ void add_paper_command(CLI::App& app, Action& action) {
                          "Prints Table 2 and writes errors.csv, timing.csv, results.h5/.xdmf and PNG plots");
   cmd->add_option("--out", o->out, "Output directory")->required();
   cmd->add_option("--mesh", o->mesh, "The 800-node brain mesh (mm)")->capture_default_str();
+  cmd->add_option("--fixed", o->fixed_set, "The named set held fixed (the ellipsoid: base; an image brain: brainstem_cut)")
+      ->capture_default_str();
+  auto target = std::make_shared<std::vector<double>>(
+      std::vector<double>{o->roi_target_mm.x(), o->roi_target_mm.y(), o->roi_target_mm.z()});
+  cmd->add_option("--target-mm", *target, "The ROIs' centre X,Y,Z (mm): both setups are the nodes nearest to it")
+      ->delimiter(',')
+      ->expected(3)
+      ->capture_default_str();
   cmd->add_option("--material", o->material, "Material preset: paper (Table 1) or brain")->capture_default_str();
   auto drive = std::make_shared<std::string>("forces");
   cmd->add_option("--drive", *drive,
@@ -55,8 +63,9 @@ void add_paper_command(CLI::App& app, Action& action) {
   auto budget_element = std::make_shared<std::string>("nodal-pressure");
   cmd->add_option("--budget-element", *budget_element, "The reference's element: nodal-pressure or tet4")->capture_default_str();
   cmd->add_flag("!--no-model-error", o->budget.model_error, "Leave CalculiX's nonlinear model error out of the budget");
-  cmd->callback([&action, o, reductions, drive, budget_element] {
-    action = [o, reductions, drive, budget_element] {
+  cmd->callback([&action, o, reductions, drive, budget_element, target] {
+    action = [o, reductions, drive, budget_element, target] {
+      o->roi_target_mm = Vec3((*target)[0], (*target)[1], (*target)[2]);
       o->budget.reference_element = fem::parse_element(*budget_element);
       o->drive = *drive == "spatulas" ? experiments::PaperDrive::spatulas : experiments::PaperDrive::forces;
       o->reductions.clear();

@@ -1,5 +1,7 @@
 #include "experiments/paper_experiment.hpp"
 
+#include "mesh/brain_mesh.hpp"
+
 #include <algorithm>
 #include <cstdio>
 #include <numeric>
@@ -89,7 +91,7 @@ struct PaperModel {
 /// The forces' model: unit forces (1 N per wall, opposite directions), scaled to the opening.
 void add_opening_forces(const PaperOptions& o, PaperModel& m, PaperResults& results) {
   m.full = model::build_fem_model(
-      m.mesh, fem::material_preset(o.material), {"base"},
+      m.mesh, fem::material_preset(o.material), {o.fixed_set},
       {{"opening_left", Vec3(-1, 0, 0), model::Ramp{0}}, {"opening_right", Vec3(1, 0, 0), model::Ramp{0}}});
   const fem::DofMap& dofs = *m.full.dofs;
   solvers::Cholesky K;
@@ -111,7 +113,7 @@ void add_spatulas(const PaperOptions& o, PaperModel& m, PaperResults& results) {
                           .radius = 0,
                           .path = {.displacement = Vec3(direction * half, 0, 0), .ramp = model::Ramp{0}}};
   };
-  m.full = model::build_fem_model(m.mesh, fem::material_preset(o.material), {"base"}, {},
+  m.full = model::build_fem_model(m.mesh, fem::material_preset(o.material), {o.fixed_set}, {},
                                   {spatula("left", "opening_left", -1), spatula("right", "opening_right", 1)});
   solvers::Cholesky K;
   fem::factorize_stiffness(K, m.full.system.K, *m.full.dofs);
@@ -123,6 +125,19 @@ std::unique_ptr<PaperModel> build_paper_model(const PaperOptions& o, PaperResult
   auto m = std::make_unique<PaperModel>();
   m->mesh = mesh::read_mesh(o.mesh);
   mesh::check_mesh(m->mesh);
+  if (o.drive == PaperDrive::forces && o.error_budget && o.budget.reference_nodes > 0) {
+    // The budget's space error regenerates the ellipsoid brain finer: refuse another shape now,
+    // not after the whole run.
+    const mesh::BrainShape shape;
+    const Vec3 hi = m->mesh.nodes.rowwise().maxCoeff() / mm, lo = m->mesh.nodes.rowwise().minCoeff() / mm;
+    const Vec3 expected(shape.semi_axis_x, shape.semi_axis_y, shape.semi_axis_z);
+    if (((hi - expected).cwiseAbs().array() > 0.05 * expected.array()).any() ||
+        ((lo + expected).cwiseAbs().array() > 0.05 * expected.array()).any())
+      throw InputError(
+          format("%s spans [%.1f, %.1f] x [%.1f, %.1f] x [%.1f, %.1f] mm, not the generated ellipsoid brain that "
+                 "the error budget's space error refines; add --no-error-budget (or --budget-nodes 0)",
+                 o.mesh.c_str(), lo.x(), hi.x(), lo.y(), hi.y(), lo.z(), hi.z()));
+  }
   results.drive = o.drive;
   results.opening_mm = o.opening_mm;
   if (o.drive == PaperDrive::forces)
@@ -387,7 +402,7 @@ void write_results_h5(const PaperOptions& o, const PaperModel& m, const std::vec
 ErrorBudget measure_budget(const PaperOptions& o, const PaperModel& m, const std::vector<Setup>& setups,
                            const PaperResults& results, std::ostream& log) {
   BudgetInput in{.full = &m.full,
-                 .fixed_sets = {"base"},
+                 .fixed_sets = {o.fixed_set},
                  .force_N = results.force_N,
                  .dt = o.dt,
                  .steps = o.steps,

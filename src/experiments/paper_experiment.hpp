@@ -36,7 +36,8 @@ struct PaperOptions {
   long steps = 200;
   std::vector<double> ramps_s{0.5, 1.0, 2.0};
   std::vector<Index> setup_nodes{306, 228};
-  Vec3 roi_target_mm{0, 0, 40};  ///< centre of the opening (slit from z = 30 to 50 mm)
+  Vec3 roi_target_mm{0, 0, 40};    ///< centre of the opening (slit from z = 30 to 50 mm)
+  std::string fixed_set = "base";  ///< the named set held fixed (an image brain: brainstem_cut)
   long timing_steps = 1000;
   long field_every = 10;  ///< full displacement field in results.h5 every k steps
   bool plots = true;

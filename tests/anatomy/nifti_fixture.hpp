@@ -1,0 +1,60 @@
+#pragma once
+// Writes small NIfTI-1 files for the tests: the header laid out by hand from the NIfTI-1
+// standard (348 bytes, then 4 bytes of extension flags, then the voxels), so that the reader is
+// checked against files it did not write.
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <vector>
+
+namespace roifem::test {
+
+/// A float32 image of nx x ny x nz voxels of `voxel_mm`, origin at `origin_mm`, value(i, j, k).
+inline void write_nifti(const std::filesystem::path& file, std::array<int, 3> dims, double voxel_mm,
+                        std::array<double, 3> origin_mm, const std::function<float(int, int, int)>& value,
+                        std::size_t truncate_to = 0) {
+  std::array<char, 352> header{};
+  auto put = [&](std::size_t offset, auto v) { std::memcpy(header.data() + offset, &v, sizeof v); };
+  put(0, std::int32_t{348});
+  const std::int16_t ndim = dims[2] > 1 ? 3 : 2;
+  const std::int16_t dim[8] = {
+      ndim, static_cast<std::int16_t>(dims[0]), static_cast<std::int16_t>(dims[1]), static_cast<std::int16_t>(dims[2]), 1, 1, 1,
+      1};
+  std::memcpy(header.data() + 40, dim, sizeof dim);
+  put(70, std::int16_t{16});  // DT_FLOAT32
+  put(72, std::int16_t{32});  // bits per voxel
+  const float pixdim[8] = {1, static_cast<float>(voxel_mm), static_cast<float>(voxel_mm), static_cast<float>(voxel_mm), 1, 1, 1,
+                           1};
+  std::memcpy(header.data() + 76, pixdim, sizeof pixdim);
+  put(108, 352.0f);           // vox_offset
+  put(112, 1.0f);             // scl_slope
+  put(254, std::int16_t{1});  // sform_code: scanner space
+  const float srow[12] = {static_cast<float>(voxel_mm),
+                          0,
+                          0,
+                          static_cast<float>(origin_mm[0]),
+                          0,
+                          static_cast<float>(voxel_mm),
+                          0,
+                          static_cast<float>(origin_mm[1]),
+                          0,
+                          0,
+                          static_cast<float>(voxel_mm),
+                          static_cast<float>(origin_mm[2])};
+  std::memcpy(header.data() + 280, srow, sizeof srow);
+  std::memcpy(header.data() + 344, "n+1\0", 4);
+  std::vector<float> voxels;
+  for (int k = 0; k < dims[2]; ++k)
+    for (int j = 0; j < dims[1]; ++j)
+      for (int i = 0; i < dims[0]; ++i) voxels.push_back(value(i, j, k));
+  std::vector<char> bytes(header.begin(), header.end());
+  const auto* data = reinterpret_cast<const char*>(voxels.data());
+  bytes.insert(bytes.end(), data, data + voxels.size() * sizeof(float));
+  if (truncate_to > 0) bytes.resize(truncate_to);
+  std::ofstream(file, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+}  // namespace roifem::test

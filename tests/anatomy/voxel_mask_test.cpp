@@ -1,0 +1,134 @@
+// The image side of real brains: NIfTI reading (against files written by hand from the standard),
+// mask cleaning, block averaging and blurring (each checked on a case whose answer is known).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+#include <regex>
+
+#include "anatomy/image_volume.hpp"
+#include "anatomy/nifti_fixture.hpp"
+#include "anatomy/voxel_mask.hpp"
+#include "common/errors.hpp"
+
+namespace roifem::anatomy {
+namespace {
+
+/// The message of the InputError that f() throws ("<no InputError>" if none).
+template <class F>
+std::string input_error_of(F f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "<no InputError>";
+}
+#define EXPECT_INPUT_ERROR(call, pattern)                                    \
+  do {                                                                       \
+    const std::string message = input_error_of([&] { (void)(call); });       \
+    EXPECT_TRUE(std::regex_search(message, std::regex(pattern))) << message; \
+  } while (false)
+
+std::filesystem::path scratch(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / "roifem-anatomy-test";
+  std::filesystem::create_directories(dir);
+  return dir / name;
+}
+
+TEST(NiftiReader, ReadsValuesAndTheSformAffine) {
+  const auto file = scratch("ramp.nii");
+  test::write_nifti(file, {4, 5, 6}, 2.0, {-10, 20, 30},
+                    [](int i, int j, int k) { return static_cast<float>(i + 10 * j + 100 * k); });
+  const ImageVolume image = read_nifti(file);
+  EXPECT_EQ(image.dims, (std::array<int, 3>{4, 5, 6}));
+  EXPECT_EQ(image.at(3, 2, 1), 123.0f);
+  EXPECT_TRUE(image.to_mm(Eigen::Vector3d(1, 2, 3)).isApprox(Eigen::Vector3d(-8, 24, 36)));
+  EXPECT_DOUBLE_EQ(image.voxel_volume_mm3(), 8.0);
+  EXPECT_EQ(image.nearest(Eigen::Vector3d(-8.4, 24.6, 36)), 321.0f);
+}
+
+TEST(NiftiReader, NamesAMissingATruncatedAndA2dImage) {
+  EXPECT_INPUT_ERROR(read_nifti(scratch("none.nii")), "none.nii: no such image file");
+  const auto truncated = scratch("truncated.nii");
+  test::write_nifti(
+      truncated, {8, 8, 8}, 1.0, {0, 0, 0}, [](int, int, int) { return 1.0f; }, 352 + 100);
+  EXPECT_INPUT_ERROR(read_nifti(truncated), "truncated.nii: the header reads but the voxel data does not");
+  const auto flat = scratch("slice.nii");
+  test::write_nifti(flat, {8, 8, 1}, 1.0, {0, 0, 0}, [](int, int, int) { return 1.0f; });
+  EXPECT_INPUT_ERROR(read_nifti(flat), "slice.nii: a 8 x 8 x 1 image; .*a 2D slice");
+}
+
+/// A 20^3 grid: a ball of radius 6 around (10, 10, 10) with a hollow of radius 2 at its centre,
+/// and a single loose voxel in a corner.
+ImageVolume hollow_ball_with_a_speck() {
+  ImageVolume grid;
+  grid.dims = {20, 20, 20};
+  grid.values.assign(8000, 0.0f);
+  for (int k = 0; k < 20; ++k)
+    for (int j = 0; j < 20; ++j)
+      for (int i = 0; i < 20; ++i) {
+        const double r = std::sqrt((i - 10.0) * (i - 10.0) + (j - 10.0) * (j - 10.0) + (k - 10.0) * (k - 10.0));
+        grid.values[grid.index(i, j, k)] = r <= 6 && r > 2 ? 50.0f : 0.0f;
+      }
+  grid.values[grid.index(1, 1, 1)] = 50.0f;
+  return grid;
+}
+
+TEST(MaskCleanup, DropsLoosePiecesAndFillsHoles) {
+  const ImageVolume image = hollow_ball_with_a_speck();
+  std::size_t ball = 0, hollow = 0;
+  for (int k = 0; k < 20; ++k)
+    for (int j = 0; j < 20; ++j)
+      for (int i = 0; i < 20; ++i) {
+        const double r2 = (i - 10.0) * (i - 10.0) + (j - 10.0) * (j - 10.0) + (k - 10.0) * (k - 10.0);
+        ball += r2 <= 36 ? 1 : 0;
+        hollow += r2 <= 4 ? 1 : 0;
+      }
+  const MaskCleanup clean = clean_mask(image, 0);
+  EXPECT_EQ(clean.dropped_pieces, 1u);
+  EXPECT_EQ(clean.dropped_voxels, 1u);
+  EXPECT_EQ(clean.filled_voxels, hollow);
+  EXPECT_EQ(clean.voxels, ball);
+  EXPECT_EQ(clean.mask.at(10, 10, 10), 1.0f);
+  EXPECT_EQ(clean.mask.at(1, 1, 1), 0.0f);
+}
+
+TEST(MaskCleanup, NamesAnEmptyMask) {
+  ImageVolume empty;
+  empty.dims = {4, 4, 4};
+  empty.values.assign(64, 3.0f);
+  empty.source = "dark.nii";
+  EXPECT_INPUT_ERROR(clean_mask(empty, 5), "dark.nii: no voxel is above the mask threshold 5");
+}
+
+TEST(VoxelGrid, BlurAndAveragingKeepTheMaskVolume) {
+  ImageVolume mask = clean_mask(hollow_ball_with_a_speck(), 0).mask;
+  mask.index_to_mm.diagonal().head<3>().setConstant(0.5);
+  const double volume = integral_mm3(mask);
+  ImageVolume coarse = block_average(mask, 3);
+  EXPECT_NEAR(integral_mm3(coarse), volume, 1e-6 * volume);  // float sums
+  // The coarse voxel (3, 3, 3) covers fine voxels 9..11: its centre is fine voxel 10.
+  EXPECT_TRUE(coarse.to_mm(Eigen::Vector3d(3, 3, 3)).isApprox(mask.to_mm(Eigen::Vector3d(10, 10, 10))));
+  ImageVolume padded = pad(coarse, 4);
+  EXPECT_TRUE(padded.to_mm(Eigen::Vector3d(7, 7, 7)).isApprox(coarse.to_mm(Eigen::Vector3d(3, 3, 3))));
+  gaussian_blur(padded, 1.0);
+  EXPECT_NEAR(integral_mm3(padded), volume, 1e-5 * volume);
+  EXPECT_GT(padded.at(7, 7, 7), 0.9f);
+}
+
+TEST(VoxelGrid, CutAndCarveClearWhatTheySay) {
+  ImageVolume mask = clean_mask(hollow_ball_with_a_speck(), 0).mask;
+  const double plane = cut_bottom(mask, 3);  // the ball's lowest voxel is at k = 4
+  EXPECT_DOUBLE_EQ(plane, 7.0);
+  for (int j = 0; j < 20; ++j)
+    for (int i = 0; i < 20; ++i) EXPECT_EQ(mask.at(i, j, 6), 0.0f);
+  EXPECT_EQ(mask.at(10, 10, 7), 1.0f);
+  const std::size_t cleared = carve_box(mask, Eigen::Vector3d(9.5, 0, 12), Eigen::Vector3d(10.5, 20, 20));
+  EXPECT_EQ(mask.at(10, 10, 14), 0.0f);
+  EXPECT_EQ(mask.at(11, 10, 14), 1.0f);
+  EXPECT_GT(cleared, 0u);
+}
+
+}  // namespace
+}  // namespace roifem::anatomy
