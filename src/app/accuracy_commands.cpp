@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "app/commands.hpp"
+#include "common/errors.hpp"
 #include "experiments/convergence_study.hpp"
 #include "experiments/model_error.hpp"
 #include "mesh/gmsh_reader.hpp"
@@ -62,6 +63,8 @@ void add_model_error_command(CLI::App& app, Action& action) {
   cmd->callback([&action, o] {
     action = [o] {
       const auto s = scenario::read_scenario(o->scenario);
+      if (!s.material_regions.empty())
+        throw InputError(o->scenario + ": [[material_region]]: the CalculiX deck writes one material; give one [material]");
       const mesh::TetMesh mesh = mesh::read_mesh(s.mesh);
       mesh::check_mesh(mesh);
       const auto study =

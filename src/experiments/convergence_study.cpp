@@ -151,6 +151,10 @@ ConvergenceResults run_convergence_study(const ConvergenceOptions& o, std::ostre
   if (o.modes < 1) throw InputError("--modes: at least one eigenfrequency");
   const scenario::Scenario s = scenario::read_scenario(o.scenario);
   check_generated_brain(s);
+  if (!s.material_regions.empty())
+    throw InputError(s.file.string() +
+                     ": [[material_region]]: the convergence study regenerates the ellipsoid brain, which has no "
+                     "material regions; give one [material]");
   ConvergenceResults r;
   const fem::Material material = o.material ? fem::material_preset(*o.material) : s.material;
   const fem::Element element = o.element.value_or(s.element);

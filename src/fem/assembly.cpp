@@ -69,7 +69,7 @@ StiffnessAssembler::StiffnessAssembler(const mesh::TetMesh& mesh, const DofMap& 
   }
 }
 
-SparseMatrix StiffnessAssembler::stiffness(const Material& material) const {
+SparseMatrix StiffnessAssembler::stiffness(const MaterialMap& materials) const {
   const Index n_free = dofs_.num_free();
   SparseMatrix K(n_free, n_free);
   K.resizeNonZeros(static_cast<Index>(row_index_.size()));  // uninitialised: each column fills its own below
@@ -84,7 +84,6 @@ SparseMatrix StiffnessAssembler::stiffness(const Material& material) const {
   std::vector<char> all_free(u(n_nodes));
   for (Index n = 0; n < n_nodes; ++n)
     all_free[u(n)] = dofs_.free_dof(n, 0) >= 0 && dofs_.free_dof(n, 1) >= 0 && dofs_.free_dof(n, 2) >= 0;
-  const double lambda = material.lambda, mu = material.mu;
 #pragma omp parallel for schedule(dynamic, 64)
   for (Index b = 0; b < n_nodes; ++b) {
     int column[3] = {-1, -1, -1};
@@ -103,6 +102,8 @@ SparseMatrix StiffnessAssembler::stiffness(const Material& material) const {
     const int* adj_end = adjacency_.data() + adjacency_start_[u(b) + 1];
     for (int k = tet_start_[u(b)]; k < tet_start_[u(b) + 1]; ++k) {
       const auto& t = mesh_.tets[u(tet_list_[u(k)])];
+      const Material& material = materials.of(tet_list_[u(k)]);
+      const double lambda = material.lambda, mu = material.mu;
       const int local_b = static_cast<int>(std::find(t.begin(), t.end(), static_cast<int>(b)) - t.begin());
       const Tet4Geometry g = tet4_geometry(mesh_.node(t[0]), mesh_.node(t[1]), mesh_.node(t[2]), mesh_.node(t[3]));
       const double V = std::abs(g.volume);
@@ -136,15 +137,16 @@ SparseMatrix StiffnessAssembler::stiffness(const Material& material) const {
   return K;
 }
 
-Vector StiffnessAssembler::prescribed_load(const Material& material) const {
+Vector StiffnessAssembler::prescribed_load(const MaterialMap& materials) const {
   Vector load = Vector::Zero(dofs_.num_free());
   const Vector& up = dofs_.prescribed();
-  for (const auto& t : mesh_.tets) {
+  for (Index e = 0; e < mesh_.num_tets(); ++e) {
+    const auto& t = mesh_.tets[u(e)];
     Eigen::Matrix<double, 12, 1> ue;
     for (int a = 0; a < 4; ++a) ue.segment<3>(3 * a) = up.segment<3>(3 * t[u(a)]);
     if (ue.isZero(0.0)) continue;
     const Tet4Geometry g = tet4_geometry(mesh_.node(t[0]), mesh_.node(t[1]), mesh_.node(t[2]), mesh_.node(t[3]));
-    const Eigen::Matrix<double, 12, 1> fe = tet4_stiffness(g, material) * ue;
+    const Eigen::Matrix<double, 12, 1> fe = tet4_stiffness(g, materials.of(e)) * ue;
     for (int a = 0; a < 4; ++a)
       for (int c = 0; c < 3; ++c)
         if (const int i = dofs_.free_dof(t[u(a)], c); i >= 0) load[i] -= fe[3 * a + c];
@@ -153,16 +155,24 @@ Vector StiffnessAssembler::prescribed_load(const Material& material) const {
 }
 
 Vector lumped_node_mass(const mesh::TetMesh& mesh, double rho) {
+  return lumped_node_mass(mesh, MaterialMap(Material{0, 0, rho, 0}));
+}
+
+Vector lumped_node_mass(const mesh::TetMesh& mesh, const MaterialMap& materials) {
   Vector m = Vector::Zero(mesh.num_nodes());
   for (Index e = 0; e < mesh.num_tets(); ++e) {
-    const double quarter = rho * std::abs(mesh::signed_volume(mesh, e)) / 4.0;
+    const double quarter = materials.of(e).rho * std::abs(mesh::signed_volume(mesh, e)) / 4.0;
     for (int a : mesh.tets[u(e)]) m[a] += quarter;
   }
   return m;
 }
 
 Vector lumped_mass(const mesh::TetMesh& mesh, const DofMap& dofs, double rho) {
-  const Vector node_mass = lumped_node_mass(mesh, rho);
+  return lumped_mass(mesh, dofs, MaterialMap(Material{0, 0, rho, 0}));
+}
+
+Vector lumped_mass(const mesh::TetMesh& mesh, const DofMap& dofs, const MaterialMap& materials) {
+  const Vector node_mass = lumped_node_mass(mesh, materials);
   Vector m(dofs.num_free());
   for (Index i = 0; i < dofs.num_free(); ++i) m[i] = node_mass[dofs.full_dof(i) / 3];
   return m;

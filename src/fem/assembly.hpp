@@ -14,6 +14,7 @@
 #include "common/types.hpp"
 #include "fem/dof_map.hpp"
 #include "fem/material.hpp"
+#include "fem/material_map.hpp"
 #include "mesh/tet_mesh.hpp"
 
 namespace roifem::fem {
@@ -24,10 +25,12 @@ class StiffnessAssembler {
   /// mesh and dofs must outlive the assembler.
   StiffnessAssembler(const mesh::TetMesh& mesh, const DofMap& dofs);
 
-  /// K_ff for the material; same pattern on every call.
-  SparseMatrix stiffness(const Material& material) const;
+  /// K_ff for the material (each tetrahedron its own, from the map); same pattern on every call.
+  SparseMatrix stiffness(const MaterialMap& materials) const;
+  SparseMatrix stiffness(const Material& material) const { return stiffness(MaterialMap(material)); }
   /// -K_fp u_p: zero unless some prescribed value is non-zero.
-  Vector prescribed_load(const Material& material) const;
+  Vector prescribed_load(const MaterialMap& materials) const;
+  Vector prescribed_load(const Material& material) const { return prescribed_load(MaterialMap(material)); }
   Index nonzeros() const { return static_cast<Index>(row_index_.size()); }
 
  private:
@@ -39,9 +42,11 @@ class StiffnessAssembler {
   std::vector<int> tet_start_, tet_list_;         ///< node -> tetrahedra incidence (CSR)
 };
 
-/// Lumped mass per node, rho V / 4 from each tetrahedron (kg).
+/// Lumped mass per node, rho V / 4 from each tetrahedron (kg; rho: each tetrahedron's own).
+Vector lumped_node_mass(const mesh::TetMesh& mesh, const MaterialMap& materials);
 Vector lumped_node_mass(const mesh::TetMesh& mesh, double rho);
 /// Lumped mass on the free dofs (the diagonal of M_ff).
+Vector lumped_mass(const mesh::TetMesh& mesh, const DofMap& dofs, const MaterialMap& materials);
 Vector lumped_mass(const mesh::TetMesh& mesh, const DofMap& dofs, double rho);
 
 }  // namespace roifem::fem

@@ -33,9 +33,13 @@ Element parse_element(std::string_view name) {
   throw InputError("unknown element '" + std::string(name) + "'" + did_you_mean(name, names) + ": use tet4 or nodal-pressure");
 }
 
+SparseMatrix stiffness(const mesh::TetMesh& mesh, const DofMap& dofs, const MaterialMap& materials, Element element) {
+  if (element == Element::nodal_pressure) return nodal_pressure_stiffness(mesh, dofs, materials, 0.0);
+  return StiffnessAssembler(mesh, dofs).stiffness(materials);
+}
+
 SparseMatrix stiffness(const mesh::TetMesh& mesh, const DofMap& dofs, const Material& material, Element element) {
-  if (element == Element::nodal_pressure) return nodal_pressure_stiffness(mesh, dofs, material, 0.0);
-  return StiffnessAssembler(mesh, dofs).stiffness(material);
+  return stiffness(mesh, dofs, MaterialMap(material), element);
 }
 
 }  // namespace roifem::fem

@@ -11,6 +11,7 @@
 #include "common/types.hpp"
 #include "fem/dof_map.hpp"
 #include "fem/material.hpp"
+#include "fem/material_map.hpp"
 #include "mesh/tet_mesh.hpp"
 
 namespace roifem::fem {
@@ -22,6 +23,7 @@ std::string_view element_name(Element element);
 Element parse_element(std::string_view name);
 
 /// K_ff of `mesh` over `dofs` with `element`.
+SparseMatrix stiffness(const mesh::TetMesh& mesh, const DofMap& dofs, const MaterialMap& materials, Element element);
 SparseMatrix stiffness(const mesh::TetMesh& mesh, const DofMap& dofs, const Material& material, Element element);
 
 }  // namespace roifem::fem

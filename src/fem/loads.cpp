@@ -42,7 +42,11 @@ Vec3 set_mean_displacement(const mesh::TetMesh& mesh, const std::string& set_nam
 }
 
 Vector gravity_force(const mesh::TetMesh& mesh, double rho, const Vec3& g) {
-  const Vector m = lumped_node_mass(mesh, rho);
+  return gravity_force(mesh, MaterialMap(Material{0, 0, rho, 0}), g);
+}
+
+Vector gravity_force(const mesh::TetMesh& mesh, const MaterialMap& materials, const Vec3& g) {
+  const Vector m = lumped_node_mass(mesh, materials);
   Vector f(3 * mesh.num_nodes());
   for (Index n = 0; n < mesh.num_nodes(); ++n) f.segment<3>(3 * n) = m[n] * g;
   return f;

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "common/types.hpp"
+#include "fem/material_map.hpp"
 #include "mesh/tet_mesh.hpp"
 
 namespace roifem::fem {
@@ -15,5 +16,7 @@ Vector set_force(const mesh::TetMesh& mesh, const std::string& set_name, const V
 Vec3 set_mean_displacement(const mesh::TetMesh& mesh, const std::string& set_name, const Vector& u);
 /// Gravity on the lumped masses: rho V/4 g at each node of each tetrahedron.
 Vector gravity_force(const mesh::TetMesh& mesh, double rho, const Vec3& g);
+/// The same with each tetrahedron's own density.
+Vector gravity_force(const mesh::TetMesh& mesh, const MaterialMap& materials, const Vec3& g);
 
 }  // namespace roifem::fem

@@ -15,12 +15,17 @@
 #include "common/types.hpp"
 #include "fem/dof_map.hpp"
 #include "fem/material.hpp"
+#include "fem/material_map.hpp"
 #include "mesh/tet_mesh.hpp"
 
 namespace roifem::fem {
 
 /// K_ff of the nodal-pressure tetrahedron with stabilization fraction s in [0, 1] (s = 1: the
 /// linear tetrahedron). Throws InputError for s outside [0, 1].
+/// With materials by region, each node's kappa is the volume-weighted mean of its elements' kappa
+/// (the nodal strain averages over the same elements).
+SparseMatrix nodal_pressure_stiffness(const mesh::TetMesh& mesh, const DofMap& dofs, const MaterialMap& materials,
+                                      double stabilization);
 SparseMatrix nodal_pressure_stiffness(const mesh::TetMesh& mesh, const DofMap& dofs, const Material& material,
                                       double stabilization);
 

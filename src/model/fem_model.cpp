@@ -66,22 +66,22 @@ std::vector<Tool> attach_tools(const mesh::TetMesh& mesh, const fem::Constraints
   return attached;
 }
 
-SecondOrderSystem assemble(const mesh::TetMesh& mesh, const fem::Material& material, fem::Element element,
+SecondOrderSystem assemble(const mesh::TetMesh& mesh, const fem::MaterialMap& materials, fem::Element element,
                            const fem::DofMap& dofs) {
   SecondOrderSystem system;
-  system.K = fem::stiffness(mesh, dofs, material, element);
-  const Vector m = fem::lumped_mass(mesh, dofs, material.rho);
+  system.K = fem::stiffness(mesh, dofs, materials, element);
+  const Vector m = fem::lumped_mass(mesh, dofs, materials);
   system.M = diagonal_matrix(m);
-  system.C = diagonal_matrix(material.alpha * m);
-  system.damping = Damping::mass_proportional(material.alpha);
+  system.C = diagonal_matrix(materials.alpha() * m);
+  system.damping = Damping::mass_proportional(materials.alpha());
   return system;
 }
 
-LoadHistory loads_on(const mesh::TetMesh& mesh, const fem::Material& material, const fem::DofMap& dofs,
+LoadHistory loads_on(const mesh::TetMesh& mesh, const fem::MaterialMap& materials, const fem::DofMap& dofs,
                      const std::vector<SetLoad>& loads, std::vector<std::string>& warnings) {
   LoadHistory history(dofs.num_free());
   for (const auto& load : loads)
-    history.add(load.gravity ? dofs.restrict_to_free(fem::gravity_force(mesh, material.rho, *load.gravity))
+    history.add(load.gravity ? dofs.restrict_to_free(fem::gravity_force(mesh, materials, *load.gravity))
                              : set_load(mesh, dofs, load, warnings),
                 load.ramp);
   return history;
@@ -111,9 +111,16 @@ Vector FemModel::displacement(const Eigen::Ref<const Vector>& u_free, const Tool
 FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::Material& material, const std::vector<std::string>& fixed_sets,
                          const std::vector<SetLoad>& loads, const std::vector<SetTool>& tools, fem::Element element) {
   material.validate();
+  return build_fem_model(mesh, fem::MaterialMap(material), fixed_sets, loads, tools, element);
+}
+
+FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::MaterialMap& materials, const std::vector<std::string>& fixed_sets,
+                         const std::vector<SetLoad>& loads, const std::vector<SetTool>& tools, fem::Element element) {
+  for (const fem::Material& m : materials.materials()) m.validate();
   FemModel model;
   model.mesh = &mesh;
-  model.material = material;
+  model.material = materials.base();
+  model.materials = materials;
   model.element = element;
   fem::Constraints constraints = fixed_constraints(mesh, fixed_sets);
   const fem::DofMap fixed_only(constraints);
@@ -122,14 +129,14 @@ FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::Material& materia
   const std::vector<Tool> attached = attach_tools(mesh, constraints, tools);
   if (attached.empty()) {
     model.dofs = std::make_unique<fem::DofMap>(constraints);
-    model.system = assemble(mesh, material, element, *model.dofs);
-    model.system.load = loads_on(mesh, material, *model.dofs, loads, model.warnings);
+    model.system = assemble(mesh, materials, element, *model.dofs);
+    model.system.load = loads_on(mesh, materials, *model.dofs, loads, model.warnings);
     return model;
   }
   // With tools: the model over every unfixed dof, then the tools' dofs eliminated.
-  SecondOrderSystem all = assemble(mesh, material, element, fixed_only);
+  SecondOrderSystem all = assemble(mesh, materials, element, fixed_only);
   // Over these dofs only the fixed nodes take a load's share (one on tools' nodes is theirs to carry).
-  all.load = loads_on(mesh, material, fixed_only, loads, model.warnings);
+  all.load = loads_on(mesh, materials, fixed_only, loads, model.warnings);
   std::vector<ToolDofs> tool_dofs;
   for (const Tool& tool : attached) {
     ToolDofs td{.tool = tool, .dofs = {}};

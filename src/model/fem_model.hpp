@@ -11,6 +11,7 @@
 #include "fem/dof_map.hpp"
 #include "fem/element.hpp"
 #include "fem/material.hpp"
+#include "fem/material_map.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "model/second_order_system.hpp"
 #include "model/tools.hpp"
@@ -38,7 +39,8 @@ struct SetTool {
 
 struct FemModel {
   const mesh::TetMesh* mesh = nullptr;
-  fem::Material material;
+  fem::Material material;      ///< the base material (everywhere, unless regions say otherwise)
+  fem::MaterialMap materials;  ///< each tetrahedron's material (uniform: `material` everywhere)
   fem::Element element = fem::Element::tet4;
   std::unique_ptr<fem::DofMap> dofs;  ///< tools' nodes are constrained here (their motion: tools)
   SecondOrderSystem system;
@@ -56,6 +58,10 @@ struct FemModel {
 /// Builds the full model. Throws InputError for a missing set, a load wholly on fixed nodes, and a
 /// tool on no node, on a fixed node or on another tool's node; ModelError when nothing is fixed.
 FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::Material& material, const std::vector<std::string>& fixed_sets,
+                         const std::vector<SetLoad>& loads, const std::vector<SetTool>& tools = {},
+                         fem::Element element = fem::Element::tet4);
+/// The same with materials by region (fem::MaterialMap).
+FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::MaterialMap& materials, const std::vector<std::string>& fixed_sets,
                          const std::vector<SetLoad>& loads, const std::vector<SetTool>& tools = {},
                          fem::Element element = fem::Element::tet4);
 

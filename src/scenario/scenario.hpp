@@ -9,6 +9,7 @@
 #include "condensation/reduction.hpp"
 #include "fem/element.hpp"
 #include "fem/material.hpp"
+#include "fem/material_map.hpp"
 #include "model/fem_model.hpp"
 #include "roi/roi.hpp"
 
@@ -19,6 +20,8 @@ struct Scenario {
   std::filesystem::path mesh;           ///< resolved against the scenario's directory
   std::string material_name = "paper";  ///< preset, or "custom"
   fem::Material material;
+  /// [[material_region]]: named volume sets with their own material (in order; a later one wins)
+  std::vector<fem::RegionMaterial> material_regions;
   fem::Element element = fem::Element::tet4;  ///< top-level `element`: tet4 or nodal-pressure
   std::vector<std::string> fixed_sets{"base"};
   std::vector<model::SetLoad> loads;

@@ -186,6 +186,48 @@ fem::Material read_material(StrictTable& t, std::string& name) {
   }
 }
 
+/// The material of a [[material_region]]: keys left out keep the brain's ([material]); a preset
+/// starts from the preset instead.
+fem::Material region_material_values(const fem::Material& base, const std::optional<std::string>& preset,
+                                     const std::optional<double>& lambda, const std::optional<double>& mu,
+                                     const std::optional<double>& young, const std::optional<double>& poisson,
+                                     const std::optional<double>& rho, const std::optional<double>& alpha) {
+  if ((lambda || mu) && (young || poisson)) throw InputError("gives both lambda_Pa/mu_Pa and young_Pa/poisson; give one pair");
+  fem::Material m = preset ? fem::material_preset(*preset) : base;
+  if (lambda || mu) {
+    m.lambda = lambda.value_or(m.lambda);
+    m.mu = mu.value_or(m.mu);
+  }
+  if (young || poisson) {
+    const fem::Material elastic =
+        fem::Material::from_young_poisson(young.value_or(m.young()), poisson.value_or(m.poisson()), 1.0, 0.0);
+    m.lambda = elastic.lambda;
+    m.mu = elastic.mu;
+  }
+  m.rho = rho.value_or(m.rho);
+  m.alpha = alpha.value_or(m.alpha);
+  m.validate();
+  return m;
+}
+
+/// A [[material_region]]: a 3D set and the material its tetrahedra take.
+fem::RegionMaterial read_region_material(StrictTable& t, const fem::Material& base) {
+  const auto set = t.string("set");
+  const auto preset = t.string("preset");
+  const auto lambda = t.number("lambda_Pa"), mu = t.number("mu_Pa");
+  const auto young = t.number("young_Pa"), poisson = t.number("poisson");
+  const auto rho = t.number("rho_kg_m3"), alpha = t.number("alpha_per_s");
+  t.close();
+  if (!set) t.missing("set", " (the named volume set, e.g. white_matter)");
+  fem::RegionMaterial region{.set = *set, .material = {}, .name = preset.value_or("custom")};
+  try {
+    region.material = region_material_values(base, preset, lambda, mu, young, poisson, rho, alpha);
+  } catch (const InputError& e) {
+    throw InputError(t.source() + ": [[material_region]] '" + region.set + "': " + e.what());
+  }
+  return region;
+}
+
 condensation::Reduction read_reduction(StrictTable& t) {
   condensation::Reduction r;
   const std::string kind = t.string("reduction").value_or("static");
@@ -351,6 +393,11 @@ Scenario parse_scenario(std::string_view text, const std::string& source, const 
   } else {
     s.material = fem::material_preset(s.material_name);
   }
+  if (const toml::array* regions = top.table_array("material_region"))
+    for (const auto& node : *regions) {
+      StrictTable region(*node.as_table(), source, "material_region");
+      s.material_regions.push_back(read_region_material(region, s.material));
+    }
   if (const toml::table* t = top.subtable("boundary")) {
     StrictTable boundary(*t, source, "boundary");
     s.fixed_sets = boundary.strings("fixed");
@@ -423,8 +470,12 @@ std::string Scenario::resolved_toml() const {
   std::ostringstream o;
   o << "mesh = \"" << mesh.string() << "\"\nelement = \"" << fem::element_name(element) << "\"\n\n[material]  # " << material_name
     << "\nlambda_Pa = " << toml_number(material.lambda) << "\nmu_Pa = " << toml_number(material.mu)
-    << "\nrho_kg_m3 = " << toml_number(material.rho) << "\nalpha_per_s = " << toml_number(material.alpha)
-    << "\n\n[boundary]\nfixed = [";
+    << "\nrho_kg_m3 = " << toml_number(material.rho) << "\nalpha_per_s = " << toml_number(material.alpha) << "\n";
+  for (const auto& r : material_regions)
+    o << "\n[[material_region]]  # " << r.name << "\nset = \"" << r.set << "\"\nlambda_Pa = " << toml_number(r.material.lambda)
+      << "\nmu_Pa = " << toml_number(r.material.mu) << "\nrho_kg_m3 = " << toml_number(r.material.rho)
+      << "\nalpha_per_s = " << toml_number(r.material.alpha) << "\n";
+  o << "\n[boundary]\nfixed = [";
   for (std::size_t i = 0; i < fixed_sets.size(); ++i) o << (i ? ", " : "") << '"' << fixed_sets[i] << '"';
   o << "]\n";
   for (const auto& l : loads) {

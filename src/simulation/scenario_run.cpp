@@ -33,6 +33,16 @@ void print_start(const scenario::Scenario& sc, const ScenarioModel& built, doubl
                 static_cast<long long>(built.mesh.num_nodes()), built.condensation ? "condensed ROI" : "full",
                 static_cast<long long>(built.system().size()), sc.roi ? sc.roi->describe().c_str() : "no ROI", stepping.c_str(),
                 sc.steps, setup_s);
+  if (!sc.material_regions.empty()) {
+    const std::vector<Index> counts = built.full.materials.counts(built.mesh.num_tets());
+    log << format("materials: %s on %lld tetrahedra", sc.material_name.c_str(), static_cast<long long>(counts[0]));
+    for (std::size_t r = 0; r < sc.material_regions.size(); ++r) {
+      const auto& region = sc.material_regions[r];
+      log << format("; %s (%s, E = %.4g Pa, nu = %.4g) on %lld", region.set.c_str(), region.name.c_str(), region.material.young(),
+                    region.material.poisson(), static_cast<long long>(counts[r + 1]));
+    }
+    log << '\n';
+  }
   for (const auto& w : built.full.warnings) log << "warning: " << w << '\n';
   for (const auto& tool : built.tools.tools()) {
     const Vec3 d = tool.path.displacement / mm;

@@ -229,3 +229,47 @@ TEST(ScenarioReader, MissingFileIsNamed) {
 
 }  // namespace
 }  // namespace roifem::scenario
+
+namespace roifem::scenario {
+namespace {
+
+TEST(ScenarioReader, ReadsMaterialRegionsThatInheritTheBrainsKeys) {
+  const std::string regions = replaced(valid, "[boundary]", R"([[material_region]]
+set = "white_matter"
+young_Pa = 4500.0
+[[material_region]]
+set = "csf"
+preset = "brain"
+mu_Pa = 100.0
+alpha_per_s = 2.5
+[boundary])");
+  const Scenario s = parse_scenario(regions, "s.toml", "/data");
+  ASSERT_EQ(s.material_regions.size(), 2u);
+  const fem::Material& white = s.material_regions[0].material;
+  EXPECT_EQ(s.material_regions[0].set, "white_matter");
+  EXPECT_NEAR(white.young(), 4500, 1e-9);
+  EXPECT_NEAR(white.poisson(), 0.45, 1e-12);  // from [material]
+  EXPECT_EQ(white.rho, 1040);
+  EXPECT_EQ(white.alpha, 2.5);
+  const fem::Material& csf = s.material_regions[1].material;
+  EXPECT_EQ(csf.mu, 100.0);
+  EXPECT_EQ(csf.rho, fem::material_preset("brain").rho);  // from the preset
+  const Scenario again = parse_scenario(s.resolved_toml(), "resolved.toml", "/data");
+  ASSERT_EQ(again.material_regions.size(), 2u);
+  EXPECT_EQ(again.material_regions[1].material.mu, 100.0);
+  EXPECT_NEAR(again.material_regions[0].material.lambda, white.lambda, 1e-9 * white.lambda);
+}
+
+TEST(ScenarioReader, NamesABadMaterialRegion) {
+  EXPECT_NE(error_of(replaced(valid, "[boundary]", "[[material_region]]\nyoung_Pa = 1.0\n[boundary]"))
+                .find("missing required key 'material_region.set'"),
+            std::string::npos);
+  EXPECT_NE(error_of(replaced(valid, "[boundary]", "[[material_region]]\nset = \"wm\"\npoisson = 0.5\n[boundary]"))
+                .find("[[material_region]] 'wm': material: Poisson's ratio nu = 0.5 must lie in"),
+            std::string::npos);
+  EXPECT_NE(error_of(replaced(valid, "[boundary]", "[[material_region]]\nset = \"wm\"\nshear = 1.0\n[boundary]")).find("shear"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace roifem::scenario
