@@ -430,9 +430,16 @@ BrainImageMesh mesh_brain_image(const BrainImageOptions& o, const std::filesyste
     throw InputError(o.image.string() + ": could not reach " + std::to_string(o.target_nodes) + " nodes within " +
                      std::to_string(o.tolerance * 100) + "% in " + std::to_string(result.attempts) + " meshings");
   const ImageVolume& level_set = grids.begin()->second;
-  const mesh::SmoothingReport smoothing = mesh::smooth_poor_tetrahedra(
-      result.mesh, 0.3, 8, [&](const Vec3& x) { return project_to_level_set(level_set, iso, x / mm) * mm; });
+  // Mesh_3 leaves a few slivers whose nodes all lie on the surface (quality 0.03-0.1): smooth the
+  // poor tetrahedra's nodes (boundary nodes sliding on the level set), then remove the flat caps
+  // left on the surface and smooth what stays below 0.1 with more freedom to turn the surface.
+  const auto slide = [&](const Vec3& x) { return project_to_level_set(level_set, iso, x / mm) * mm; };
+  const mesh::SmoothingReport smoothing = mesh::smooth_poor_tetrahedra(result.mesh, 0.3, 8, slide);
   result.quality_min_meshed = smoothing.quality_min_before;
+  if (smoothing.quality_min_after < 0.1) {
+    result.caps_removed = mesh::remove_boundary_caps(result.mesh, 0.1);
+    mesh::smooth_poor_tetrahedra(result.mesh, 0.1, 8, slide, 30);
+  }
   result.mesh.source = output.empty() ? "<" + o.image.string() + ">" : output.string();
   name_sets(result.mesh, o, image, clean.mask, result.cut_plane_z_mm, std::max(1.0, result.working_voxel_mm) + 0.5, box, result);
   if (!output.empty()) mesh::write_msh(result.mesh, output, mm);

@@ -54,7 +54,8 @@ struct BrainImageMesh {
   double size_mm = 0;  ///< the CGAL cell and facet size that gave the node count
   double working_voxel_mm = 0, blur_sigma_mm = 0;
   int attempts = 0;
-  double quality_min_meshed = 0;  ///< before smoothing the poor tetrahedra's interior nodes
+  double quality_min_meshed = 0;  ///< before smoothing the poor tetrahedra's nodes
+  Index caps_removed = 0;         ///< flat tetrahedra on the surface removed
   double mask_volume_mm3 = 0;     ///< the cleaned, cut (and carved) mask at the image's resolution
   double cut_plane_z_mm = 0;
   /// The carved opening's centre (mm): over its footprint's centre, half its depth below the

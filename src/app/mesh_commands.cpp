@@ -43,9 +43,12 @@ void mesh_image(anatomy::BrainImageOptions options, const std::vector<std::strin
   std::printf("wrote %s: %lld nodes, %lld tetrahedra from %s (size %.2f mm, %d meshings, %.1f s)\n", out.c_str(),
               static_cast<long long>(s.nodes), static_cast<long long>(s.tets), options.image.c_str(), result.size_mm,
               result.attempts, clock.seconds());
-  std::printf("volume %.1f cm^3 (the cleaned mask: %.1f cm^3, %+.2f%%), quality min %.3f (%.3f before smoothing), median %.3f\n",
-              s.volume * 1e6, result.mask_volume_mm3 * 1e-3, 100 * (s.volume * 1e9 / result.mask_volume_mm3 - 1), s.quality_min,
-              result.quality_min_meshed, s.quality_median);
+  std::printf(
+      "volume %.1f cm^3 (the cleaned mask: %.1f cm^3, %+.2f%%), quality min %.3f (%.3f before smoothing%s), median %.3f\n",
+      s.volume * 1e6, result.mask_volume_mm3 * 1e-3, 100 * (s.volume * 1e9 / result.mask_volume_mm3 - 1), s.quality_min,
+      result.quality_min_meshed,
+      result.caps_removed > 0 ? (", " + std::to_string(result.caps_removed) + " flat tetrahedra removed").c_str() : "",
+      s.quality_median);
   std::printf("mask: %zu loose pieces (%zu voxels) dropped, %zu voxels of holes filled; bottom cut at z = %.1f mm\n",
               result.dropped_pieces, result.dropped_voxels, result.filled_voxels, result.cut_plane_z_mm);
   if (result.opening_centre_mm)
