@@ -14,8 +14,8 @@ namespace roifem::mesh {
 
 namespace {
 
-constexpr int gmsh_triangle = 2;
-constexpr int gmsh_tet4 = 4;
+constexpr int msh_triangle = 2;
+constexpr int msh_tet4 = 4;
 
 using Signature = std::vector<std::string>;  // the names of the sets an element belongs to
 
@@ -74,7 +74,7 @@ void write_msh(const TetMesh& mesh, const std::filesystem::path& output, double 
         tags.push_back(e + 1);
         for (int n : mesh.tets[e]) nodes.push_back(tag_of(n));
       }
-      gmsh::model::mesh::addElementsByType(entity, gmsh_tet4, tags, nodes);
+      gmsh::model::mesh::addElementsByType(entity, msh_tet4, tags, nodes);
       for (const std::string& name : signature) groups[3][name].push_back(entity);
     }
     std::size_t next_tag = mesh.tets.size() + 1;
@@ -86,7 +86,7 @@ void write_msh(const TetMesh& mesh, const std::filesystem::path& output, double 
         tags.push_back(next_tag++);
         for (int n : triangles[t]) nodes.push_back(tag_of(n));
       }
-      gmsh::model::mesh::addElementsByType(entity, gmsh_triangle, tags, nodes);
+      gmsh::model::mesh::addElementsByType(entity, msh_triangle, tags, nodes);
       for (const std::string& name : signature) groups[2][name].push_back(entity);
     }
     for (int dim : {2, 3})

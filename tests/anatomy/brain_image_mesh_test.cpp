@@ -22,7 +22,7 @@ namespace roifem::anatomy {
 namespace {
 
 template <class F>
-std::string input_error_of(F f) {
+std::string meshing_error_of(F f) {
   try {
     f();
   } catch (const InputError& e) {
@@ -126,7 +126,7 @@ TEST_F(BallImage, NamesARegionOutsideTheBrainAndLeavesNoFile) {
   BrainImageOptions o = options();
   o.regions.push_back(parse_region("far=sphere:0,0,60,5"));
   const auto out = *dir_ / "far.msh";
-  const std::string message = input_error_of([&] { mesh_brain_image(o, out); });
+  const std::string message = meshing_error_of([&] { mesh_brain_image(o, out); });
   EXPECT_TRUE(std::regex_search(message, std::regex("--region far=sphere:0,0,60,5: no boundary triangle lies within 5 mm of the "
                                                     "point; the brain's surface is 3[45].[0-9] mm from it")))
       << message;
@@ -134,16 +134,16 @@ TEST_F(BallImage, NamesARegionOutsideTheBrainAndLeavesNoFile) {
 }
 
 TEST_F(BallImage, RefusesBadRegionsAndAnEmptyImage) {
-  EXPECT_NE(input_error_of([] { parse_region("x=cube:1,2,3"); }).find("unknown kind 'cube'"), std::string::npos);
-  EXPECT_NE(input_error_of([] { parse_region("x=sphere:1,2,3"); }).find("expected NAME=sphere:X,Y,Z,RADIUS"), std::string::npos);
-  EXPECT_NE(input_error_of([] { parse_region("x=sphere:1,2,3,-4"); }).find("the radius must be positive"), std::string::npos);
+  EXPECT_NE(meshing_error_of([] { parse_region("x=cube:1,2,3"); }).find("unknown kind 'cube'"), std::string::npos);
+  EXPECT_NE(meshing_error_of([] { parse_region("x=sphere:1,2,3"); }).find("expected NAME=sphere:X,Y,Z,RADIUS"), std::string::npos);
+  EXPECT_NE(meshing_error_of([] { parse_region("x=sphere:1,2,3,-4"); }).find("the radius must be positive"), std::string::npos);
   BrainImageOptions o = options();
   o.regions.push_back(parse_region("motor=label:Precentral_R"));
-  EXPECT_NE(input_error_of([&] { mesh_brain_image(o); }).find("a label region needs --atlas"), std::string::npos);
+  EXPECT_NE(meshing_error_of([&] { mesh_brain_image(o); }).find("a label region needs --atlas"), std::string::npos);
   test::write_nifti(*dir_ / "dark.nii", {8, 8, 8}, 1.0, {0, 0, 0}, [](int, int, int) { return 0.0f; });
   o = options();
   o.image = *dir_ / "dark.nii";
-  EXPECT_NE(input_error_of([&] { mesh_brain_image(o); }).find("dark.nii: no voxel is above the mask threshold"),
+  EXPECT_NE(meshing_error_of([&] { mesh_brain_image(o); }).find("dark.nii: no voxel is above the mask threshold"),
             std::string::npos);
 }
 

@@ -1,0 +1,102 @@
+#!/usr/bin/python3
+"""A picture of a tetrahedral mesh's surface, coloured by its named surface sets.
+
+usage: /usr/bin/python3 plot_mesh.py MESH.msh OUT.png [SET ...]
+reads a Gmsh MSH 4.1 ASCII file (as `roifem mesh` writes it); draws its boundary triangles (those
+of the 'surface' set, else every triangle in the file) from the left, from above and from behind,
+shaded by the light on them, with the named 2D sets given (default: every 2D set but 'surface')
+in colour.
+"""
+import os
+import sys
+
+import numpy as np
+
+from plotting import plt, save
+
+
+def read_msh(path):
+    with open(path) as f:
+        lines = f.read().split("\n")
+    names = {}
+    i = lines.index("$PhysicalNames")
+    for k in range(int(lines[i + 1])):
+        dim, tag, name = lines[i + 2 + k].split(maxsplit=2)
+        names[(int(dim), int(tag))] = name.strip('"')
+    entity_groups = {}
+    i = lines.index("$Entities")
+    counts = [int(x) for x in lines[i + 1].split()]
+    row = i + 2
+    for dim, count in enumerate(counts):
+        for _ in range(count):
+            fields = lines[row].split()
+            row += 1
+            tag = int(fields[0])
+            start = 4 if dim == 0 else 7
+            n = int(fields[start])
+            entity_groups[(dim, tag)] = [names.get((dim, int(t)), "") for t in fields[start + 1:start + 1 + n]]
+    nodes = {}
+    i = lines.index("$Nodes")
+    blocks = int(lines[i + 1].split()[0])
+    row = i + 2
+    for _ in range(blocks):
+        n = int(lines[row].split()[3])
+        tags = [int(t) for t in lines[row + 1:row + 1 + n]]
+        for k, t in enumerate(tags):
+            nodes[t] = [float(x) for x in lines[row + 1 + n + k].split()[:3]]
+        row += 1 + 2 * n
+    triangles = {}
+    i = lines.index("$Elements")
+    blocks = int(lines[i + 1].split()[0])
+    row = i + 2
+    for _ in range(blocks):
+        dim, tag, kind, n = (int(x) for x in lines[row].split())
+        if kind == 2:
+            for name in entity_groups.get((dim, tag), []):
+                triangles.setdefault(name, []).extend(
+                    [int(x) for x in lines[row + 1 + k].split()[1:4]] for k in range(n))
+        row += 1 + n
+    return nodes, triangles
+
+
+def main(path, out, wanted):
+    nodes, sets = read_msh(path)
+    surface = sets.get("surface") or [t for ts in sets.values() for t in ts]
+    coloured = wanted or [name for name in sets if name != "surface"]
+    colours = plt.get_cmap("tab10")
+    views = [("from the left", (0, 180)), ("from above", (90, -90)), ("from behind", (0, -90))]
+    fig = plt.figure(figsize=(15, 5.4))
+    light = np.array([0.3, -0.5, 0.8]) / np.linalg.norm([0.3, -0.5, 0.8])
+    for v, (title, (elev, azim)) in enumerate(views):
+        ax = fig.add_subplot(1, 3, v + 1, projection="3d")
+        tri = np.array([[nodes[n] for n in t] for t in surface])
+        normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+        normal /= np.linalg.norm(normal, axis=1)[:, None]
+        shade = 0.35 + 0.6 * np.clip(np.abs(normal @ light), 0, 1)
+        face = np.stack([shade, shade, shade * 0.97, np.ones_like(shade)], axis=1)
+        key = {tuple(sorted(t)): k for k, t in enumerate(surface)}
+        for c, name in enumerate(coloured):
+            for t in sets.get(name, []):
+                k = key.get(tuple(sorted(t)))
+                if k is not None:
+                    face[k, :3] = np.array(colours(c % 10)[:3]) * (0.5 + 0.5 * shade[k])
+        from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+        ax.add_collection3d(Poly3DCollection(tri, facecolors=face, edgecolors=(0, 0, 0, 0.15), linewidths=0.2))
+        lo, hi = tri.reshape(-1, 3).min(axis=0), tri.reshape(-1, 3).max(axis=0)
+        centre, half = (lo + hi) / 2, (hi - lo).max() / 2
+        for axis, setter in enumerate((ax.set_xlim, ax.set_ylim, ax.set_zlim)):
+            setter(centre[axis] - half, centre[axis] + half)
+        ax.view_init(elev=elev, azim=azim)
+        ax.set_axis_off()
+        ax.set_title(title)
+    handles = [plt.Rectangle((0, 0), 1, 1, color=colours(c % 10)) for c in range(len(coloured))]
+    fig.legend(handles, coloured, loc="lower center", ncol=max(1, len(coloured)))
+    fig.suptitle(f"{os.path.basename(path)}: {len(nodes)} nodes, {len(surface)} boundary triangles (mm)")
+    save(fig, out)
+    print(out)
+
+
+if __name__ == "__main__":
+    if len(sys.argv) < 3:
+        sys.exit(__doc__)
+    main(sys.argv[1], sys.argv[2], sys.argv[3:])
