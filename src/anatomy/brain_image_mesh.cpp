@@ -202,6 +202,19 @@ int label_under(const ImageVolume& atlas, const Face& f) {
   return 0;
 }
 
+/// The message for a label that is neither a number nor a name in the atlas's table.
+std::string unknown_label(const RegionSpec& r, const std::string& label, const std::map<std::string, int>& table) {
+  std::string known;
+  int shown = 0;
+  for (const auto& [name, number] : table)
+    if (shown++ < 6) {
+      if (!known.empty()) known += ", ";
+      known += name;
+    }
+  return "--region " + r.text + ": '" + label + "' is neither a label number nor a name in the atlas's table (" + known +
+         ", ...)";
+}
+
 std::vector<bool> region_faces(const RegionSpec& r, const std::vector<Face>& faces, const ImageVolume* atlas,
                                const std::map<std::string, int>& table) {
   std::vector<bool> chosen(faces.size(), false);
@@ -243,15 +256,7 @@ std::vector<bool> region_faces(const RegionSpec& r, const std::vector<Face>& fac
       }
     } catch (const std::exception&) {
     }
-    std::string known;
-    int shown = 0;
-    for (const auto& [name, number] : table)
-      if (shown++ < 6) {
-        if (!known.empty()) known += ", ";
-        known += name;
-      }
-    throw InputError("--region " + r.text + ": '" + l + "' is neither a label number nor a name in the atlas's table (" + known +
-                     ", ...)");
+    throw InputError(unknown_label(r, l, table));
   }
   for (std::size_t f = 0; f < faces.size(); ++f) chosen[f] = labels.count(label_under(*atlas, faces[f])) > 0;
   if (std::find(chosen.begin(), chosen.end(), true) == chosen.end())
@@ -433,7 +438,8 @@ BrainImageMesh mesh_brain_image(const BrainImageOptions& o, const std::filesyste
   // Mesh_3 leaves a few slivers whose nodes all lie on the surface (quality 0.03-0.1): smooth the
   // poor tetrahedra's nodes (boundary nodes sliding on the level set), then remove the flat caps
   // left on the surface and smooth what stays below 0.1 with more freedom to turn the surface.
-  const auto slide = [&](const Vec3& x) { return project_to_level_set(level_set, iso, x / mm) * mm; };
+  // The return type is spelled out: deduced, it would be an Eigen expression of a dead temporary.
+  const auto slide = [&](const Vec3& x) -> Vec3 { return project_to_level_set(level_set, iso, x / mm) * mm; };
   const mesh::SmoothingReport smoothing = mesh::smooth_poor_tetrahedra(result.mesh, 0.3, 8, slide);
   result.quality_min_meshed = smoothing.quality_min_before;
   if (smoothing.quality_min_after < 0.1) {
