@@ -14,6 +14,7 @@
 #include "anatomy/voxel_mask.hpp"
 #include "common/errors.hpp"
 #include "mesh/msh_writer.hpp"
+#include "mesh/node_count_search.hpp"
 #include "mesh/quality_smoothing.hpp"
 
 namespace roifem::anatomy {
@@ -372,11 +373,11 @@ BrainImageMesh mesh_brain_image(const BrainImageOptions& o, const std::filesyste
   // Node count against size: N ~ c V / h^3 with c from 1.3 (37k nodes) to 2 (2k) on Colin27; then a secant on
   // log N against log h within a bracket, as for the ellipsoid.
   const double target = static_cast<double>(o.target_nodes);
-  double h = std::cbrt(1.5 * result.mask_volume_mm3 / target);
-  double slope = -2.6, prev_h = 0, prev_n = 0, h_fine = 0, h_coarse = 0;
+  mesh::NodeCountSearch search(target, std::cbrt(1.5 * result.mask_volume_mm3 / target), -2.6);
   std::map<std::pair<int, long>, ImageVolume> grids;  // (factor, sigma in um) -> blurred grid
   double iso = 0.5;                                   // the level meshed on that grid
-  for (int attempt = 0; attempt < 10; ++attempt) {
+  for (int attempt = 0; attempt < 10 && !search.stuck(); ++attempt) {
+    const double h = search.size();
     // The working grid: voxels of about h/3 (never finer than the image's; at most 1/4 of the
     // opening's width, so its walls stay straight), blurred by sigma = h/3: it smooths what the
     // elements cannot follow (h/5 left 100k-node meshes with quality 0.07). A blur fills sulci
@@ -413,7 +414,7 @@ BrainImageMesh mesh_brain_image(const BrainImageOptions& o, const std::filesyste
                     result.attempts, h, native * factor, sigma_key / 1000.0, iso, n);
       progress(line);
     }
-    if (std::abs(n / target - 1) <= o.tolerance) {
+    if (search.record(n, o.tolerance)) {
       result.size_mm = h;
       result.working_voxel_mm = native * factor;
       result.blur_sigma_mm = sigma_key / 1000.0;
@@ -421,15 +422,6 @@ BrainImageMesh mesh_brain_image(const BrainImageOptions& o, const std::filesyste
       result.mesh.tets = std::move(raw.tets);
       break;
     }
-    (n > target ? h_fine : h_coarse) = h;
-    if (prev_n > 0 && std::abs(std::log(h / prev_h)) > 1e-4) {
-      const double measured_slope = std::log(n / prev_n) / std::log(h / prev_h);
-      if (measured_slope < -1.0 && measured_slope > -4.0) slope = measured_slope;
-    }
-    prev_h = h;
-    prev_n = n;
-    h *= std::exp(std::log(target / n) / slope);
-    if (h_fine > 0 && h_coarse > 0 && !(h > h_fine && h < h_coarse)) h = std::sqrt(h_fine * h_coarse);
   }
   if (result.size_mm == 0)
     throw InputError(o.image.string() + ": could not reach " + std::to_string(o.target_nodes) + " nodes within " +

@@ -12,6 +12,7 @@
 #include "common/errors.hpp"
 #include "mesh/gmsh_reader.hpp"
 #include "mesh/gmsh_session.hpp"
+#include "mesh/node_count_search.hpp"
 
 namespace roifem::mesh {
 
@@ -164,26 +165,17 @@ BrainMesh generate_brain_mesh(Index target_nodes, const std::filesystem::path& o
     const int surface_algorithms[] = {6, 5, 1};  // Frontal-Delaunay (Gmsh's default), Delaunay, MeshAdapt
     for (int algorithm : surface_algorithms) {
       gmsh::option::setNumber("Mesh.Algorithm", algorithm);
-      double slope = -2.5, prev_h = 0, prev_n = 0;
-      double h_fine = 0, h_coarse = 0;  // bracket: h_fine gave too many nodes, h_coarse too few
+      NodeCountSearch search(target, h, -2.5);
       for (int attempt = 0; attempt < 12; ++attempt) {
-        const auto n = static_cast<double>(mesh_with_size(h, slit_field, shape.slit_refinement));
+        const auto n = static_cast<double>(mesh_with_size(search.size(), slit_field, shape.slit_refinement));
         ++result.attempts;
-        if (std::abs(n / target - 1) <= tolerance) {
-          result.element_size_mm = h;
+        if (search.record(n, tolerance)) {
+          result.element_size_mm = search.size();
           break;
         }
-        (n > target ? h_fine : h_coarse) = h;
-        if (h_fine > 0 && h_coarse > 0 && h_coarse / h_fine - 1 < 1e-3) break;  // a gap in N(h)
-        if (prev_n > 0 && std::abs(std::log(h / prev_h)) > 1e-4) {
-          const double measured = std::log(n / prev_n) / std::log(h / prev_h);
-          if (measured < -1.0 && measured > -4.0) slope = measured;
-        }
-        prev_h = h;
-        prev_n = n;
-        h *= std::exp(std::log(target / n) / slope);
-        if (h_fine > 0 && h_coarse > 0 && !(h > h_fine && h < h_coarse)) h = std::sqrt(h_fine * h_coarse);
+        if (search.stuck()) break;  // a gap in N(h)
       }
+      h = search.size();
       if (result.element_size_mm > 0) break;
     }
     if (result.element_size_mm == 0)
