@@ -75,7 +75,13 @@ RawTetMesh mesh_image_level_set(const ImageVolume& image, double iso, const Imag
   const Criteria criteria(params::facet_angle = sizes.facet_angle_deg, params::facet_size = size,
                           params::facet_distance = sizes.distance_mm, params::cell_radius_edge_ratio = sizes.radius_edge,
                           params::cell_size = size);
-  const Complex complex = CGAL::make_mesh_3<Complex>(domain, criteria, params::manifold());
+  // Perturbation and exudation stop, by default, after as much time as the refinement took: wall
+  // clock, so a loaded machine gave another mesh. Without a time limit they stop at a bound on the
+  // smallest dihedral angle (10 degrees) or when they cannot improve it any more: the same input
+  // gives the same mesh.
+  const Complex complex = CGAL::make_mesh_3<Complex>(domain, criteria, params::manifold(),
+                                                     params::perturb(params::time_limit = 0, params::sliver_bound = 10),
+                                                     params::exude(params::time_limit = 0, params::sliver_bound = 10));
 
   RawTetMesh mesh;
   std::unordered_map<Triangulation::Vertex_handle, int> index;
