@@ -135,7 +135,8 @@ TEST_F(BallImage, NamesARegionOutsideTheBrainAndLeavesNoFile) {
 
 TEST_F(BallImage, RefusesBadRegionsAndAnEmptyImage) {
   EXPECT_NE(meshing_error_of([] { parse_region("x=cube:1,2,3"); }).find("unknown kind 'cube'"), std::string::npos);
-  EXPECT_NE(meshing_error_of([] { parse_region("x=sphere:1,2,3"); }).find("expected NAME=sphere:X,Y,Z,RADIUS"), std::string::npos);
+  EXPECT_NE(meshing_error_of([] { parse_region("x=sphere:1,2,3"); }).find("expected NAME=sphere:X,Y,Z,RADIUS"),
+            std::string::npos);
   EXPECT_NE(meshing_error_of([] { parse_region("x=sphere:1,2,3,-4"); }).find("the radius must be positive"), std::string::npos);
   BrainImageOptions o = options();
   o.regions.push_back(parse_region("motor=label:Precentral_R"));
