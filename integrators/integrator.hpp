@@ -32,6 +32,8 @@ class Integrator {
   /// the integrator's use of it.
   virtual void reset(const model::SecondOrderSystem& system, const model::State& initial) = 0;
   /// Advances `state` to t_out; throws SolverError naming the method, t and step on failure.
+  /// The state's storage is the caller's: a method writes into u and v, never swaps or resizes
+  /// them, so that views of them (the Python module's arrays) stay valid.
   virtual void advance_to(double t_out, model::State& state) = 0;
   virtual Stats stats() const = 0;
   /// The constraints' report after the last advance_to, from methods that hold constraints (else none).

@@ -31,7 +31,7 @@ void AverageAcceleration::advance(State& s, Vector& a, Vector& u_next, Vector& w
   work = c_u() * (u_next - s.u) - c_v() * s.v - a;
   s.v += 0.5 * dt_ * (a + work);
   a.swap(work);
-  s.u.swap(u_next);
+  s.u = u_next;  // a copy, not a swap: the state's storage is the caller's (integrator.hpp)
 }
 
 Vector AverageAcceleration::consistent_acceleration(const SecondOrderSystem& system, const State& s) {

@@ -10,6 +10,7 @@
 #include "common/errors.hpp"
 #include "common/number_text.hpp"
 #include "scenario/scenario.hpp"
+#include "scenario/scenario_table.hpp"
 #include "scenario/toml_text_guard.hpp"
 #include "scenario/trajectory_reader.hpp"
 
@@ -24,9 +25,10 @@ class StrictTable {
   StrictTable(const toml::table& table, std::string source, std::string name)
       : table_(table), source_(std::move(source)), name_(std::move(name)) {}
 
-  std::string where(const toml::node& node) const {
-    const auto& b = node.source().begin;
-    return source_ + ":" + std::to_string(b.line) + ":" + std::to_string(b.column);
+  std::string where(const toml::node& node) const { return at(node.source().begin); }
+  /// "file:line:column", or the source alone for a table built in memory (no positions).
+  std::string at(const toml::source_position& p) const {
+    return p.line > 0 ? source_ + ":" + std::to_string(p.line) + ":" + std::to_string(p.column) : source_;
   }
   std::string key_name(const std::string& key) const { return name_.empty() ? key : name_ + "." + key; }
   const toml::node* find(const std::string& key) {
@@ -44,7 +46,8 @@ class StrictTable {
     for (const auto& [k, node] : table_) {
       const std::string present(k.str());
       if (known_.count(present) || closest_name(present, {key}).empty()) continue;
-      typo = "; '" + present + "' at line " + std::to_string(k.source().begin.line) + " looks like a misspelling of it";
+      const auto line = k.source().begin.line;
+      typo = "; '" + present + "'" + (line > 0 ? " at line " + std::to_string(line) : "") + " looks like a misspelling of it";
       break;
     }
     throw InputError(table_where() + ": missing required key '" + key_name(key) + "'" + what + typo);
@@ -125,10 +128,10 @@ class StrictTable {
       if (known_.count(k)) continue;
       std::string valid;
       for (const auto& name : known_) valid += (valid.empty() ? "" : ", ") + name;
-      const auto& at = key.source().begin;  // the key's own position, not its value's
       const std::string hint = did_you_mean(k, std::vector<std::string>(known_.begin(), known_.end()));
-      throw InputError(source_ + ":" + std::to_string(at.line) + ":" + std::to_string(at.column) + ": unknown key '" +
-                       key_name(k) + "'" + hint + (valid.empty() ? "" : " (valid: " + valid + ")"));
+      // the key's own position, not its value's
+      throw InputError(at(key.source().begin) + ": unknown key '" + key_name(k) + "'" + hint +
+                       (valid.empty() ? "" : " (valid: " + valid + ")"));
     }
   }
   const std::string& source() const { return source_; }
@@ -363,16 +366,30 @@ std::string ramp_toml(const model::Ramp& ramp) {
 
 }  // namespace
 
-Scenario parse_scenario(std::string_view text, const std::string& source, const std::filesystem::path& directory) {
+toml::table parse_scenario_table(std::string_view text, const std::string& source) {
   check_toml_text(text, source);
-  toml::table root;
   try {
-    root = toml::parse(text, source);
+    return toml::parse(text, source);
   } catch (const toml::parse_error& e) {
     const auto& b = e.source().begin;
     throw InputError(source + ":" + std::to_string(b.line) + ":" + std::to_string(b.column) +
                      ": TOML syntax error: " + std::string(e.description()));
   }
+}
+
+std::string read_scenario_text(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw InputError(file.string() + ": cannot open scenario file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+Scenario parse_scenario(std::string_view text, const std::string& source, const std::filesystem::path& directory) {
+  return scenario_from_table(parse_scenario_table(text, source), source, directory);
+}
+
+Scenario scenario_from_table(const toml::table& root, const std::string& source, const std::filesystem::path& directory) {
   Scenario s;
   s.file = source;
   StrictTable top(root, source, "");
@@ -459,11 +476,7 @@ Scenario parse_scenario(std::string_view text, const std::string& source, const 
 }
 
 Scenario read_scenario(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw InputError(file.string() + ": cannot open scenario file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_scenario(text.str(), file.string(), file.parent_path());
+  return parse_scenario(read_scenario_text(file), file.string(), file.parent_path());
 }
 
 std::string Scenario::resolved_toml() const {

@@ -37,8 +37,7 @@ ResultsRecorder::ResultsRecorder(const scenario::Scenario& scenario, const Scena
       xdmf_{.h5_name = "results.h5", .nodes = model.mesh.num_nodes(), .tets = model.mesh.num_tets()},
       ledger_(model.system(), initial, &model.tools) {
   if (!model.roi_nodes.empty()) roi_series_.emplace(h5_.appendable("roi/displacement_mm", {model.roi_nodes.size(), 3}, 16));
-  if (model.condensation)
-    for (const auto& p : model.node_positions()) roi_position_.insert(roi_position_.end(), p.begin(), p.end());
+  roi_position_ = model.roi_components();
   roi_record_.resize(roi_position_.size());
   if (model.tools.empty()) return;
   tool_work_.emplace(h5_.appendable("energy/tool_work_J", {}));

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "common/errors.hpp"
+#include "integrators/factory.hpp"
 #include "mesh/gmsh_reader.hpp"
 #include "mesh/mesh_checks.hpp"
 #include "model/prescribed_motion.hpp"
@@ -89,10 +90,23 @@ std::unique_ptr<ScenarioModel> build_scenario_model(const scenario::Scenario& sc
   return m;
 }
 
+std::unique_ptr<integrators::Integrator> scenario_integrator(const scenario::Scenario& sc) {
+  return integrators::make_integrator(
+      sc.integrator,
+      {.dt = sc.dt, .adaptive = sc.rtol.has_value(), .rtol = sc.rtol.value_or(1e-6), .atol = sc.absolute_tolerance()});
+}
+
 roi::NodeDofs ScenarioModel::node_positions() const {
   const fem::DofMap& dofs = *full.dofs;
   const std::vector<int> nodes = roi_nodes.empty() ? roi::free_nodes(mesh, dofs) : roi_nodes;
   return condensation ? roi::node_dofs_in_reduced(nodes, condensation->partition(), dofs) : roi::node_dofs_in_full(nodes, dofs);
+}
+
+std::vector<Index> ScenarioModel::roi_components() const {
+  std::vector<Index> components;
+  if (condensation)
+    for (const auto& p : node_positions()) components.insert(components.end(), p.begin(), p.end());
+  return components;
 }
 
 }  // namespace roifem::simulation

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "condensation/reduced_model.hpp"
+#include "integrators/integrator.hpp"
 #include "model/fem_model.hpp"
 #include "roi/node_dofs.hpp"
 #include "scenario/scenario.hpp"
@@ -22,12 +23,19 @@ struct ScenarioModel {
   /// The integrated system's nodes (ROI nodes, or all free nodes) in its numbering
   /// (roi/node_dofs.hpp): errors are measured per node.
   roi::NodeDofs node_positions() const;
+  /// The ROI nodes' components among the unknowns, 3 per node (-1: fixed), as results.h5 records
+  /// them; empty for the full model.
+  std::vector<Index> roi_components() const;
 };
 
 /// The full model's tools in a reduced model's numbering (its first unknowns are the ROI dofs d of
 /// `partition`). ModelError, naming the mesh and the node, when a tool shares an element with a
 /// node of the static part: its force and its motion must reach the tissue through the ROI alone.
 model::ToolSet tools_in_reduced(const model::FemModel& full, const roi::Partition& partition, Index reduced_size);
+
+/// The integrator the scenario names, with its steps: fixed dt, or error-controlled at its rtol and
+/// atol with dt as the output interval. InputError for an unknown name (before any work).
+std::unique_ptr<integrators::Integrator> scenario_integrator(const scenario::Scenario& scenario);
 
 /// Reads and checks the mesh, builds the model and condenses it. Held by unique_ptr: the model
 /// refers to its own mesh.

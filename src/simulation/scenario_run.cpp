@@ -7,7 +7,6 @@
 #include "common/errors.hpp"
 #include "common/timer.hpp"
 #include "condensation/reduced_model.hpp"
-#include "integrators/factory.hpp"
 #include "io/csv.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/xdmf.hpp"
@@ -123,9 +122,7 @@ RunSummary integrate(const scenario::Scenario& sc, integrators::Integrator& inte
 ScenarioRunSummary run_scenario(const scenario::Scenario& sc, const std::filesystem::path& out, std::ostream& log) {
   check_output_directory(out);
   // An unknown name, or tolerances for a fixed-step method, fail before any work.
-  auto integrator = integrators::make_integrator(
-      sc.integrator,
-      {.dt = sc.dt, .adaptive = sc.rtol.has_value(), .rtol = sc.rtol.value_or(1e-6), .atol = sc.absolute_tolerance()});
+  auto integrator = scenario_integrator(sc);
   ScenarioRunSummary summary;
   Stopwatch setup_clock;
   const auto built = build_scenario_model(sc);

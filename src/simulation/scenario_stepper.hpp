@@ -1,0 +1,63 @@
+#pragma once
+/// A scenario's model advanced step by step by a program that drives it (the Python module):
+/// the same model, integrator, time grid t_k = t_0 + k dt and energy ledger as `roifem run`, so
+/// that its states equal the run's bit for bit, without the results file. Between steps the caller
+/// reads the state (u and v keep their storage for the stepper's life: views of them stay valid),
+/// the ROI displacement, the whole field, the energies, the supports' reactions and the tools' forces.
+#include <memory>
+#include <optional>
+
+#include "integrators/integrator.hpp"
+#include "model/energy.hpp"
+#include "model/reaction_forces.hpp"
+#include "scenario/scenario.hpp"
+#include "simulation/scenario_model.hpp"
+
+namespace roifem::simulation {
+
+class ScenarioStepper {
+ public:
+  /// Builds the scenario's model and integrator (InputError / ModelError as `roifem run`), at rest
+  /// at t = 0. `energy`: keep the energy ledger (one product with K and M per step).
+  explicit ScenarioStepper(const scenario::Scenario& scenario, bool energy = true);
+
+  /// One step of the scenario's grid: to t_{k+1}. SolverError, naming the integrator, the step and
+  /// t, on failure or on a non-finite displacement; the state is then that of the failed attempt.
+  void step();
+  /// Steps along the grid until t_k >= t (to within 1e-9 dt): returns the number of steps taken.
+  long step_to(double t);
+
+  const scenario::Scenario& scenario() const { return scenario_; }
+  const ScenarioModel& model() const { return *model_; }
+  const integrators::Integrator& integrator() const { return *integrator_; }
+  const model::State& state() const { return state_; }
+  long steps_taken() const { return k_; }
+  /// The grid's next time t_{k+1}.
+  double next_time() const { return t0_ + static_cast<double>(k_ + 1) * scenario_.dt; }
+  /// The ledger; nullptr without energy bookkeeping.
+  const model::EnergyLedger* energy() const { return ledger_ ? &*ledger_ : nullptr; }
+
+  /// The ROI nodes' displacement in mm, #ROI x 3 row-major, computed as `roifem run` records it
+  /// (zero at a fixed component). Empty for the full model.
+  std::vector<double> roi_displacement_mm() const;
+  /// Every node's displacement (3N, m): the static part recovered, tools on their paths.
+  Vector displacement();
+  /// The supports' reactions on the tissue (3 per fixed node, N; nodes: reactions().nodes()).
+  const model::ReactionForces& reactions();
+  Vector reaction_forces();
+  /// Each tool's force on the tissue (3 per tool, N).
+  Vector tool_forces() const;
+
+ private:
+  scenario::Scenario scenario_;
+  std::unique_ptr<ScenarioModel> model_;
+  std::unique_ptr<integrators::Integrator> integrator_;
+  model::State state_;
+  double t0_ = 0;
+  long k_ = 0;
+  std::optional<model::EnergyLedger> ledger_;
+  std::vector<Index> roi_components_;                 ///< each ROI node's components among the unknowns (-1: fixed)
+  std::unique_ptr<model::ReactionForces> reactions_;  ///< made on first use
+};
+
+}  // namespace roifem::simulation
