@@ -24,6 +24,7 @@ packages=(
   clang libclang-rt-14-dev # libFuzzer harnesses (scripts/fuzz.sh)
   clang-format clang-tidy  # scripts/lint.sh (14 on Debian 12)
   python3-h5py python3-matplotlib python3-numpy   # plots (Debian's /usr/bin/python3)
+  pybind11-dev python3-dev python3-pytest         # the Python module roifem (python/) and its tests
 )
 
 missing=()

@@ -1,0 +1,253 @@
+// The studies of the CLI from Python: roifem.paper, roifem.compare and roifem.roi_size run the same
+// code as `roifem paper`, `roifem compare` and `roifem roi-size` (writing the same files into
+// `out`) and return their tables as NumPy structured arrays in a dict.
+#include <pybind11/iostream.h>
+
+#include <ostream>
+
+#include "bindings.hpp"
+#include "common/errors.hpp"
+#include "experiments/compare_experiment.hpp"
+#include "experiments/paper_experiment.hpp"
+#include "experiments/roi_size.hpp"
+#include "scenario_handle.hpp"
+#include "simulation/interrupt.hpp"
+
+namespace roifem::python {
+
+namespace {
+
+/// The log the studies print to: Python's sys.stdout (so notebooks and redirections see it), or nothing.
+class Log {
+ public:
+  explicit Log(bool verbose) : buffer_(py::module_::import("sys").attr("stdout")), stream_(verbose ? &buffer_ : nullptr) {}
+  ~Log() { stream_.flush(); }
+  Log(const Log&) = delete;
+  Log& operator=(const Log&) = delete;
+  std::ostream& stream() { return stream_; }
+
+ private:
+  py::detail::pythonbuf buffer_;
+  std::ostream stream_;
+};
+
+/// Runs `study` with Ctrl-C turned into a stop between two steps (roifem::Interrupted, which
+/// reaches Python as KeyboardInterrupt), and Python's own handler back afterwards.
+template <class Study>
+auto interruptible(Study&& study) {
+  const simulation::InterruptGuard guard;
+  auto result = study();
+  if (const int signal_number = simulation::InterruptGuard::signal_received())
+    throw Interrupted(signal_number, "interrupted by signal " + std::to_string(signal_number));
+  return result;
+}
+
+template <class Row, class F>
+py::object column(const std::vector<Row>& rows, F&& field) {
+  py::list out;
+  for (const Row& r : rows) out.append(field(r));
+  return out;
+}
+
+std::vector<condensation::Reduction> reductions_of(const std::vector<std::string>& labels) {
+  std::vector<condensation::Reduction> out;
+  for (const auto& label : labels) out.push_back(condensation::parse_reduction(label));
+  return out;
+}
+
+py::dict paper_results(const experiments::PaperResults& r) {
+  // One row per curve and step: every reduction, every setup and ramp.
+  struct ErrorRow {
+    const experiments::PaperCurve* curve;
+    long step;
+  };
+  std::vector<ErrorRow> errors;
+  for (const auto& c : r.reduction_curves)
+    for (std::size_t k = 0; k < c.max_mm.size(); ++k) errors.push_back({&c, static_cast<long>(k + 1)});
+  const bool forces = !errors.empty() && !errors.front().curve->force_err_mN.empty();
+  std::vector<std::string> names{"setup", "reduction", "static_condensation", "ramp_s", "step", "mean_mm", "max_mm"};
+  std::vector<py::object> cols{
+      column(errors, [](const ErrorRow& e) { return e.curve->setup; }),
+      column(errors, [](const ErrorRow& e) { return e.curve->reduction; }),
+      column(errors, [](const ErrorRow& e) { return e.curve->static_condensation; }),
+      column(errors, [](const ErrorRow& e) { return e.curve->ramp_s; }),
+      column(errors, [](const ErrorRow& e) { return e.step; }),
+      column(errors, [](const ErrorRow& e) { return e.curve->mean_mm[static_cast<std::size_t>(e.step - 1)]; }),
+      column(errors, [](const ErrorRow& e) { return e.curve->max_mm[static_cast<std::size_t>(e.step - 1)]; })};
+  if (forces) {
+    names.insert(names.end(), {"force_err_mN", "force_full_mN"});
+    cols.push_back(column(errors, [](const ErrorRow& e) { return e.curve->force_err_mN[static_cast<std::size_t>(e.step - 1)]; }));
+    cols.push_back(
+        column(errors, [](const ErrorRow& e) { return e.curve->force_full_mN[static_cast<std::size_t>(e.step - 1)]; }));
+  }
+  py::dict d;
+  d["drive"] = r.drive == experiments::PaperDrive::forces ? "forces" : "spatulas";
+  d["force_N"] = r.force_N;
+  d["opening_mm"] = r.opening_mm;
+  d["errors"] = structured_array(names, cols);
+  const auto& t = r.timing;
+  d["timing"] = structured_array(
+      {"model", "nodes", "dofs", "step_s_median", "step_s_p99", "setup_s"},
+      {column(t, [](const auto& x) { return x.model; }), column(t, [](const auto& x) { return x.nodes; }),
+       column(t, [](const auto& x) { return x.dofs; }), column(t, [](const auto& x) { return x.step_s_median; }),
+       column(t, [](const auto& x) { return x.step_s_p99; }), column(t, [](const auto& x) { return x.setup_s; })});
+  const auto& red = r.reductions;
+  d["reductions"] = structured_array(
+      {"setup", "reduction", "static_condensation", "dofs", "extra_dofs", "ramp_s", "peak_max_mm", "steady_mean_mm",
+       "step_s_median", "setup_s", "peak_force_err_mN"},
+      {column(red, [](const auto& x) { return x.setup; }), column(red, [](const auto& x) { return x.reduction; }),
+       column(red, [](const auto& x) { return x.static_condensation; }), column(red, [](const auto& x) { return x.dofs; }),
+       column(red, [](const auto& x) { return x.extra_dofs; }), column(red, [](const auto& x) { return x.ramp_s; }),
+       column(red, [](const auto& x) { return x.peak_max_mm; }), column(red, [](const auto& x) { return x.steady_mean_mm; }),
+       column(red, [](const auto& x) { return x.step_s_median; }), column(red, [](const auto& x) { return x.setup_s; }),
+       column(red, [](const auto& x) { return x.peak_force_err_mN; })});
+  d["interface_nodes"] = r.interface_nodes;
+  return d;
+}
+
+py::dict compare_results(const experiments::CompareResults& r) {
+  const auto& rows = r.rows;
+  py::dict d;
+  d["rows"] = structured_array(
+      {"integrator", "mode", "dt_or_tol", "steps", "rhs_evals", "jac_evals", "lin_setups", "lin_solves", "wall_s", "err_max_mm",
+       "err_rms_mm", "energy_drift", "stable", "status"},
+      {column(rows, [](const auto& x) { return x.integrator; }), column(rows, [](const auto& x) { return x.mode; }),
+       column(rows, [](const auto& x) { return x.dt_or_tol; }), column(rows, [](const auto& x) { return x.steps; }),
+       column(rows, [](const auto& x) { return x.rhs_evals; }), column(rows, [](const auto& x) { return x.jac_evals; }),
+       column(rows, [](const auto& x) { return x.lin_setups; }), column(rows, [](const auto& x) { return x.lin_solves; }),
+       column(rows, [](const auto& x) { return x.wall_s; }),
+       // a run that did not finish has no error figures: NaN, not the zeros of its struct
+       column(rows, [](const auto& x) { return x.finished() ? x.err_max_mm : std::nan(""); }),
+       column(rows, [](const auto& x) { return x.finished() ? x.err_rms_mm : std::nan(""); }),
+       column(rows, [](const auto& x) { return x.finished() ? x.energy_drift : std::nan(""); }),
+       column(rows, [](const auto& x) { return x.stable; }), column(rows, [](const auto& x) { return x.status; })});
+  const auto& st = r.stability;
+  d["stability"] =
+      structured_array({"integrator", "predicted_dt", "measured_dt"}, {column(st, [](const auto& x) { return x.integrator; }),
+                                                                       column(st, [](const auto& x) { return x.predicted_dt; }),
+                                                                       column(st, [](const auto& x) { return x.measured_dt; })});
+  d["omega_max"] = r.omega_max;
+  return d;
+}
+
+py::dict roi_size_results(const experiments::RoiSizeResults& r) {
+  const auto& rows = r.rows;
+  py::dict d;
+  d["rows"] = structured_array(
+      {"reduction", "found", "nodes", "dofs", "peak_max_mm", "step_s_median", "missing_from", "missing_to", "holds_below"},
+      {column(rows, [](const auto& x) { return x.reduction; }), column(rows, [](const auto& x) { return x.found; }),
+       column(rows, [](const auto& x) { return x.nodes; }), column(rows, [](const auto& x) { return x.dofs; }),
+       column(rows, [](const auto& x) { return x.peak_max_mm; }), column(rows, [](const auto& x) { return x.step_s_median; }),
+       column(rows, [](const auto& x) { return x.missing_from; }), column(rows, [](const auto& x) { return x.missing_to; }),
+       column(rows, [](const auto& x) { return x.holds_below; })});
+  py::dict probes;
+  for (const auto& row : rows)
+    probes[row.reduction.c_str()] =
+        structured_array({"nodes", "peak_max_mm"}, {column(row.probes, [](const auto& p) { return p.nodes; }),
+                                                    column(row.probes, [](const auto& p) { return p.peak_max_mm; })});
+  d["probes"] = probes;
+  d["target_mm"] = std::vector<double>{r.target.x() / mm, r.target.y() / mm, r.target.z() / mm};
+  d["free_nodes"] = r.free_nodes;
+  d["full_step_s_median"] = r.full_step_s_median;
+  d["scenario_roi"] = r.scenario_roi;
+  d["scenario_roi_nodes"] = r.scenario_roi_nodes;
+  d["scenario_peak_max_mm"] = r.scenario_peak_max_mm;
+  return d;
+}
+
+}  // namespace
+
+void bind_experiments(py::module_& m) {
+  m.def(
+      "paper",
+      [](const std::filesystem::path& mesh, const std::filesystem::path& out, const std::string& material,
+         const std::string& drive, double opening_mm, double dt, long steps, const std::vector<double>& ramps_s,
+         const std::vector<Index>& setup_nodes, const std::array<double, 3>& target_mm, const std::string& fixed_set,
+         const std::vector<std::string>& reductions, long timing_steps, long field_every, bool plots, bool error_budget,
+         bool verbose) {
+        experiments::PaperOptions o;
+        o.mesh = mesh;
+        o.out = out;
+        o.material = material;
+        if (drive != "forces" && drive != "spatulas")
+          throw InputError("paper: drive '" + drive + "' is not one of: forces, spatulas");
+        o.drive = drive == "forces" ? experiments::PaperDrive::forces : experiments::PaperDrive::spatulas;
+        o.opening_mm = opening_mm;
+        o.dt = dt;
+        o.steps = steps;
+        o.ramps_s = ramps_s;
+        o.setup_nodes = setup_nodes;
+        o.roi_target_mm = Vec3(target_mm[0], target_mm[1], target_mm[2]);
+        o.fixed_set = fixed_set;
+        o.reductions = reductions_of(reductions);
+        o.timing_steps = timing_steps;
+        o.field_every = field_every;
+        o.plots = plots;
+        o.error_budget = error_budget;
+        Log log(verbose);
+        return paper_results(interruptible([&] { return experiments::run_paper_experiment(o, log.stream()); }));
+      },
+      py::arg("mesh"), py::arg("out"), py::arg("material") = "paper", py::arg("drive") = "forces", py::arg("opening_mm") = 4.0,
+      py::arg("dt") = 0.05, py::arg("steps") = 200, py::arg("ramps_s") = std::vector<double>{0.5, 1.0, 2.0},
+      py::arg("setup_nodes") = std::vector<Index>{306, 228}, py::arg("target_mm") = std::array<double, 3>{0, 0, 40},
+      py::arg("fixed_set") = "base",
+      py::arg("reductions") = std::vector<std::string>{"static", "guyan", "craig-bampton-5", "craig-bampton-10",
+                                                       "craig-bampton-20", "craig-bampton-200", "pod-40"},
+      py::arg("timing_steps") = 1000, py::arg("field_every") = 10, py::arg("plots") = true, py::arg("error_budget") = true,
+      py::arg("verbose") = true,
+      "Hansen & Larsen's experiment, as `roifem paper` runs it (its files go to `out`). Returns a dict: force_N, "
+      "opening_mm, errors (per setup, reduction, ramp and step: mean_mm, max_mm), timing (Table 2), reductions "
+      "(one row per setup and reduction at the fastest ramp) and interface_nodes.");
+
+  m.def(
+      "compare",
+      [](const py::object& scenario, const std::filesystem::path& out, const std::vector<std::string>& integrators, double t_end,
+         int fixed_levels, const std::vector<double>& tolerances, long max_steps, double max_run_s, bool plots, bool verbose) {
+        experiments::CompareOptions o;
+        o.out = out;
+        o.integrators = integrators;
+        o.t_end = t_end;
+        o.fixed_levels = fixed_levels;
+        o.tolerances = tolerances;
+        o.max_steps = max_steps;
+        o.max_run_s = max_run_s;
+        o.plots = plots;
+        Log log(verbose);
+        const ScenarioHandle sc = scenario_handle_of(scenario);
+        return compare_results(interruptible([&] { return experiments::run_compare(sc.scenario, o, log.stream()); }));
+      },
+      py::arg("scenario"), py::arg("out"), py::arg("integrators") = std::vector<std::string>{}, py::arg("t_end") = 0.0,
+      py::arg("fixed_levels") = 5, py::arg("tolerances") = std::vector<double>{1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8},
+      py::arg("max_steps") = 200000, py::arg("max_run_s") = 60.0, py::arg("plots") = true, py::arg("verbose") = true,
+      "Every integrator named (all when empty) on the scenario, as `roifem compare` runs it, against the exact modal "
+      "solution. Returns a dict: rows (integrator, mode, dt_or_tol, counters, wall_s, err_max_mm, err_rms_mm, "
+      "energy_drift, stable, status; NaN errors for a run that did not finish), stability and omega_max.");
+
+  m.def(
+      "roi_size",
+      [](const std::filesystem::path& scenario, double max_error_mm, const std::vector<std::string>& reductions,
+         const std::string& integrator, Index start_nodes, double coarse, double resolution, long timing_steps,
+         const std::optional<std::filesystem::path>& out, bool verbose) {
+        experiments::RoiSizeOptions o;
+        o.scenario = scenario;
+        o.max_error_mm = max_error_mm;
+        o.reductions = reductions_of(reductions);
+        o.integrator = integrator;
+        o.start_nodes = start_nodes;
+        o.coarse = coarse;
+        o.resolution = resolution;
+        o.timing_steps = timing_steps;
+        o.out = out.value_or(std::filesystem::path{});
+        Log log(verbose);
+        return roi_size_results(interruptible([&] { return experiments::run_roi_size(o, log.stream()); }));
+      },
+      py::arg("scenario"), py::arg("max_error_mm") = 0.5,
+      py::arg("reductions") = std::vector<std::string>{"static", "guyan", "craig-bampton-10"},
+      py::arg("integrator") = "trapezoid", py::arg("start_nodes") = 1, py::arg("coarse") = 0.25, py::arg("resolution") = 0.02,
+      py::arg("timing_steps") = 300, py::arg("out") = py::none(), py::arg("verbose") = true,
+      "The smallest ROI around the scenario's target from which every larger one keeps the error within "
+      "max_error_mm, per reduction, as `roifem roi-size` finds it. Returns a dict: rows, probes (per reduction: "
+      "every size tried and its error), target_mm, free_nodes, full_step_s_median, and the scenario's own ROI.");
+}
+
+}  // namespace roifem::python

@@ -1,0 +1,13 @@
+#pragma once
+/// roifem.Mesh: a share of a TetMesh (its own, or aliasing a simulation's model, which it keeps alive).
+#include <memory>
+
+#include "mesh/tet_mesh.hpp"
+
+namespace roifem::python {
+
+struct Mesh {
+  std::shared_ptr<const mesh::TetMesh> mesh;
+};
+
+}  // namespace roifem::python

@@ -1,0 +1,243 @@
+// roifem.Simulation: a scenario's model stepped from Python (simulation::ScenarioStepper), with its
+// state as NumPy views and everything `roifem run` records readable between steps.
+#include <csignal>
+#include <filesystem>
+
+#include "bindings.hpp"
+#include "common/errors.hpp"
+#include "common/timer.hpp"
+#include "integrators/integrator_table.hpp"
+#include "mesh_handle.hpp"
+#include "scenario_handle.hpp"
+#include "simulation/scenario_stepper.hpp"
+
+namespace roifem::python {
+
+namespace {
+
+using simulation::ScenarioStepper;
+
+class Simulation {
+ public:
+  Simulation(ScenarioHandle scenario, bool energy)
+      : stepper_(std::make_shared<ScenarioStepper>(scenario.scenario, energy)), handle_(std::move(scenario)) {}
+
+  /// The stepper, or ValueError once closed.
+  ScenarioStepper& live() const {
+    if (!stepper_) throw py::value_error("this roifem.Simulation is closed (arrays taken from it before stay valid)");
+    return *stepper_;
+  }
+  const std::shared_ptr<ScenarioStepper>& shared() const {
+    live();
+    return stepper_;
+  }
+  void close() { stepper_.reset(); }
+  bool is_open() const { return stepper_ != nullptr; }
+  const ScenarioHandle& scenario() const { return handle_; }
+
+  /// Steps `steps` times in C++, calling `observer(self)` after each (every `every` steps) and
+  /// honouring Ctrl-C between steps (KeyboardInterrupt; the state is then that of the last step).
+  long run(py::object self, long steps, const py::object& observer, long every) {
+    ScenarioStepper& s = live();
+    if (steps < 0) throw InputError("run: steps = " + std::to_string(steps) + " must be >= 0");
+    if (every <= 0) throw InputError("run: every = " + std::to_string(every) + " must be positive");
+    for (long k = 1; k <= steps; ++k) {
+      s.step();
+      if (!observer.is_none() && k % every == 0) observer(self);
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    }
+    return steps;
+  }
+
+ private:
+  std::shared_ptr<ScenarioStepper> stepper_;
+  ScenarioHandle handle_;  ///< the scenario as given (Simulation.scenario)
+};
+
+py::dict stats_dict(const integrators::Stats& st) {
+  py::dict d;
+  d["steps"] = st.steps;
+  d["rhs_evals"] = st.rhs_evals;
+  d["jac_evals"] = st.jac_evals;
+  d["lin_setups"] = st.lin_setups;
+  d["lin_solves"] = st.lin_solves;
+  d["lin_iterations"] = st.lin_iterations;
+  d["failed_steps"] = st.failed_steps;
+  d["factorization_s"] = st.factorization_s;
+  return d;
+}
+
+py::array_t<double> vector_copy(const Vector& v, py::ssize_t cols) {
+  return copied_array(std::vector<double>(v.data(), v.data() + v.size()), cols);
+}
+
+}  // namespace
+
+void bind_simulation(py::module_& m) {
+  py::class_<Simulation>(m, "Simulation",
+                         "A scenario's model (full, or the ROI with the static part condensed or reduced) and its integrator, "
+                         "stepped from Python on the grid t_k = k dt: the states equal `roifem run`'s bit for bit.\n\n"
+                         "Simulation(scenario, energy=True, **overrides): `scenario` a Scenario or a file; overrides as in "
+                         "Scenario.replace, plus integrator=, dt=, steps=, rtol=, atol= for the [time] table. energy=False drops "
+                         "the energy ledger (one product with K and M per step).\n"
+                         "u and v are read-only views of the state (valid as long as they live, even after close()).")
+      .def(py::init([](const py::object& scenario, bool energy, const py::kwargs& kwargs) {
+             py::dict overrides, time;
+             for (const auto& [key, value] : kwargs) {
+               const std::string name = py::str(key);
+               if (name == "integrator")
+                 time["integrator"] = value;
+               else if (name == "dt")
+                 time["dt_s"] = value;
+               else if (name == "steps")
+                 time["steps"] = value;
+               else if (name == "rtol" || name == "atol")
+                 time[name.c_str()] = value;
+               else
+                 overrides[key] = value;
+             }
+             if (!time.empty()) overrides["time"] = time;
+             ScenarioHandle sc = scenario_handle_of(scenario);
+             if (!overrides.empty()) sc = with_overrides(sc, overrides);
+             return Simulation(std::move(sc), energy);
+           }),
+           py::arg("scenario"), py::arg("energy") = true)
+      .def(
+          "step", [](Simulation& self) { self.live().step(); }, "One step of the grid, to t_{k+1}")
+      .def(
+          "step_to", [](Simulation& self, double t) { return self.live().step_to(t); }, py::arg("t"),
+          "Steps along the grid until t_k >= t; returns the steps taken")
+      .def(
+          "run",
+          [](const py::object& me, std::optional<long> steps, const py::object& observer, long every) {
+            auto& self = me.cast<Simulation&>();
+            const ScenarioStepper& s = self.live();
+            return self.run(me, steps.value_or(std::max(0L, s.scenario().steps - s.steps_taken())), observer, every);
+          },
+          py::arg("steps") = py::none(), py::arg("observer") = py::none(), py::arg("every") = 1,
+          "Runs `steps` steps (default: the rest of the scenario's), calling observer(sim) after every `every`-th; "
+          "Ctrl-C stops it between two steps (KeyboardInterrupt). Returns the steps taken.")
+      .def(
+          "_steps_in_cpp",
+          [](Simulation& self, long steps) {
+            ScenarioStepper& s = self.live();
+            Stopwatch clock;
+            for (long k = 0; k < steps; ++k) s.step();
+            return clock.seconds();
+          },
+          py::arg("steps"), "Benchmarks only: `steps` steps in a C++ loop; returns its wall time (s)")
+      .def("close", &Simulation::close, "Frees the model; arrays taken before stay valid, later access is a ValueError")
+      .def("__enter__", [](py::object self) { return self; })
+      .def("__exit__", [](Simulation& self, const py::args&) { self.close(); })
+      .def_property_readonly("closed", [](const Simulation& self) { return !self.is_open(); })
+      .def_property_readonly(
+          "t", [](const Simulation& self) { return self.live().state().t; }, "s")
+      .def_property_readonly(
+          "step_index", [](const Simulation& self) { return self.live().steps_taken(); }, "k: steps taken")
+      .def_property_readonly(
+          "dofs", [](const Simulation& self) { return self.live().model().system().size(); }, "unknowns of the integrated system")
+      .def_property_readonly("integrator", [](const Simulation& self) { return self.live().scenario().integrator; })
+      .def_property_readonly("scenario", [](const Simulation& self) { return self.scenario(); })
+      .def_property_readonly(
+          "mesh",
+          [](const Simulation& self) {
+            const auto& owner = self.shared();
+            return Mesh{std::shared_ptr<const mesh::TetMesh>(owner, &owner->model().mesh)};
+          },
+          "the model's mesh (keeps the simulation's model alive)")
+      .def_property_readonly(
+          "u",
+          [](const Simulation& self) {
+            const auto& owner = self.shared();
+            return owned_view(owner->state().u.data(), owner->state().u.size(), 0, owner);
+          },
+          "displacement of the integrated unknowns (m; the ROI's first with an ROI), a read-only view updated by each step")
+      .def_property_readonly(
+          "v",
+          [](const Simulation& self) {
+            const auto& owner = self.shared();
+            return owned_view(owner->state().v.data(), owner->state().v.size(), 0, owner);
+          },
+          "velocity (m/s), a read-only view like u")
+      .def_property_readonly(
+          "roi_nodes", [](const Simulation& self) { return copied_array(self.live().model().roi_nodes); },
+          "the ROI's mesh nodes (empty for the full model)")
+      .def_property_readonly(
+          "roi_displacement_mm", [](const Simulation& self) { return copied_array(self.live().roi_displacement_mm(), 3); },
+          "the ROI nodes' displacement (#ROI x 3, mm), as results.h5 records it")
+      .def(
+          "displacement", [](Simulation& self) { return vector_copy(self.live().displacement(), 3); },
+          "every node's displacement (N x 3, m): the static part recovered, tools on their paths")
+      .def_property_readonly(
+          "energy",
+          [](const Simulation& self) -> py::object {
+            const model::EnergyLedger* e = self.live().energy();
+            if (!e) return py::none();
+            py::dict d;
+            d["kinetic_J"] = e->kinetic();
+            d["strain_J"] = e->strain();
+            d["dissipated_J"] = e->dissipated();
+            d["external_work_J"] = e->external_work();
+            d["tool_work_J"] = e->tool_work();
+            d["balance_residual_J"] = e->balance_residual();
+            return d;
+          },
+          "the energy ledger now (J): kinetic, strain, dissipated, external and tools' work, and the balance "
+          "E + D - W - W_tools - E_0 (zero to round-off for the trapezoidal rule); None with energy=False")
+      .def(
+          "reaction_forces",
+          [](Simulation& self) {
+            ScenarioStepper& s = self.live();
+            const model::ReactionForces& r = s.reactions();
+            const Vector forces = s.reaction_forces();
+            py::dict d;
+            d["nodes"] = copied_array(r.nodes());
+            d["forces_N"] = vector_copy(forces, 3);
+            const Vec3 total = forces.reshaped(3, forces.size() / 3).rowwise().sum();
+            d["total_N"] = vector_copy(total, 0);
+            return d;
+          },
+          "the supports' reactions on the tissue: nodes (the fixed ones), forces_N (#fixed x 3) and total_N")
+      .def(
+          "tool_forces",
+          [](const Simulation& self) {
+            const ScenarioStepper& s = self.live();
+            const Vector F = s.tool_forces();
+            py::dict d;
+            const auto& tools = s.model().tools.tools();
+            for (std::size_t a = 0; a < tools.size(); ++a)
+              d[tools[a].name.c_str()] = vector_copy(F.segment<3>(3 * static_cast<Index>(a)), 0);
+            return d;
+          },
+          "each tool's force on the tissue (N), by name (the surgeon feels its opposite)")
+      .def_property_readonly(
+          "stats", [](const Simulation& self) { return stats_dict(self.live().integrator().stats()); },
+          "the integrator's counters: steps, rhs_evals, jac_evals, lin_setups, lin_solves, ...")
+      .def("__repr__", [](const Simulation& self) {
+        if (!self.is_open()) return std::string("<roifem.Simulation (closed)>");
+        const ScenarioStepper& s = self.live();
+        return "<roifem.Simulation " + s.scenario().file.string() + ": " + std::to_string(s.model().system().size()) + " dofs, " +
+               s.scenario().integrator + ", step " + std::to_string(s.steps_taken()) + ">";
+      });
+
+  m.def(
+      "integrators",
+      [] {
+        py::list out;
+        for (const auto& info : integrators::integrator_table()) {
+          py::dict d;
+          d["name"] = info.name;
+          d["order"] = info.order;
+          d["explicit"] = info.is_explicit;
+          d["fixed_step"] = info.fixed_step;
+          d["adaptive"] = info.adaptive;
+          d["summary"] = info.summary;
+          out.append(d);
+        }
+        return out;
+      },
+      "Every integrator by name (the scenario's [time] integrator), with its order, whether it takes a fixed step "
+      "and tolerances (rtol, atol), and a one-line summary");
+}
+
+}  // namespace roifem::python
