@@ -32,11 +32,15 @@ class Log {
 };
 
 /// Runs `study` with Ctrl-C turned into a stop between two steps (roifem::Interrupted, which
-/// reaches Python as KeyboardInterrupt), and Python's own handler back afterwards.
+/// reaches Python as KeyboardInterrupt), and Python's own handler back afterwards. The GIL is
+/// released meanwhile: other Python threads run (the log takes it back for each line it prints).
 template <class Study>
 auto interruptible(Study&& study) {
   const simulation::InterruptGuard guard;
-  auto result = study();
+  auto result = [&] {
+    const py::gil_scoped_release unlocked;
+    return study();
+  }();
   if (const int signal_number = simulation::InterruptGuard::signal_received())
     throw Interrupted(signal_number, "interrupted by signal " + std::to_string(signal_number));
   return result;

@@ -66,3 +66,22 @@ def test_roi_size_returns_the_answer_and_every_probe(scenarios, tmp_path):
     # every size tried from the answer up holds; the answer's own error is within the budget
     assert np.all(probes[probes["nodes"] >= row["nodes"]]["peak_max_mm"] <= 0.2)
     assert row["peak_max_mm"] <= 0.2 and row["nodes"] <= r["free_nodes"]
+
+
+def test_ctrl_c_stops_a_study_and_gives_python_its_handler_back(source_dir, tmp_path):
+    import os
+    import signal
+    import subprocess
+    import time
+
+    handler = signal.getsignal(signal.SIGINT)
+    # Ctrl-C from outside, one second into the study (as a terminal sends it)
+    sender = subprocess.Popen(["sh", "-c", f"sleep 1; kill -INT {os.getpid()}"])
+    start = time.perf_counter()
+    with pytest.raises(KeyboardInterrupt, match="signal 2"):
+        roifem.paper(source_dir / "meshes/brain-800.msh", tmp_path, steps=100000, ramps_s=[0.5], setup_nodes=[306],
+                     reductions=["static"], plots=False, error_budget=False, verbose=False)
+    sender.wait()
+    assert time.perf_counter() - start < 30  # stopped between two steps, not at the end
+    assert signal.getsignal(signal.SIGINT) is handler
+    assert not (tmp_path / "errors.csv").exists()  # nothing half-written in place of a result
