@@ -90,7 +90,9 @@ def test_views_keep_their_owner_alive_and_a_closed_simulation_refuses(scenarios)
         sim.step()
     del sim
     gc.collect()
-    assert np.array_equal(u, snapshot)  # still valid: the view holds the stepper (ASan would see otherwise)
+    # still valid: the view holds the stepper. tobytes() copies with memcpy, which ASan checks even
+    # from NumPy (not instrumented): a freed state is a heap-use-after-free report there
+    assert u.tobytes() == snapshot.tobytes() and nodes.tobytes() == nodes.copy().tobytes()
     assert nodes.shape == (806, 3) and np.isfinite(nodes).all()
 
 
@@ -167,3 +169,14 @@ def test_a_mesh_shows_its_nodes_tets_and_sets(source_dir):
     assert np.all(np.abs(mesh.nodes[left["nodes"], 0] + 0.002) < 1e-9)  # the wall x = -w/2
     with pytest.raises(roifem.InputError, match="opening_left"):
         mesh.set("no_such_set")
+
+
+def test_an_error_says_what_the_cli_says(cli, scenarios, tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text((scenarios / "paper-setup1.toml").read_text()
+                   .replace('"../meshes/', '"' + str(scenarios.parent / "meshes") + "/").replace("dt_s = 0.05", "dt_s = -0.05"))
+    cli_run = subprocess.run([cli, "run", str(bad), "--out", str(tmp_path / "out")], capture_output=True, text=True)
+    assert cli_run.returncode == 1
+    with pytest.raises(roifem.InputError) as e:
+        roifem.Simulation(bad)
+    assert "time.dt_s" in str(e.value) and str(e.value) in cli_run.stderr
