@@ -1,6 +1,5 @@
 // roifem.Simulation: a scenario's model stepped from Python (simulation::ScenarioStepper), with its
 // state as NumPy views and everything `roifem run` records readable between steps.
-#include <csignal>
 #include <filesystem>
 
 #include "bindings.hpp"
@@ -37,14 +36,16 @@ class Simulation {
 
   /// Steps `steps` times in C++, calling `observer(self)` after each (every `every` steps) and
   /// honouring Ctrl-C between steps (KeyboardInterrupt; the state is then that of the last step).
+  /// An observer that closes the simulation ends the run there.
   long run(py::object self, long steps, const py::object& observer, long every) {
-    ScenarioStepper& s = live();
+    const std::shared_ptr<ScenarioStepper> keep = shared();  // alive through the observer's calls
     if (steps < 0) throw InputError("run: steps = " + std::to_string(steps) + " must be >= 0");
     if (every <= 0) throw InputError("run: every = " + std::to_string(every) + " must be positive");
     for (long k = 1; k <= steps; ++k) {
-      s.step();
+      keep->step();
       if (!observer.is_none() && k % every == 0) observer(self);
       if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+      if (!is_open()) return k;
     }
     return steps;
   }

@@ -15,8 +15,7 @@ namespace roifem::model {
 
 class ReactionForces {
  public:
-  /// Assembles the fixed nodes' rows of K (every element touching them); keeps a reference to the
-  /// model, which must outlive this object.
+  /// Assembles K over every dof and keeps the fixed nodes' rows of it (nothing of the model).
   explicit ReactionForces(const FemModel& model);
   /// The fixed nodes (the fixed sets' nodes; tools' nodes are not among them), ascending.
   const std::vector<int>& nodes() const { return nodes_; }

@@ -96,6 +96,12 @@ def test_views_keep_their_owner_alive_and_a_closed_simulation_refuses(scenarios)
     assert nodes.shape == (806, 3) and np.isfinite(nodes).all()
 
 
+def test_an_observer_that_closes_the_simulation_ends_its_run(scenarios):
+    sim = roifem.Simulation(scenarios / "paper-setup2.toml")
+    assert sim.run(observer=lambda s: s.close() if s.step_index == 3 else None) == 3
+    assert sim.closed
+
+
 def test_energy_balance_holds_to_round_off_for_the_trapezoidal_rule(scenarios):
     sim = roifem.Simulation(scenarios / "paper-setup1.toml")
     residuals = []
