@@ -71,14 +71,14 @@ double l2_error(int n, const Material& m) {
 
 TEST(Convergence, ManufacturedSolutionConvergesAtSecondOrderInL2) {
   const Material m = Material::from_young_poisson(3000, 0.3, 1000, 0);
-  const int sizes[] = {5, 10, 20, 40};
+  const int sizes[] = {8, 16, 32};  // 1/4 to 1/8 is still pre-asymptotic (order 1.79)
   double previous = 0;
   for (int n : sizes) {
     const double e = l2_error(n, m);
     if (previous > 0) {
       const double order = std::log(previous / e) / std::log(2.0);
       std::printf("h = 1/%-3d  L2 error %.4e  observed order %.3f\n", n, e, order);
-      EXPECT_NEAR(order, 2.0, 0.2) << "between h = 1/" << n / 2 << " and 1/" << n;
+      EXPECT_NEAR(order, 2.0, 0.1) << "between h = 1/" << n / 2 << " and 1/" << n;
     } else {
       std::printf("h = 1/%-3d  L2 error %.4e\n", n, e);
     }
