@@ -39,13 +39,16 @@ py::array_t<T> owned_view(const T* data, py::ssize_t rows, py::ssize_t cols, std
   return view;
 }
 
-/// A NumPy array holding a copy of `values` (rows x cols, row-major; cols = 0: a vector).
+/// A NumPy array holding a copy of the `n` values at `data` (rows x cols, row-major; cols = 0: a vector).
+template <class T>
+py::array_t<T> copied_array(const T* data, py::ssize_t n, py::ssize_t cols = 0) {
+  py::array_t<T> out = cols > 0 ? py::array_t<T>({n / cols, cols}) : py::array_t<T>(n);
+  std::copy(data, data + n, out.mutable_data());
+  return out;
+}
 template <class T>
 py::array_t<T> copied_array(const std::vector<T>& values, py::ssize_t cols = 0) {
-  const auto n = static_cast<py::ssize_t>(values.size());
-  py::array_t<T> out = cols > 0 ? py::array_t<T>({n / cols, cols}) : py::array_t<T>(n);
-  std::copy(values.begin(), values.end(), out.mutable_data());
-  return out;
+  return copied_array(values.data(), static_cast<py::ssize_t>(values.size()), cols);
 }
 
 /// A NumPy structured array (numpy.rec.fromarrays) with the given column names and columns.

@@ -59,6 +59,13 @@ std::vector<condensation::Reduction> reductions_of(const std::vector<std::string
   return out;
 }
 
+/// The labels of `reductions` (their defaults in Python are the C++ options' own).
+std::vector<std::string> labels_of(const std::vector<condensation::Reduction>& reductions) {
+  std::vector<std::string> out;
+  for (const auto& r : reductions) out.push_back(r.label());
+  return out;
+}
+
 py::dict paper_results(const experiments::PaperResults& r) {
   // One row per curve and step: every reduction, every setup and ramp.
   struct ErrorRow {
@@ -162,6 +169,10 @@ py::dict roi_size_results(const experiments::RoiSizeResults& r) {
 }  // namespace
 
 void bind_experiments(py::module_& m) {
+  // Python's defaults are read from the C++ options, so the two never drift apart.
+  const experiments::PaperOptions paper;
+  const experiments::CompareOptions compare;
+  const experiments::RoiSizeOptions roi_size;
   m.def(
       "paper",
       [](const std::filesystem::path& mesh, const std::filesystem::path& out, const std::string& material,
@@ -191,14 +202,13 @@ void bind_experiments(py::module_& m) {
         Log log(verbose);
         return paper_results(interruptible([&] { return experiments::run_paper_experiment(o, log.stream()); }));
       },
-      py::arg("mesh"), py::arg("out"), py::arg("material") = "paper", py::arg("drive") = "forces", py::arg("opening_mm") = 4.0,
-      py::arg("dt") = 0.05, py::arg("steps") = 200, py::arg("ramps_s") = std::vector<double>{0.5, 1.0, 2.0},
-      py::arg("setup_nodes") = std::vector<Index>{306, 228}, py::arg("target_mm") = std::array<double, 3>{0, 0, 40},
-      py::arg("fixed_set") = "base",
-      py::arg("reductions") = std::vector<std::string>{"static", "guyan", "craig-bampton-5", "craig-bampton-10",
-                                                       "craig-bampton-20", "craig-bampton-200", "pod-40"},
-      py::arg("timing_steps") = 1000, py::arg("field_every") = 10, py::arg("plots") = true, py::arg("error_budget") = true,
-      py::arg("verbose") = true,
+      py::arg("mesh"), py::arg("out"), py::arg("material") = paper.material, py::arg("drive") = "forces",
+      py::arg("opening_mm") = paper.opening_mm, py::arg("dt") = paper.dt, py::arg("steps") = paper.steps,
+      py::arg("ramps_s") = paper.ramps_s, py::arg("setup_nodes") = paper.setup_nodes,
+      py::arg("target_mm") = std::array<double, 3>{paper.roi_target_mm.x(), paper.roi_target_mm.y(), paper.roi_target_mm.z()},
+      py::arg("fixed_set") = paper.fixed_set, py::arg("reductions") = labels_of(paper.reductions),
+      py::arg("timing_steps") = paper.timing_steps, py::arg("field_every") = paper.field_every, py::arg("plots") = paper.plots,
+      py::arg("error_budget") = paper.error_budget, py::arg("verbose") = true,
       "Hansen & Larsen's experiment, as `roifem paper` runs it (its files go to `out`). Returns a dict: force_N, "
       "opening_mm, errors (per setup, reduction, ramp and step: mean_mm, max_mm), timing (Table 2), reductions "
       "(one row per setup and reduction at the fastest ramp) and interface_nodes.");
@@ -220,9 +230,10 @@ void bind_experiments(py::module_& m) {
         const ScenarioHandle sc = scenario_handle_of(scenario);
         return compare_results(interruptible([&] { return experiments::run_compare(sc.scenario, o, log.stream()); }));
       },
-      py::arg("scenario"), py::arg("out"), py::arg("integrators") = std::vector<std::string>{}, py::arg("t_end") = 0.0,
-      py::arg("fixed_levels") = 5, py::arg("tolerances") = std::vector<double>{1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8},
-      py::arg("max_steps") = 200000, py::arg("max_run_s") = 60.0, py::arg("plots") = true, py::arg("verbose") = true,
+      py::arg("scenario"), py::arg("out"), py::arg("integrators") = compare.integrators, py::arg("t_end") = compare.t_end,
+      py::arg("fixed_levels") = compare.fixed_levels, py::arg("tolerances") = compare.tolerances,
+      py::arg("max_steps") = compare.max_steps, py::arg("max_run_s") = compare.max_run_s, py::arg("plots") = compare.plots,
+      py::arg("verbose") = true,
       "Every integrator named (all when empty) on the scenario, as `roifem compare` runs it, against the exact modal "
       "solution. Returns a dict: rows (integrator, mode, dt_or_tol, counters, wall_s, err_max_mm, err_rms_mm, "
       "energy_drift, stable, status; NaN errors for a run that did not finish), stability and omega_max.");
@@ -245,10 +256,11 @@ void bind_experiments(py::module_& m) {
         Log log(verbose);
         return roi_size_results(interruptible([&] { return experiments::run_roi_size(o, log.stream()); }));
       },
-      py::arg("scenario"), py::arg("max_error_mm") = 0.5,
-      py::arg("reductions") = std::vector<std::string>{"static", "guyan", "craig-bampton-10"},
-      py::arg("integrator") = "trapezoid", py::arg("start_nodes") = 1, py::arg("coarse") = 0.25, py::arg("resolution") = 0.02,
-      py::arg("timing_steps") = 300, py::arg("out") = py::none(), py::arg("verbose") = true,
+      py::arg("scenario"), py::arg("max_error_mm") = roi_size.max_error_mm,
+      py::arg("reductions") = labels_of(roi_size.reductions), py::arg("integrator") = roi_size.integrator,
+      py::arg("start_nodes") = roi_size.start_nodes, py::arg("coarse") = roi_size.coarse,
+      py::arg("resolution") = roi_size.resolution, py::arg("timing_steps") = roi_size.timing_steps, py::arg("out") = py::none(),
+      py::arg("verbose") = true,
       "The smallest ROI around the scenario's target from which every larger one keeps the error within "
       "max_error_mm, per reduction, as `roifem roi-size` finds it. Returns a dict: rows, probes (per reduction: "
       "every size tried and its error), target_mm, free_nodes, full_step_s_median, and the scenario's own ROI.");

@@ -68,9 +68,7 @@ py::dict stats_dict(const integrators::Stats& st) {
   return d;
 }
 
-py::array_t<double> vector_copy(const Vector& v, py::ssize_t cols) {
-  return copied_array(std::vector<double>(v.data(), v.data() + v.size()), cols);
-}
+py::array_t<double> vector_copy(const Vector& v, py::ssize_t cols) { return copied_array(v.data(), v.size(), cols); }
 
 }  // namespace
 
