@@ -35,7 +35,7 @@ Vector inner_pressure(const mesh::TetMesh& mesh, double pressure) {
 
 }  // namespace
 
-LameError solve_lame_sphere(const mesh::TetMesh& mesh, const LameSphere& s, std::optional<double> nodal_pressure) {
+Vector solve_lame_field(const mesh::TetMesh& mesh, const LameSphere& s, std::optional<double> nodal_pressure) {
   fem::Constraints constraints(mesh.num_nodes());
   const char* planes[] = {"x0", "y0", "z0"};
   for (int c = 0; c < 3; ++c)
@@ -46,8 +46,13 @@ LameError solve_lame_sphere(const mesh::TetMesh& mesh, const LameSphere& s, std:
                                         : fem::StiffnessAssembler(mesh, dofs).stiffness(material);
   solvers::Cholesky factor;
   fem::factorize_stiffness(factor, K, dofs);
-  const Vector u = dofs.expand(factor.solve(dofs.restrict_to_free(inner_pressure(mesh, s.pressure))));
+  return dofs.expand(factor.solve(dofs.restrict_to_free(inner_pressure(mesh, s.pressure))));
+}
 
+namespace {
+
+/// The error of u (3 per node; the first N of them on the mesh's nodes) against Lame's solution.
+LameError lame_error(const mesh::TetMesh& mesh, const LameSphere& s, const Vector& u) {
   LameError e{.nodes = mesh.num_nodes(), .tets = mesh.num_tets(), .l2 = 0, .inner_mean = 0};
   double error2 = 0, exact2 = 0;
   for (Index n = 0; n < mesh.num_nodes(); ++n) {
@@ -62,6 +67,12 @@ LameError solve_lame_sphere(const mesh::TetMesh& mesh, const LameSphere& s, std:
   const double exact_inner = s.displacement(Vec3(s.inner_radius, 0, 0)).x();
   e.inner_mean = (radial / static_cast<double>(inner.size()) - exact_inner) / exact_inner;
   return e;
+}
+
+}  // namespace
+
+LameError solve_lame_sphere(const mesh::TetMesh& mesh, const LameSphere& s, std::optional<double> nodal_pressure) {
+  return lame_error(mesh, s, solve_lame_field(mesh, s, nodal_pressure));
 }
 
 }  // namespace roifem::experiments

@@ -34,5 +34,7 @@ struct LameError {
 /// `nodal_pressure` is set. Throws InputError for a mesh without those sets.
 LameError solve_lame_sphere(const mesh::TetMesh& mesh, const LameSphere& sphere,
                             std::optional<double> nodal_pressure = std::nullopt);
+/// The computed displacement of that problem (3N, every node).
+Vector solve_lame_field(const mesh::TetMesh& mesh, const LameSphere& sphere, std::optional<double> nodal_pressure = std::nullopt);
 
 }  // namespace roifem::experiments

@@ -114,14 +114,17 @@ int add_slit_field(const BrainShape& s, const std::vector<int>& slit_faces) {
   return threshold;
 }
 
-Index mesh_with_size(double h, int slit_field, double slit_refinement) {
+/// Meshes at size h: uniform, graded towards the slit (slit_field), or h * sizes.at(x) when sizes are
+/// given (the callback reads h through `current_h`).
+Index mesh_with_size(double h, int slit_field, double slit_refinement, const RelativeSizes& sizes, double& current_h) {
   gmsh::model::mesh::clear();
   if (slit_field > 0) {
     gmsh::model::mesh::field::setNumber(slit_field, "SizeMin", slit_refinement * h);
     gmsh::model::mesh::field::setNumber(slit_field, "SizeMax", h);
   }
-  gmsh::option::setNumber("Mesh.MeshSizeMax", h);
-  gmsh::option::setNumber("Mesh.MeshSizeMin", 0.05 * h);
+  current_h = h;
+  gmsh::option::setNumber("Mesh.MeshSizeMax", sizes.at ? sizes.largest * h : h);
+  gmsh::option::setNumber("Mesh.MeshSizeMin", sizes.at ? 0.5 * sizes.smallest * h : 0.05 * h);
   gmsh::model::mesh::generate(3);
   std::vector<std::size_t> tags;
   std::vector<double> coords, parametric;
@@ -131,9 +134,14 @@ Index mesh_with_size(double h, int slit_field, double slit_refinement) {
 
 }  // namespace
 
-BrainMesh generate_brain_mesh(Index target_nodes, const std::filesystem::path& output, const BrainShape& shape,
-                              double tolerance) {
+BrainMesh generate_brain_mesh(Index target_nodes, const std::filesystem::path& output, const BrainShape& shape, double tolerance,
+                              const RelativeSizes& sizes) {
   validate(shape, target_nodes);
+  if (sizes.at && shape.slit_refinement < 1)
+    throw InputError("brain mesh: give either a slit refinement or adapted sizes, not both");
+  if (sizes.at && !(sizes.smallest > 0 && sizes.smallest <= sizes.largest))
+    throw InputError("brain mesh: adapted sizes need 0 < smallest <= largest");
+  double current_h = 0;  // outlives the session, whose size callback reads it
   GmshSession session;
   BrainMesh result;
   gmsh_call("brain mesh generation", [&] {
@@ -141,7 +149,16 @@ BrainMesh generate_brain_mesh(Index target_nodes, const std::filesystem::path& o
     const int slit_field = shape.slit_refinement < 1 ? add_slit_field(shape, slit_faces) : 0;
     gmsh::option::setNumber("Mesh.ElementOrder", 1);
     gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
-    gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 1);
+    if (sizes.at) {
+      // The sizes alone decide, everywhere: not the geometry's points, not the surface mesh's
+      // sizes carried inwards. Gmsh gives millimetres; the sizes take metres.
+      gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
+      gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
+      gmsh::model::mesh::setSizeCallback(
+          [&sizes, &current_h](int, int, double x, double y, double z) { return current_h * sizes.at(Vec3(x, y, z) * mm); });
+    } else {
+      gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 1);
+    }
     // Gmsh's default Delaunay mesher on one thread: the same request gives the same mesh, bit
     // for bit (HXT, algorithm 10, is faster but its node count varies from run to run).
     gmsh::option::setNumber("Mesh.Algorithm3D", 1);
@@ -167,7 +184,7 @@ BrainMesh generate_brain_mesh(Index target_nodes, const std::filesystem::path& o
       gmsh::option::setNumber("Mesh.Algorithm", algorithm);
       NodeCountSearch search(target, h, -2.5);
       for (int attempt = 0; attempt < 12; ++attempt) {
-        const auto n = static_cast<double>(mesh_with_size(search.size(), slit_field, shape.slit_refinement));
+        const auto n = static_cast<double>(mesh_with_size(search.size(), slit_field, shape.slit_refinement, sizes, current_h));
         ++result.attempts;
         if (search.record(n, tolerance)) {
           result.element_size_mm = search.size();

@@ -9,6 +9,7 @@
 ///   opening_right  2D  the wall x = +w/2 of the slit (pulled towards +x)
 ///   opening_floor  2D  the bottom of the slit
 #include <filesystem>
+#include <functional>
 
 #include "mesh/tet_mesh.hpp"
 
@@ -25,6 +26,13 @@ struct BrainShape {  // millimetres
   double slit_grading_mm = 30;
 };
 
+/// Element sizes that vary over the body (mesh/adapted_size_field.hpp), relative to the size the
+/// node-count search sets: the mesher is asked for h * at(x) at x (m), within [smallest, largest].
+struct RelativeSizes {
+  std::function<double(const Vec3&)> at;
+  double smallest = 1, largest = 1;
+};
+
 struct BrainMesh {
   TetMesh mesh;
   double element_size_mm = 0;  ///< the Gmsh size that gave the node count
@@ -33,8 +41,9 @@ struct BrainMesh {
 
 /// Meshes the brain with `target_nodes` nodes within +-tolerance (relative), adjusting the element
 /// size by a secant on log(nodes) against log(size). Writes the mesh (MSH 4.1, millimetres) to
-/// `output` when it is not empty, atomically. Throws InputError for an impossible request.
+/// `output` when it is not empty, atomically. With `sizes`, the size varies as they say (the
+/// shape's slit refinement must then be 1). Throws InputError for an impossible request.
 BrainMesh generate_brain_mesh(Index target_nodes, const std::filesystem::path& output = {}, const BrainShape& shape = {},
-                              double tolerance = 0.03);
+                              double tolerance = 0.03, const RelativeSizes& sizes = {});
 
 }  // namespace roifem::mesh

@@ -221,5 +221,23 @@ TEST(BrainMesh, SlitRefinementShrinksTheElementsAtTheOpeningAtTheSameNodeCount) 
   EXPECT_THROW(generate_brain_mesh(2000, {}, graded), InputError);
 }
 
+TEST(BrainMesh, RelativeSizesAreFollowedAtTheSameNodeCount) {
+  // A third of the size within 20 mm of the opening's centre (0, 0, 40 mm), twice elsewhere.
+  const RelativeSizes sizes{.at = [](const Vec3& x) { return (x - Vec3(0, 0, 40 * mm)).norm() < 20 * mm ? 1.0 / 3 : 2.0; },
+                            .smallest = 1.0 / 3,
+                            .largest = 2.0};
+  const TetMesh uniform = generate_brain_mesh(2000).mesh, sized = generate_brain_mesh(2000, {}, {}, 0.03, sizes).mesh;
+  check_mesh(sized);
+  EXPECT_NEAR(static_cast<double>(sized.num_nodes()), 2000.0, 0.05 * 2000);
+  // Coarser chords on the curved surface cut off more volume: 1.2% here.
+  EXPECT_NEAR(total_volume(sized), total_volume(uniform), 0.025 * total_volume(uniform));
+  // The walls lie in the fine ball: a sixth of the coarse size, against a mesh that keeps the
+  // node count; at least 2.5x smaller than the uniform mesh's there.
+  EXPECT_LT(mean_edge_at_the_slit(sized), mean_edge_at_the_slit(uniform) / 2.5);
+  BrainShape graded;
+  graded.slit_refinement = 0.5;
+  EXPECT_THROW(generate_brain_mesh(2000, {}, graded, 0.03, sizes), InputError);
+}
+
 }  // namespace
 }  // namespace roifem::mesh
