@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "common/types.hpp"
+#include "experiments/quadratic_tets.hpp"
 #include "fem/material.hpp"
 #include "mesh/tet_mesh.hpp"
 
@@ -18,13 +19,17 @@ namespace roifem::experiments {
 struct CalculixProblem {
   const mesh::TetMesh* mesh = nullptr;
   fem::Material material;
-  std::vector<int> fixed_nodes;  ///< held in all three components
-  Vector forces;                 ///< N, 3N: the full load (fraction 1)
+  std::vector<int> fixed_nodes;                      ///< held in all three components
+  std::vector<std::pair<int, int>> held_components;  ///< (node, component 0..2) held, as on a symmetry plane
+  Vector forces;                                     ///< N, 3N: the full load (fraction 1)
+  /// C3D10 on these quadratic tetrahedra of `mesh` instead of C3D4 (experiments/quadratic_tets.hpp):
+  /// fixed_nodes, forces and the solutions then number its nodes.
+  const QuadraticTets* quadratic = nullptr;
 };
 
 struct CalculixSolution {
   double fraction = 0;
-  Vector u;  ///< m, 3N
+  Vector u;  ///< m, 3 per node
 };
 
 /// Whether `ccx` is on the PATH.

@@ -1,7 +1,10 @@
 #include "experiments/lame_sphere.hpp"
 
 #include <cmath>
+#include <sstream>
 
+#include "experiments/calculix_static.hpp"
+#include "experiments/quadratic_tets.hpp"
 #include "fem/assembly.hpp"
 #include "fem/dof_map.hpp"
 #include "fem/material.hpp"
@@ -73,6 +76,30 @@ LameError lame_error(const mesh::TetMesh& mesh, const LameSphere& s, const Vecto
 
 LameError solve_lame_sphere(const mesh::TetMesh& mesh, const LameSphere& s, std::optional<double> nodal_pressure) {
   return lame_error(mesh, s, solve_lame_field(mesh, s, nodal_pressure));
+}
+
+LameError solve_lame_sphere_c3d10(const mesh::TetMesh& mesh, const LameSphere& s, const std::filesystem::path& work_dir) {
+  const QuadraticTets q = quadratic_tets(mesh);
+  CalculixProblem problem{.mesh = &mesh,
+                          .material = fem::Material::from_young_poisson(s.young, s.poisson, 1000, 0),
+                          .fixed_nodes = {},
+                          .held_components = {},
+                          .forces = Vector::Zero(3 * q.nodes.cols()),
+                          .quadratic = &q};
+  const char* planes[] = {"x0", "y0", "z0"};
+  for (int c = 0; c < 3; ++c)
+    for (const int n : quadratic_nodes_on(q, mesh.set(planes[c]).nodes)) problem.held_components.emplace_back(n, c);
+  // A flat 6-node facet under uniform pressure: p A / 3 on each midside node, the corners none.
+  for (const auto& facet : mesh.set("inner").triangles) {
+    const Vec3 p0 = mesh.node(facet[0]), p1 = mesh.node(facet[1]), p2 = mesh.node(facet[2]);
+    Vec3 area_normal = 0.5 * (p1 - p0).cross(p2 - p0);
+    if (area_normal.dot(p0 + p1 + p2) < 0) area_normal = -area_normal;
+    for (int k = 0; k < 3; ++k)
+      problem.forces.segment<3>(3 * q.midpoint(facet[k], facet[(k + 1) % 3])) += s.pressure / 3 * area_normal;
+  }
+  std::ostringstream log;
+  const auto solutions = solve_with_calculix(problem, {1.0}, false, work_dir, log);
+  return lame_error(mesh, s, solutions.front().u);
 }
 
 }  // namespace roifem::experiments

@@ -7,6 +7,7 @@
 /// error at nu = 0.49, 0.499, 0.4999 against nu = 0.3 on the same meshes, with observed orders.
 /// Solved on one octant (mesh/sphere_shell_mesh.hpp) with symmetry (each plane's normal
 /// component held) and p on the inner face, consistently lumped (p A / 3 per node of each facet).
+#include <filesystem>
 #include <optional>
 #include <vector>
 
@@ -36,5 +37,9 @@ LameError solve_lame_sphere(const mesh::TetMesh& mesh, const LameSphere& sphere,
                             std::optional<double> nodal_pressure = std::nullopt);
 /// The computed displacement of that problem (3N, every node).
 Vector solve_lame_field(const mesh::TetMesh& mesh, const LameSphere& sphere, std::optional<double> nodal_pressure = std::nullopt);
+/// The same problem solved by CalculiX with quadratic tetrahedra on this mesh (C3D10, straight-sided,
+/// experiments/quadratic_tets.hpp) in `work_dir`; the error measured at the mesh's own nodes, as for
+/// the others. Throws SolverError without ccx.
+LameError solve_lame_sphere_c3d10(const mesh::TetMesh& mesh, const LameSphere& sphere, const std::filesystem::path& work_dir);
 
 }  // namespace roifem::experiments
