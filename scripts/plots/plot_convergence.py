@@ -30,7 +30,7 @@ def main(directory):
             continue
         h = [p[0] for p in points]
         h_all += h
-        style = "-" if name in ("opening", "probe", "dynamic peak") else ":"
+        style = "-" if name in ("opening", "opening c3d10", "probe", "dynamic peak") else ":"
         ax.loglog(h, [p[1] for p in points], style, marker="o", label=name)
     if h_all:
         h0, h1 = min(h_all), max(h_all)

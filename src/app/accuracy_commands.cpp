@@ -33,6 +33,13 @@ void add_convergence_command(CLI::App& app, Action& action) {
   cmd->add_option("--slit-refinement", o->slit_refinement,
                   "Element size at the opening's faces relative to the rest, graded back over 30 mm (1: uniform meshes)")
       ->capture_default_str();
+  cmd->add_option("--adapt", o->adapt_passes,
+                  "Adapt each mesh this many times to the scenario's static solution: its recovered-strain error estimate "
+                  "sets the sizes of the next mesh at the same node count (0: uniform or --slit-refinement meshes)")
+      ->capture_default_str();
+  cmd->add_flag("--c3d10", o->c3d10,
+                "Also solve each mesh's static problem with quadratic tetrahedra (CalculiX C3D10 on the same nodes and "
+                "edges) and report its opening");
   cmd->add_option("--modes", o->modes, "Eigenfrequencies compared")->capture_default_str();
   cmd->add_flag("!--no-dynamic", o->dynamic, "Skip the dynamic run on each mesh");
   cmd->add_flag("!--no-plots", o->plots, "Skip the PNG plot");

@@ -7,12 +7,17 @@
 
 #include "common/errors.hpp"
 #include "common/timer.hpp"
+#include "experiments/calculix_static.hpp"
+#include "experiments/quadratic_tets.hpp"
 #include "experiments/richardson.hpp"
 #include "fem/loads.hpp"
+#include "fem/material_map.hpp"
+#include "fem/recovery_estimate.hpp"
 #include "fem/static_solve.hpp"
 #include "integrators/trapezoid.hpp"
 #include "io/csv.hpp"
 #include "io/plots.hpp"
+#include "mesh/adapted_size_field.hpp"
 #include "mesh/brain_mesh.hpp"
 #include "mesh/gmsh_reader.hpp"
 #include "mesh/mesh_checks.hpp"
@@ -54,7 +59,7 @@ mesh::TetMesh brain_of(Index nodes, double slit_refinement, const std::filesyste
   const auto file = dir / ("brain-" + std::to_string(nodes) +
                            (slit_refinement < 1 ? format("-slit%g", slit_refinement) : std::string()) + ".msh");
   if (std::filesystem::exists(file)) {
-    log << "  reusing " << file.string() << "\n";
+    log << "  reusing " << file.string() << "\n" << std::flush;
     return mesh::read_mesh(file);
   }
   const Stopwatch clock;
@@ -62,14 +67,78 @@ mesh::TetMesh brain_of(Index nodes, double slit_refinement, const std::filesyste
   shape.slit_refinement = slit_refinement;
   auto generated = mesh::generate_brain_mesh(nodes, file, shape);
   log << format("  meshed %s: %lld nodes in %.1f s\n", file.c_str(), static_cast<long long>(generated.mesh.num_nodes()),
-                clock.seconds());
+                clock.seconds())
+      << std::flush;
   return std::move(generated.mesh);
 }
 
-MeshQuantities measure(const scenario::Scenario& s, const fem::Material& material, fem::Element element, const Vec3& probe,
-                       const ConvergenceOptions& o, Index nodes, std::ostream& log) {
+/// The static displacement (3N, every node) under the loads at the run's end.
+Vector static_displacement(const model::FemModel& full, double t_end, solvers::Cholesky& K) {
+  fem::factorize_stiffness(K, full.system.K, *full.dofs);
+  return full.displacement(K.solve(full.system.load.at(t_end)), t_end);
+}
+
+/// The brain at `nodes` nodes after `passes` adaptations: each solves the static problem on the
+/// last mesh, estimates its error (fem/recovery_estimate.hpp) and meshes again at the same node
+/// count with the sizes that spread it evenly (mesh/adapted_size_field.hpp). The meshes are named
+/// after the scenario, element and material they were adapted to, and reused when present.
+mesh::TetMesh adapted_brain_of(Index nodes, const scenario::Scenario& s, const fem::Material& material, fem::Element element,
+                               const std::string& material_name, const ConvergenceOptions& o, std::ostream& log) {
+  const auto dir = o.out / "meshes";
+  mesh::TetMesh mesh = brain_of(nodes, o.slit_refinement, dir, log);
+  const double t_end = s.dt * static_cast<double>(s.steps);
+  for (int pass = 1; pass <= o.adapt_passes; ++pass) {
+    const auto file = dir / format("brain-%lld%s-adapted%d-%s-%s-%s.msh", static_cast<long long>(nodes),
+                                   o.slit_refinement < 1 ? format("-slit%g", o.slit_refinement).c_str() : "", pass,
+                                   s.file.stem().c_str(), std::string(fem::element_name(element)).c_str(), material_name.c_str());
+    if (std::filesystem::exists(file)) {
+      log << "  reusing " << file.string() << "\n" << std::flush;
+      mesh = mesh::read_mesh(file);
+      continue;
+    }
+    const Stopwatch clock;
+    mesh::check_mesh(mesh);
+    const model::FemModel full = model::build_fem_model(mesh, material, s.fixed_sets, s.loads, s.tools, element);
+    solvers::Cholesky K;
+    const Vector u = static_displacement(full, t_end, K);
+    const fem::RecoveryEstimate estimate = fem::recovery_estimate(mesh, fem::MaterialMap(material), element, u);
+    const Index previous_nodes = mesh.num_nodes();
+    const mesh::AdaptedSizeField sizes(mesh, estimate.element_error2);
+    const mesh::RelativeSizes relative{.at = [&sizes](const Vec3& x) { return sizes.relative_size(x); },
+                                       .smallest = sizes.smallest(),
+                                       .largest = sizes.largest()};
+    mesh = mesh::generate_brain_mesh(nodes, file, mesh::BrainShape{}, 0.03, relative).mesh;
+    log << format(
+               "  adaptation %d: estimated energy error %.1f%% on %lld nodes; sizes %.2f to %.2f of the mean; meshed "
+               "%s: %lld nodes (%.1f s)\n",
+               pass, 100 * estimate.relative(), static_cast<long long>(previous_nodes), sizes.smallest(), sizes.largest(),
+               file.c_str(), static_cast<long long>(mesh.num_nodes()), clock.seconds())
+        << std::flush;
+  }
+  return mesh;
+}
+
+/// The static opening with quadratic tetrahedra on `mesh`, solved by CalculiX (linear, C3D10) in
+/// `work_dir`; the loads at t_end, spread consistently over the sets' 6-node facets.
+double c3d10_opening(const mesh::TetMesh& mesh, const scenario::Scenario& s, const fem::Material& material, double t_end,
+                     const std::filesystem::path& work_dir, Index& dofs, std::ostream& log) {
+  const QuadraticTets q = quadratic_tets(mesh);
+  dofs = 3 * q.nodes.cols();
+  CalculixProblem problem{.mesh = &mesh, .material = material, .forces = Vector::Zero(dofs), .quadratic = &q};
+  for (const auto& load : s.loads) problem.forces += quadratic_set_force(mesh, q, load.set, load.force * load.ramp.value(t_end));
+  std::vector<int> fixed;
+  for (const auto& set : s.fixed_sets) fixed.insert(fixed.end(), mesh.set(set).nodes.begin(), mesh.set(set).nodes.end());
+  problem.fixed_nodes = quadratic_nodes_on(q, fixed);
+  const Vector u = solve_with_calculix(problem, {1.0}, false, work_dir, log).front().u;
+  return quadratic_set_mean_displacement(mesh, q, "opening_right", u).x() -
+         quadratic_set_mean_displacement(mesh, q, "opening_left", u).x();
+}
+
+MeshQuantities measure(const scenario::Scenario& s, const fem::Material& material, fem::Element element,
+                       const std::string& material_name, const Vec3& probe, const ConvergenceOptions& o, Index nodes,
+                       std::ostream& log) {
   const Stopwatch clock;
-  const mesh::TetMesh mesh = brain_of(nodes, o.slit_refinement, o.out / "meshes", log);
+  const mesh::TetMesh mesh = adapted_brain_of(nodes, s, material, element, material_name, o, log);
   mesh::check_mesh(mesh);
   const model::FemModel full = model::build_fem_model(mesh, material, s.fixed_sets, s.loads, s.tools, element);
   const auto& system = full.system;
@@ -84,12 +153,22 @@ MeshQuantities measure(const scenario::Scenario& s, const fem::Material& materia
   const double t_end = s.dt * static_cast<double>(s.steps);
   {
     solvers::Cholesky K;
-    fem::factorize_stiffness(K, system.K, *full.dofs);
-    const Vector u = full.displacement(K.solve(system.load.at(t_end)), t_end);
+    const Vector u = static_displacement(full, t_end, K);
+    q.estimated_error = fem::recovery_estimate(mesh, fem::MaterialMap(material), element, u).relative();
     q.opening_mm = opening_widening(mesh, u) / mm;
     q.probe_mm = mesh::PointLocator::interpolate(at_probe, u).norm() / mm;
     const model::Modes modes = model::lowest_modes(system.M.diagonal(), K, o.modes);
     for (Index i = 0; i < modes.omega.size(); ++i) q.frequencies_hz.push_back(modes.omega[i] / (2 * std::numbers::pi));
+  }
+  if (o.c3d10) {
+    const Stopwatch ccx;
+    q.c3d10_opening_mm =
+        c3d10_opening(mesh, s, material, t_end, o.out / "calculix" / format("c3d10-%lld", static_cast<long long>(q.nodes)),
+                      q.c3d10_dofs, log) /
+        mm;
+    log << format("  C3D10 (CalculiX): %lld dofs, opening %.4f mm (%.1f s)\n", static_cast<long long>(q.c3d10_dofs),
+                  q.c3d10_opening_mm, ccx.seconds())
+        << std::flush;
   }
   if (o.dynamic) {
     integrators::Trapezoid trapezoid(s.dt);
@@ -101,10 +180,13 @@ MeshQuantities measure(const scenario::Scenario& s, const fem::Material& materia
     }
   }
   q.seconds = clock.seconds();
-  log << format("  %lld nodes, %lld dofs, h %.2f mm: opening %.4f mm, probe %.4f mm%s, f1 %.4f Hz (%.1f s)\n",
-                static_cast<long long>(q.nodes), static_cast<long long>(q.dofs), q.h_mm, q.opening_mm, q.probe_mm,
-                q.probe_outside_mm > 0 ? format(" (read at the boundary, %.2f mm away)", q.probe_outside_mm).c_str() : "",
-                q.frequencies_hz.front(), q.seconds);
+  log << format(
+             "  %lld nodes, %lld dofs, h %.2f mm: opening %.4f mm, probe %.4f mm%s, f1 %.4f Hz, estimated energy "
+             "error %.1f%% (%.1f s)\n",
+             static_cast<long long>(q.nodes), static_cast<long long>(q.dofs), q.h_mm, q.opening_mm, q.probe_mm,
+             q.probe_outside_mm > 0 ? format(" (read at the boundary, %.2f mm away)", q.probe_outside_mm).c_str() : "",
+             q.frequencies_hz.front(), 100 * q.estimated_error, q.seconds)
+      << std::flush;
   return q;
 }
 
@@ -149,8 +231,14 @@ ConvergenceResults run_convergence_study(const ConvergenceOptions& o, std::ostre
   if (!std::is_sorted(o.nodes.begin(), o.nodes.end()) || std::adjacent_find(o.nodes.begin(), o.nodes.end()) != o.nodes.end())
     throw InputError("--nodes: give the sizes in increasing order, each once");
   if (o.modes < 1) throw InputError("--modes: at least one eigenfrequency");
+  if (o.adapt_passes < 0 || o.adapt_passes > 6) throw InputError("--adapt: give 0 to 6 adaptation passes");
   const scenario::Scenario s = scenario::read_scenario(o.scenario);
   check_generated_brain(s);
+  if (o.c3d10) {
+    if (!s.tools.empty()) throw InputError(s.file.string() + ": --c3d10 takes set forces only, not tools");
+    for (const auto& load : s.loads)
+      if (load.gravity) throw InputError(s.file.string() + ": --c3d10 takes set forces only, not gravity");
+  }
   if (!s.material_regions.empty())
     throw InputError(s.file.string() +
                      ": [[material_region]]: the convergence study regenerates the ellipsoid brain, which has no "
@@ -165,7 +253,7 @@ ConvergenceResults run_convergence_study(const ConvergenceOptions& o, std::ostre
   std::filesystem::create_directories(o.out / "meshes");
   log << format("convergence study: %s, element %s, material '%s', probe (%.1f, %.1f, %.1f) mm, %zu meshes\n", o.scenario.c_str(),
                 r.element.c_str(), r.material.c_str(), r.probe.x() / mm, r.probe.y() / mm, r.probe.z() / mm, o.nodes.size());
-  for (const Index n : o.nodes) r.meshes.push_back(measure(s, material, element, r.probe, o, n, log));
+  for (const Index n : o.nodes) r.meshes.push_back(measure(s, material, element, r.material, r.probe, o, n, log));
 
   std::vector<double> h;
   for (const auto& m : r.meshes) h.push_back(m.h_mm);
@@ -175,12 +263,18 @@ ConvergenceResults run_convergence_study(const ConvergenceOptions& o, std::ostre
     return v;
   };
   r.quantities.push_back(converge("opening", "mm", h, values([](const MeshQuantities& m) { return m.opening_mm; })));
+  if (o.c3d10)
+    r.quantities.push_back(
+        converge("opening c3d10", "mm", h, values([](const MeshQuantities& m) { return m.c3d10_opening_mm; })));
   r.quantities.push_back(converge("probe", "mm", h, values([](const MeshQuantities& m) { return m.probe_mm; })));
   for (int i = 0; i < o.modes; ++i)
     r.quantities.push_back(converge("f" + std::to_string(i + 1), "Hz", h, values([i](const MeshQuantities& m) {
                                       return m.frequencies_hz[static_cast<std::size_t>(i)];
                                     })));
-  if (o.dynamic) converge_history(r, h, std::clamp(r.quantities[1].order_used, 0.3, 4.0));
+  if (o.dynamic) {
+    const auto probe = std::find_if(r.quantities.begin(), r.quantities.end(), [](const auto& q) { return q.name == "probe"; });
+    converge_history(r, h, std::clamp(probe->order_used, 0.3, 4.0));
+  }
 
   print_convergence_table(r, log);
   write_convergence_csv(r, o.out);

@@ -1,16 +1,20 @@
 // The accuracy study's tools: Richardson extrapolation on analytic sequences, the point locator on
-// fields it must read exactly, and the CalculiX deck against roifem's own small-strain answer.
+// fields it must read exactly, the CalculiX deck against roifem's own small-strain answer, and
+// meshes adapted by the error estimate against uniform ones.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <sstream>
 
 #include "common/errors.hpp"
 #include "experiments/calculix_static.hpp"
+#include "experiments/convergence_study.hpp"
 #include "experiments/model_error.hpp"
 #include "experiments/richardson.hpp"
 #include "fem/loads.hpp"
 #include "mesh/gmsh_reader.hpp"
 #include "mesh/point_locator.hpp"
+#include "test_support.hpp"
 
 namespace roifem::experiments {
 namespace {
@@ -77,6 +81,47 @@ TEST_F(CalculixDeck, SmallStrainAnswerEqualsRoifemsAndTheNonlinearOneTendsToItAs
   EXPECT_GT(study.rows[0].relative(), 1e-4);  // geometric nonlinearity is there
   EXPECT_NEAR(study.rows[0].opening_linear_mm / study.rows[0].opening_nonlinear_mm, 1.0, 0.01);
   EXPECT_FALSE(study.within_10_percent_up_to_mm);
+}
+
+// With linear tetrahedra (conforming: the discrete solution minimises the potential energy over a
+// subspace) the work of the opening forces is a lower bound that grows towards the exact one:
+// F (opening - opening_h) = ||u - u_h||_E^2. So at the same node count, a larger opening is a
+// smaller energy error, whatever the estimate says: the adapted meshes must open wider.
+TEST(ConvergenceStudy, AdaptedMeshesOpenWiderThanUniformOnesAtTheSameNodeCount) {
+  const test::TempDir dir;
+  ConvergenceOptions o{.scenario = std::string(ROIFEM_SCENARIO_DIR) + "/paper-setup1.toml",
+                       .nodes = {400, 800},
+                       .out = dir.path(),
+                       .element = fem::Element::tet4,
+                       .modes = 1,
+                       .dynamic = false,
+                       .plots = false};
+  // Quadratic tetrahedra on the same meshes hold every linear field among theirs, with the same
+  // supports and the same work functional: their opening can only be larger.
+  o.c3d10 = calculix_available();
+  std::ostringstream log;
+  const ConvergenceResults uniform = run_convergence_study(o, log);
+  if (o.c3d10)
+    for (const auto& m : uniform.meshes) {
+      std::printf("%lld nodes: tet4 %.4f mm, C3D10 (%lld dofs) %.4f mm\n", static_cast<long long>(m.nodes), m.opening_mm,
+                  static_cast<long long>(m.c3d10_dofs), m.c3d10_opening_mm);
+      EXPECT_GT(m.c3d10_opening_mm, m.opening_mm);
+    }
+  o.c3d10 = false;
+  o.adapt_passes = 2;
+  const ConvergenceResults adapted = run_convergence_study(o, log);
+  for (std::size_t k = 0; k < o.nodes.size(); ++k) {
+    const auto &u = uniform.meshes[k], &a = adapted.meshes[k];
+    std::printf("%lld nodes: uniform %lld nodes, opening %.4f mm, estimated error %.1f%%; adapted %lld nodes, %.4f mm, %.1f%%\n",
+                static_cast<long long>(o.nodes[k]), static_cast<long long>(u.nodes), u.opening_mm, 100 * u.estimated_error,
+                static_cast<long long>(a.nodes), a.opening_mm, 100 * a.estimated_error);
+    EXPECT_NEAR(static_cast<double>(a.nodes), static_cast<double>(o.nodes[k]), 0.05 * static_cast<double>(o.nodes[k]));
+    EXPECT_GT(a.opening_mm, 1.1 * u.opening_mm);
+    EXPECT_LT(a.estimated_error, u.estimated_error);
+  }
+  EXPECT_NE(log.str().find("adaptation 2: estimated energy error"), std::string::npos) << log.str();
+  o.adapt_passes = 7;
+  EXPECT_THROW(run_convergence_study(o, log), InputError);
 }
 
 }  // namespace
