@@ -32,13 +32,7 @@ int QuadraticTets::midpoint(int a, int b) const {
 QuadraticTets quadratic_tets(const mesh::TetMesh& mesh) {
   QuadraticTets q;
   q.corner_nodes = mesh.num_nodes();
-  std::vector<std::pair<int, int>> edges;
-  edges.reserve(6 * mesh.tets.size());
-  for (const auto& t : mesh.tets)
-    for (int a = 0; a < 4; ++a)
-      for (int b = a + 1; b < 4; ++b) edges.push_back(edge(t[a], t[b]));
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  const auto edges = mesh::unique_edges(mesh);
   q.nodes.resize(3, mesh.num_nodes() + static_cast<Index>(edges.size()));
   q.nodes.leftCols(mesh.num_nodes()) = mesh.nodes;
   q.edge_midpoints.reserve(edges.size());

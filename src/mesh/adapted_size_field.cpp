@@ -14,17 +14,6 @@ namespace roifem::mesh {
 
 namespace {
 
-std::vector<std::pair<int, int>> unique_edges(const TetMesh& mesh) {
-  std::vector<std::pair<int, int>> edges;
-  edges.reserve(6 * mesh.tets.size());
-  for (const Tet& t : mesh.tets)
-    for (int a = 0; a < 4; ++a)
-      for (int b = a + 1; b < 4; ++b) edges.emplace_back(std::min(t[a], t[b]), std::max(t[a], t[b]));
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  return edges;
-}
-
 /// Lowers sizes until |s_i - s_j| <= gradation |x_i - x_j| on every edge (sweeps to a fixed point).
 void limit_gradation(const TetMesh& mesh, double gradation, Vector& size) {
   const auto edges = unique_edges(mesh);
@@ -36,8 +25,13 @@ void limit_gradation(const TetMesh& mesh, double gradation, Vector& size) {
       double& a = size[edges[k].first];
       double& b = size[edges[k].second];
       const double step = gradation * length[k];
-      if (a > b + step) a = b + step, changed = true;
-      if (b > a + step) b = a + step, changed = true;
+      if (a > b + step) {
+        a = b + step;
+        changed = true;
+      } else if (b > a + step) {
+        b = a + step;
+        changed = true;
+      }
     }
     if (!changed) return;
   }

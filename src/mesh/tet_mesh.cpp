@@ -80,4 +80,15 @@ std::vector<int> boundary_nodes(const TetMesh& mesh) {
   return nodes;
 }
 
+std::vector<std::pair<int, int>> unique_edges(const TetMesh& mesh) {
+  std::vector<std::pair<int, int>> edges;
+  edges.reserve(6 * mesh.tets.size());
+  for (const Tet& t : mesh.tets)
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b) edges.emplace_back(std::min(t[a], t[b]), std::max(t[a], t[b]));
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  return edges;
+}
+
 }  // namespace roifem::mesh

@@ -7,6 +7,7 @@
 #include <array>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/types.hpp"
@@ -46,5 +47,7 @@ double tet_quality(const TetMesh& mesh, Index e);
 std::vector<Triangle> boundary_faces(const TetMesh& mesh);
 /// Nodes on the boundary faces, sorted.
 std::vector<int> boundary_nodes(const TetMesh& mesh);
+/// Every edge once, as (a, b) with a < b, sorted.
+std::vector<std::pair<int, int>> unique_edges(const TetMesh& mesh);
 
 }  // namespace roifem::mesh
