@@ -25,22 +25,18 @@ double area(const mesh::TetMesh& mesh, const mesh::Triangle& t) {
 
 int QuadraticTets::midpoint(int a, int b) const {
   const auto key = edge(a, b);
-  const auto it = std::lower_bound(edge_midpoints.begin(), edge_midpoints.end(), std::make_pair(key, -1));
-  return it != edge_midpoints.end() && it->first == key ? it->second : -1;
+  const auto it = std::lower_bound(edges.begin(), edges.end(), key);
+  return it != edges.end() && *it == key ? static_cast<int>(corner_nodes + (it - edges.begin())) : -1;
 }
 
 QuadraticTets quadratic_tets(const mesh::TetMesh& mesh) {
   QuadraticTets q;
   q.corner_nodes = mesh.num_nodes();
-  const auto edges = mesh::unique_edges(mesh);
-  q.nodes.resize(3, mesh.num_nodes() + static_cast<Index>(edges.size()));
+  q.edges = mesh::unique_edges(mesh);
+  q.nodes.resize(3, mesh.num_nodes() + static_cast<Index>(q.edges.size()));
   q.nodes.leftCols(mesh.num_nodes()) = mesh.nodes;
-  q.edge_midpoints.reserve(edges.size());
-  for (std::size_t k = 0; k < edges.size(); ++k) {
-    const int id = static_cast<int>(mesh.num_nodes() + static_cast<Index>(k));
-    q.nodes.col(id) = 0.5 * (mesh.node(edges[k].first) + mesh.node(edges[k].second));
-    q.edge_midpoints.emplace_back(edges[k], id);
-  }
+  for (std::size_t k = 0; k < q.edges.size(); ++k)
+    q.nodes.col(mesh.num_nodes() + static_cast<Index>(k)) = 0.5 * (mesh.node(q.edges[k].first) + mesh.node(q.edges[k].second));
   q.tets.reserve(mesh.tets.size());
   for (const auto& t : mesh.tets)
     q.tets.push_back({t[0], t[1], t[2], t[3], q.midpoint(t[0], t[1]), q.midpoint(t[1], t[2]), q.midpoint(t[2], t[0]),
@@ -77,8 +73,9 @@ std::vector<int> quadratic_nodes_on(const QuadraticTets& q, const std::vector<in
   sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
   auto holds = [&](int n) { return std::binary_search(sorted.begin(), sorted.end(), n); };
   std::vector<int> nodes = sorted;
-  for (const auto& [e, id] : q.edge_midpoints)
-    if (holds(e.first) && holds(e.second)) nodes.push_back(id);
+  for (std::size_t k = 0; k < q.edges.size(); ++k)
+    if (holds(q.edges[k].first) && holds(q.edges[k].second))
+      nodes.push_back(static_cast<int>(q.corner_nodes) + static_cast<int>(k));
   std::sort(nodes.begin(), nodes.end());
   return nodes;
 }

@@ -17,13 +17,13 @@
 namespace roifem::experiments {
 
 struct QuadraticTets {
-  Eigen::Matrix3Xd nodes;                 ///< m: the linear mesh's nodes, then the midpoints
-  std::vector<std::array<int, 10>> tets;  ///< 0-based, CalculiX's order
-  Index corner_nodes = 0;                 ///< N: the first N nodes are the linear mesh's
+  Eigen::Matrix3Xd nodes;                  ///< m: the linear mesh's nodes, then the midpoints
+  std::vector<std::array<int, 10>> tets;   ///< 0-based, CalculiX's order
+  Index corner_nodes = 0;                  ///< N: the first N nodes are the linear mesh's
+  std::vector<std::pair<int, int>> edges;  ///< the linear mesh's (a < b), sorted; edge k's midpoint is node N + k
+
   /// The midpoint node of edge (a, b) of the linear mesh; -1 when there is no such edge.
   int midpoint(int a, int b) const;
-
-  std::vector<std::pair<std::pair<int, int>, int>> edge_midpoints;  ///< sorted by edge (a < b)
 };
 
 QuadraticTets quadratic_tets(const mesh::TetMesh& mesh);

@@ -32,9 +32,9 @@ TEST_F(QuadraticBrain, EveryEdgeHasOneMidpointInCalculixOrder) {
   const auto& m = *mesh_;
   const auto& q = *q_;
   EXPECT_EQ(q.corner_nodes, m.num_nodes());
-  EXPECT_EQ(q.nodes.cols(), m.num_nodes() + static_cast<Index>(q.edge_midpoints.size()));
+  EXPECT_EQ(q.nodes.cols(), m.num_nodes() + static_cast<Index>(q.edges.size()));
   // Euler for a tetrahedral ball: V - E + F - T = 1 (F: all triangles, interior ones counted once).
-  const Index edges = static_cast<Index>(q.edge_midpoints.size()), boundary = static_cast<Index>(mesh::boundary_faces(m).size());
+  const Index edges = static_cast<Index>(q.edges.size()), boundary = static_cast<Index>(mesh::boundary_faces(m).size());
   const Index faces = (4 * m.num_tets() + boundary) / 2;
   EXPECT_EQ(m.num_nodes() - edges + faces - m.num_tets(), 1);
   const int pairs[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
