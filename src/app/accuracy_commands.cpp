@@ -27,7 +27,7 @@ void add_convergence_command(CLI::App& app, Action& action) {
   cmd->add_option("--out", o->out, "Output directory (meshes/brain-N.msh there are reused)")->required();
   cmd->add_option("--nodes", o->nodes, "Node counts, increasing (at least two; three give an observed order)")
       ->capture_default_str();
-  cmd->add_option("--element", *element, "Override the scenario's element: tet4 or nodal-pressure");
+  cmd->add_option("--element", *element, "Override the scenario's element: tet4, nodal-pressure or tet10");
   cmd->add_option("--material", *material, "Override the scenario's material with a preset: paper or brain");
   cmd->add_option("--probe-mm", *probe_mm, "Probe point X Y Z in mm (default: the ROI's target)")->expected(3);
   cmd->add_option("--slit-refinement", o->slit_refinement,

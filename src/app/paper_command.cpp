@@ -61,7 +61,8 @@ void add_paper_command(CLI::App& app, Action& action) {
                   "Nodes of the finer brain the space error is measured against (0: no space error)")
       ->capture_default_str();
   auto budget_element = std::make_shared<std::string>("nodal-pressure");
-  cmd->add_option("--budget-element", *budget_element, "The reference's element: nodal-pressure or tet4")->capture_default_str();
+  cmd->add_option("--budget-element", *budget_element, "The reference's element: nodal-pressure, tet10 or tet4")
+      ->capture_default_str();
   cmd->add_flag("!--no-model-error", o->budget.model_error, "Leave CalculiX's nonlinear model error out of the budget");
   cmd->callback([&action, o, reductions, drive, budget_element, target] {
     action = [o, reductions, drive, budget_element, target] {

@@ -20,25 +20,19 @@ namespace {
 /// orientation is C3D4's. Numbers keep 13 digits: ccx reads a field of at most 20 characters.
 void write_deck(const CalculixProblem& p, const std::vector<double>& fractions, bool nlgeom, const fs::path& file) {
   std::ofstream out(file);
-  const Eigen::Matrix3Xd& nodes = p.quadratic ? p.quadratic->nodes : p.mesh->nodes;
+  const mesh::TetMesh& mesh = *p.mesh;
   out << "** roifem: the static problem for CalculiX (mm, N, MPa)\n*NODE, NSET=NALL\n";
-  for (Index n = 0; n < nodes.cols(); ++n) {
-    const Vec3 x = nodes.col(n) / mm;
+  for (Index n = 0; n < mesh.num_nodes(); ++n) {
+    const Vec3 x = mesh.node(static_cast<int>(n)) / mm;
     out << format("%lld, %.13g, %.13g, %.13g\n", static_cast<long long>(n) + 1, x.x(), x.y(), x.z());
   }
-  if (p.quadratic) {
-    out << "*ELEMENT, TYPE=C3D10, ELSET=EALL\n";
-    for (std::size_t e = 0; e < p.quadratic->tets.size(); ++e) {
-      out << e + 1;
-      for (const int n : p.quadratic->tets[e]) out << ", " << n + 1;
-      out << "\n";
-    }
-  } else {
-    out << "*ELEMENT, TYPE=C3D4, ELSET=EALL\n";
-    for (Index e = 0; e < p.mesh->num_tets(); ++e) {
-      const auto& t = p.mesh->tets[static_cast<std::size_t>(e)];
-      out << format("%lld, %d, %d, %d, %d\n", static_cast<long long>(e) + 1, t[0] + 1, t[1] + 1, t[2] + 1, t[3] + 1);
-    }
+  out << "*ELEMENT, TYPE=" << (mesh.is_quadratic() ? "C3D10" : "C3D4") << ", ELSET=EALL\n";
+  for (std::size_t e = 0; e < mesh.tets.size(); ++e) {
+    out << e + 1;
+    for (const int n : mesh.tets[e]) out << ", " << n + 1;
+    if (mesh.is_quadratic())
+      for (const int n : mesh.midside.of_tet[e]) out << ", " << n + 1;
+    out << "\n";
   }
   if (!p.fixed_nodes.empty()) {
     out << "*NSET, NSET=FIXED\n";
@@ -58,7 +52,7 @@ void write_deck(const CalculixProblem& p, const std::vector<double>& fractions, 
   out << (nlgeom ? "*STEP, NLGEOM, INC=10000\n" : "*STEP\n");
   out << format("*STATIC\n%.6g, 1.0, 1e-6, %.6g\n", fractions.front() / top / 2, fractions.front() / top);
   out << "*CLOAD\n";
-  for (Index n = 0; n < nodes.cols(); ++n)
+  for (Index n = 0; n < mesh.num_nodes(); ++n)
     for (int c = 0; c < 3; ++c)
       if (const double f = p.forces[3 * n + c] * top; f != 0)
         out << format("%lld, %d, %.13g\n", static_cast<long long>(n) + 1, c + 1, f);
@@ -102,7 +96,7 @@ std::vector<CalculixSolution> solve_with_calculix(const CalculixProblem& p, cons
   for (std::size_t i = 0; i < fractions.size(); ++i)
     if (!(fractions[i] > 0) || (i > 0 && !(fractions[i] > fractions[i - 1])))
       throw InputError("CalculiX: load fractions must be positive and ascending");
-  const Index nodes = p.quadratic ? p.quadratic->nodes.cols() : p.mesh->num_nodes();
+  const Index nodes = p.mesh->num_nodes();
   if (p.forces.size() != 3 * nodes) throw InputError("CalculiX: the forces do not match the mesh's nodes");
   if (!calculix_available()) throw SolverError("CalculiX (ccx) is not on the PATH: install calculix-ccx (scripts/setup.sh)");
   fs::create_directories(work_dir);

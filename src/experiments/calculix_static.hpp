@@ -10,21 +10,19 @@
 #include <vector>
 
 #include "common/types.hpp"
-#include "experiments/quadratic_tets.hpp"
 #include "fem/material.hpp"
 #include "mesh/tet_mesh.hpp"
 
 namespace roifem::experiments {
 
 struct CalculixProblem {
+  /// C3D4 elements, or C3D10 on a quadratic mesh (mesh/quadratic_mesh.hpp: straight-sided, in
+  /// CalculiX's node order).
   const mesh::TetMesh* mesh = nullptr;
   fem::Material material;
   std::vector<int> fixed_nodes;                      ///< held in all three components
   std::vector<std::pair<int, int>> held_components;  ///< (node, component 0..2) held, as on a symmetry plane
   Vector forces;                                     ///< N, 3N: the full load (fraction 1)
-  /// C3D10 on these quadratic tetrahedra of `mesh` instead of C3D4 (experiments/quadratic_tets.hpp):
-  /// fixed_nodes, forces and the solutions then number its nodes.
-  const QuadraticTets* quadratic = nullptr;
 };
 
 struct CalculixSolution {

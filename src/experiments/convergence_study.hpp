@@ -36,10 +36,11 @@ struct ConvergenceOptions {
   double slit_refinement = 1;           ///< mesh/brain_mesh.hpp: element size at the slit relative to the rest
   /// Meshes adapted to the scenario's static solution this many times at each node count (0: as
   /// generated): the recovery error estimate (fem/recovery_estimate.hpp) sets the next mesh's
-  /// sizes (mesh/adapted_size_field.hpp).
+  /// sizes (mesh/adapted_size_field.hpp). The estimate is for linear elements: tet10 takes the
+  /// meshes adapted for nodal-pressure.
   int adapt_passes = 0;
-  /// Also solve each mesh's static problem with quadratic tetrahedra (CalculiX C3D10, straight-sided on
-  /// the same nodes and edges: experiments/quadratic_tets.hpp), reported as "opening c3d10".
+  /// Also solve each mesh's static problem with quadratic tetrahedra by CalculiX (C3D10, straight-sided
+  /// on the same nodes and edges: mesh/quadratic_mesh.hpp), reported as "opening c3d10".
   bool c3d10 = false;
   int modes = 6;
   bool dynamic = true;  ///< run the full dynamic model on each mesh
@@ -47,10 +48,10 @@ struct ConvergenceOptions {
 };
 
 struct MeshQuantities {
-  Index nodes = 0, tets = 0, dofs = 0;
-  double h_mm = 0;  ///< (volume / tets)^(1/3) scaled to a regular tetrahedron's edge
+  Index nodes = 0, tets = 0, dofs = 0;  ///< nodes: the mesh's vertices (tet10 adds the edges' midpoints)
+  double h_mm = 0;                      ///< (volume / tets)^(1/3) scaled to a regular tetrahedron's edge
   double opening_mm = 0, probe_mm = 0;
-  double estimated_error = 0;   ///< the static solution's relative energy error, estimated by recovery
+  double estimated_error = 0;   ///< the static solution's relative energy error, estimated by recovery (0 for tet10)
   double c3d10_opening_mm = 0;  ///< with ConvergenceOptions::c3d10
   Index c3d10_dofs = 0;
   double probe_outside_mm = 0;  ///< how far the probe lies outside this mesh

@@ -67,11 +67,12 @@ std::unique_ptr<FinerReference> build_reference(const BudgetInput& in, const Err
                                                 const std::filesystem::path& out, std::ostream& log) {
   const Stopwatch clock;
   auto r = std::make_unique<FinerReference>();
-  r->mesh = std::move(mesh::generate_brain_mesh(o.reference_nodes, out / "reference" / "brain.msh").mesh);
-  mesh::check_mesh(r->mesh);
+  mesh::TetMesh linear = std::move(mesh::generate_brain_mesh(o.reference_nodes, out / "reference" / "brain.msh").mesh);
+  mesh::check_mesh(linear);
+  r->mesh = fem::element_mesh(std::move(linear), o.reference_element);
   r->full = model::build_fem_model(r->mesh, in.full->material, in.fixed_sets, opening_loads(in.force_N), {}, o.reference_element);
   log << format("  space reference: the brain at %lld nodes (%lld dofs), element %s, built in %.1f s\n",
-                static_cast<long long>(r->mesh.num_nodes()), static_cast<long long>(r->full.system.size()),
+                static_cast<long long>(r->mesh.num_vertices()), static_cast<long long>(r->full.system.size()),
                 std::string(fem::element_name(o.reference_element)).c_str(), clock.seconds());
   return r;
 }
@@ -153,7 +154,7 @@ ErrorBudget measure_error_budget(const BudgetInput& in, const ErrorBudgetOptions
   std::vector<Index> slot(static_cast<std::size_t>(mesh.num_nodes()), -1);
   if (o.reference_nodes > 0) {
     reference = build_reference(in, o, out, log);
-    budget.reference_nodes = reference->mesh.num_nodes();
+    budget.reference_nodes = reference->mesh.num_vertices();
     budget.reference_element = fem::element_name(o.reference_element);
     const mesh::PointLocator locator(reference->mesh);
     for (const auto& [name, nodes] : in.setups)

@@ -4,12 +4,13 @@
 #include <sstream>
 
 #include "experiments/calculix_static.hpp"
-#include "experiments/quadratic_tets.hpp"
 #include "fem/assembly.hpp"
 #include "fem/dof_map.hpp"
+#include "fem/loads.hpp"
 #include "fem/material.hpp"
 #include "fem/nodal_pressure.hpp"
 #include "fem/static_solve.hpp"
+#include "mesh/quadratic_mesh.hpp"
 #include "solvers/cholesky.hpp"
 
 namespace roifem::experiments {
@@ -23,15 +24,15 @@ Vec3 LameSphere::displacement(const Vec3& x) const {
 
 namespace {
 
-/// p A / 3 on each node of each facet of the inner face, along the facet's normal away from the
-/// cavity (into the material).
+/// p A / 3 on each node that carries a facet of the inner face (fem::facet_load_nodes), along the
+/// facet's normal away from the cavity (into the material).
 Vector inner_pressure(const mesh::TetMesh& mesh, double pressure) {
   Vector f = Vector::Zero(3 * mesh.num_nodes());
   for (const auto& facet : mesh.set("inner").triangles) {
     const Vec3 p0 = mesh.node(facet[0]), p1 = mesh.node(facet[1]), p2 = mesh.node(facet[2]);
     Vec3 area_normal = 0.5 * (p1 - p0).cross(p2 - p0);  // |.| = A
     if (area_normal.dot(p0 + p1 + p2) < 0) area_normal = -area_normal;
-    for (const int n : facet) f.segment<3>(3 * n) += pressure / 3 * area_normal;
+    for (const int n : fem::facet_load_nodes(mesh, facet)) f.segment<3>(3 * n) += pressure / 3 * area_normal;
   }
   return f;
 }
@@ -54,21 +55,26 @@ Vector solve_lame_field(const mesh::TetMesh& mesh, const LameSphere& s, std::opt
 
 namespace {
 
-/// The error of u (3 per node; the first N of them on the mesh's nodes) against Lame's solution.
+/// The error of u (3 per node) against Lame's solution, at the vertices (a quadratic mesh's too:
+/// the same points for every element).
 LameError lame_error(const mesh::TetMesh& mesh, const LameSphere& s, const Vector& u) {
   LameError e{.nodes = mesh.num_nodes(), .tets = mesh.num_tets(), .l2 = 0, .inner_mean = 0};
   double error2 = 0, exact2 = 0;
-  for (Index n = 0; n < mesh.num_nodes(); ++n) {
+  for (Index n = 0; n < mesh.num_vertices(); ++n) {
     const Vec3 exact = s.displacement(mesh.node(static_cast<int>(n)));
     error2 += (u.segment<3>(3 * n) - exact).squaredNorm();
     exact2 += exact.squaredNorm();
   }
   e.l2 = std::sqrt(error2 / exact2);
   double radial = 0;
-  const auto& inner = mesh.set("inner").nodes;
-  for (const int n : inner) radial += u.segment<3>(3 * n).dot(mesh.node(n).normalized());
+  int count = 0;
+  for (const int n : mesh.set("inner").nodes)
+    if (n < mesh.num_vertices()) {
+      radial += u.segment<3>(3 * n).dot(mesh.node(n).normalized());
+      ++count;
+    }
   const double exact_inner = s.displacement(Vec3(s.inner_radius, 0, 0)).x();
-  e.inner_mean = (radial / static_cast<double>(inner.size()) - exact_inner) / exact_inner;
+  e.inner_mean = (radial / count - exact_inner) / exact_inner;
   return e;
 }
 
@@ -79,27 +85,18 @@ LameError solve_lame_sphere(const mesh::TetMesh& mesh, const LameSphere& s, std:
 }
 
 LameError solve_lame_sphere_c3d10(const mesh::TetMesh& mesh, const LameSphere& s, const std::filesystem::path& work_dir) {
-  const QuadraticTets q = quadratic_tets(mesh);
-  CalculixProblem problem{.mesh = &mesh,
+  const mesh::TetMesh quadratic = mesh::with_midside_nodes(mesh);
+  CalculixProblem problem{.mesh = &quadratic,
                           .material = fem::Material::from_young_poisson(s.young, s.poisson, 1000, 0),
                           .fixed_nodes = {},
                           .held_components = {},
-                          .forces = Vector::Zero(3 * q.nodes.cols()),
-                          .quadratic = &q};
+                          .forces = inner_pressure(quadratic, s.pressure)};
   const char* planes[] = {"x0", "y0", "z0"};
   for (int c = 0; c < 3; ++c)
-    for (const int n : quadratic_nodes_on(q, mesh.set(planes[c]).nodes)) problem.held_components.emplace_back(n, c);
-  // A flat 6-node facet under uniform pressure: p A / 3 on each midside node, the corners none.
-  for (const auto& facet : mesh.set("inner").triangles) {
-    const Vec3 p0 = mesh.node(facet[0]), p1 = mesh.node(facet[1]), p2 = mesh.node(facet[2]);
-    Vec3 area_normal = 0.5 * (p1 - p0).cross(p2 - p0);
-    if (area_normal.dot(p0 + p1 + p2) < 0) area_normal = -area_normal;
-    for (int k = 0; k < 3; ++k)
-      problem.forces.segment<3>(3 * q.midpoint(facet[k], facet[(k + 1) % 3])) += s.pressure / 3 * area_normal;
-  }
+    for (const int n : quadratic.set(planes[c]).nodes) problem.held_components.emplace_back(n, c);
   std::ostringstream log;
   const auto solutions = solve_with_calculix(problem, {1.0}, false, work_dir, log);
-  return lame_error(mesh, s, solutions.front().u);
+  return lame_error(quadratic, s, solutions.front().u);
 }
 
 }  // namespace roifem::experiments

@@ -30,16 +30,17 @@ struct LameError {
   double inner_mean = 0;  ///< (mean u_r on the inner face - exact u_r(a)) / u_r(a)
 };
 
-/// Solves the octant `mesh` (sets shell, inner, x0, y0, z0) and measures the error: with linear
-/// tetrahedra, or with nodal-pressure ones (fem/nodal_pressure.hpp) of stabilization s when
-/// `nodal_pressure` is set. Throws InputError for a mesh without those sets.
+/// Solves the octant `mesh` (sets shell, inner, x0, y0, z0) and measures the error at its
+/// vertices: with linear tetrahedra, with nodal-pressure ones (fem/nodal_pressure.hpp) of
+/// stabilization s when `nodal_pressure` is set, or with the 10-node tetrahedron on a quadratic
+/// mesh (mesh/quadratic_mesh.hpp). Throws InputError for a mesh without those sets.
 LameError solve_lame_sphere(const mesh::TetMesh& mesh, const LameSphere& sphere,
                             std::optional<double> nodal_pressure = std::nullopt);
 /// The computed displacement of that problem (3N, every node).
 Vector solve_lame_field(const mesh::TetMesh& mesh, const LameSphere& sphere, std::optional<double> nodal_pressure = std::nullopt);
-/// The same problem solved by CalculiX with quadratic tetrahedra on this mesh (C3D10, straight-sided,
-/// experiments/quadratic_tets.hpp) in `work_dir`; the error measured at the mesh's own nodes, as for
-/// the others. Throws SolverError without ccx.
+/// The same problem solved by CalculiX with quadratic tetrahedra on this linear mesh (C3D10 on
+/// mesh::with_midside_nodes) in `work_dir`; the error measured at the vertices, as for the others.
+/// Throws SolverError without ccx.
 LameError solve_lame_sphere_c3d10(const mesh::TetMesh& mesh, const LameSphere& sphere, const std::filesystem::path& work_dir);
 
 }  // namespace roifem::experiments

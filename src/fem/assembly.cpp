@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "common/huge_pages.hpp"
+#include "fem/tet10.hpp"
 #include "fem/tet4.hpp"
 
 namespace roifem::fem {
@@ -11,20 +12,26 @@ namespace {
 std::size_t u(Index i) { return static_cast<std::size_t>(i); }
 }  // namespace
 
-StiffnessAssembler::StiffnessAssembler(const mesh::TetMesh& mesh, const DofMap& dofs) : mesh_(mesh), dofs_(dofs) {
+StiffnessAssembler::StiffnessAssembler(const mesh::TetMesh& mesh, const DofMap& dofs)
+    : mesh_(mesh), dofs_(dofs), nodes_per_tet_(mesh.is_quadratic() ? 10 : 4) {
   const Index n = mesh.num_nodes();
+  element_nodes_.reserve(mesh.tets.size() * u(nodes_per_tet_));
+  for (std::size_t e = 0; e < mesh.tets.size(); ++e) {
+    element_nodes_.insert(element_nodes_.end(), mesh.tets[e].begin(), mesh.tets[e].end());
+    if (mesh.is_quadratic())
+      element_nodes_.insert(element_nodes_.end(), mesh.midside.of_tet[e].begin(), mesh.midside.of_tet[e].end());
+  }
   // Node -> tetrahedra incidence.
   std::vector<int>& tet_start = tet_start_;
   std::vector<int>& tet_list = tet_list_;
   tet_start.assign(u(n) + 1, 0);
-  tet_list.resize(mesh.tets.size() * 4);
-  for (const auto& t : mesh.tets)
-    for (int a : t) ++tet_start[u(a) + 1];
+  tet_list.resize(element_nodes_.size());
+  for (int a : element_nodes_) ++tet_start[u(a) + 1];
   for (Index i = 0; i < n; ++i) tet_start[u(i) + 1] += tet_start[u(i)];
   {
     std::vector<int> fill(tet_start.begin(), tet_start.end() - 1);
     for (std::size_t e = 0; e < mesh.tets.size(); ++e)
-      for (int a : mesh.tets[e]) tet_list[u(fill[u(a)]++)] = static_cast<int>(e);
+      for (int a : nodes_of(static_cast<Index>(e))) tet_list[u(fill[u(a)]++)] = static_cast<int>(e);
   }
   // Node graph: the nodes sharing a tetrahedron with node b, sorted, b included.
   std::vector<int> marker(u(n), -1);
@@ -33,7 +40,7 @@ StiffnessAssembler::StiffnessAssembler(const mesh::TetMesh& mesh, const DofMap& 
   for (Index b = 0; b < n; ++b) {
     const std::size_t begin = adjacency_.size();
     for (int k = tet_start[u(b)]; k < tet_start[u(b) + 1]; ++k)
-      for (int a : mesh.tets[u(tet_list[u(k)])])
+      for (int a : nodes_of(tet_list[u(k)]))
         if (marker[u(a)] != b) {
           marker[u(a)] = static_cast<int>(b);
           adjacency_.push_back(a);
@@ -100,37 +107,48 @@ SparseMatrix StiffnessAssembler::stiffness(const MaterialMap& materials) const {
       }
     const int* adj_begin = adjacency_.data() + adjacency_start_[u(b)];
     const int* adj_end = adjacency_.data() + adjacency_start_[u(b) + 1];
+    // Adds block K_ab (rows: node a's components, columns: b's) into b's columns.
+    auto add_block = [&](int node_a, const Mat3& K_ab) {
+      const int offset = adjacency_offset_[u(std::lower_bound(adj_begin, adj_end, node_a) - adjacency_.data())];
+      if (all_free[u(node_a)] && all_free[u(b)]) {
+        for (int cb = 0; cb < 3; ++cb) {
+          double* target = values + column_start_[u(column[cb])] + offset;
+          target[0] += K_ab(0, cb);
+          target[1] += K_ab(1, cb);
+          target[2] += K_ab(2, cb);
+        }
+        return;
+      }
+      for (int cb = 0; cb < 3; ++cb) {
+        if (column[cb] < 0) continue;
+        double* target = values + column_start_[u(column[cb])] + offset;
+        for (int ca = 0, local = 0; ca < 3; ++ca)
+          if (dofs_.free_dof(node_a, ca) >= 0) target[local++] += K_ab(ca, cb);
+      }
+    };
     for (int k = tet_start_[u(b)]; k < tet_start_[u(b) + 1]; ++k) {
-      const auto& t = mesh_.tets[u(tet_list_[u(k)])];
-      const Material& material = materials.of(tet_list_[u(k)]);
-      const double lambda = material.lambda, mu = material.mu;
+      const int e = tet_list_[u(k)];
+      const auto t = nodes_of(e);
+      const auto& corners = mesh_.tets[u(e)];
+      const Material& material = materials.of(e);
       const int local_b = static_cast<int>(std::find(t.begin(), t.end(), static_cast<int>(b)) - t.begin());
+      if (nodes_per_tet_ == tet10_nodes) {
+        const Tet10Geometry g =
+            tet10_geometry(mesh_.node(corners[0]), mesh_.node(corners[1]), mesh_.node(corners[2]), mesh_.node(corners[3]));
+        for (int a = 0; a < tet10_nodes; ++a) add_block(t[u(a)], tet10_stiffness_block(g, material, a, local_b));
+        continue;
+      }
+      const double lambda = material.lambda, mu = material.mu;
       const Tet4Geometry g = tet4_geometry(mesh_.node(t[0]), mesh_.node(t[1]), mesh_.node(t[2]), mesh_.node(t[3]));
       const double V = std::abs(g.volume);
       const double gb[3] = {g.grad(local_b, 0), g.grad(local_b, 1), g.grad(local_b, 2)};
       for (int a = 0; a < 4; ++a) {
-        const int node_a = t[u(a)];
         const double ga[3] = {g.grad(a, 0), g.grad(a, 1), g.grad(a, 2)};
         const double shear = mu * (ga[0] * gb[0] + ga[1] * gb[1] + ga[2] * gb[2]);
-        double K_ab[3][3];  // K_ab(i, j) = V (lambda ga_i gb_j + mu ga_j gb_i + mu (ga . gb) delta_ij)
+        Mat3 K_ab;  // K_ab(i, j) = V (lambda ga_i gb_j + mu ga_j gb_i + mu (ga . gb) delta_ij)
         for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) K_ab[i][j] = V * (lambda * ga[i] * gb[j] + mu * ga[j] * gb[i] + (i == j ? shear : 0.0));
-        const int offset = adjacency_offset_[u(std::lower_bound(adj_begin, adj_end, node_a) - adjacency_.data())];
-        if (all_free[u(node_a)] && all_free[u(b)]) {
-          for (int cb = 0; cb < 3; ++cb) {
-            double* target = values + column_start_[u(column[cb])] + offset;
-            target[0] += K_ab[0][cb];
-            target[1] += K_ab[1][cb];
-            target[2] += K_ab[2][cb];
-          }
-          continue;
-        }
-        for (int cb = 0; cb < 3; ++cb) {
-          if (column[cb] < 0) continue;
-          double* target = values + column_start_[u(column[cb])] + offset;
-          for (int ca = 0, local = 0; ca < 3; ++ca)
-            if (dofs_.free_dof(node_a, ca) >= 0) target[local++] += K_ab[ca][cb];
-        }
+          for (int j = 0; j < 3; ++j) K_ab(i, j) = V * (lambda * ga[i] * gb[j] + mu * ga[j] * gb[i] + (i == j ? shear : 0.0));
+        add_block(t[u(a)], K_ab);
       }
     }
   }
@@ -141,15 +159,22 @@ Vector StiffnessAssembler::prescribed_load(const MaterialMap& materials) const {
   Vector load = Vector::Zero(dofs_.num_free());
   const Vector& up = dofs_.prescribed();
   for (Index e = 0; e < mesh_.num_tets(); ++e) {
-    const auto& t = mesh_.tets[u(e)];
-    Eigen::Matrix<double, 12, 1> ue;
-    for (int a = 0; a < 4; ++a) ue.segment<3>(3 * a) = up.segment<3>(3 * t[u(a)]);
+    const auto t = nodes_of(e);
+    const auto& c = mesh_.tets[u(e)];
+    Vector ue(3 * nodes_per_tet_);
+    for (int a = 0; a < nodes_per_tet_; ++a) ue.segment<3>(3 * a) = up.segment<3>(3 * t[u(a)]);
     if (ue.isZero(0.0)) continue;
-    const Tet4Geometry g = tet4_geometry(mesh_.node(t[0]), mesh_.node(t[1]), mesh_.node(t[2]), mesh_.node(t[3]));
-    const Eigen::Matrix<double, 12, 1> fe = tet4_stiffness(g, materials.of(e)) * ue;
-    for (int a = 0; a < 4; ++a)
-      for (int c = 0; c < 3; ++c)
-        if (const int i = dofs_.free_dof(t[u(a)], c); i >= 0) load[i] -= fe[3 * a + c];
+    const Vector fe =
+        nodes_per_tet_ == tet10_nodes
+            ? Vector(tet10_stiffness(tet10_geometry(mesh_.node(c[0]), mesh_.node(c[1]), mesh_.node(c[2]), mesh_.node(c[3])),
+                                     materials.of(e)) *
+                     ue)
+            : Vector(tet4_stiffness(tet4_geometry(mesh_.node(c[0]), mesh_.node(c[1]), mesh_.node(c[2]), mesh_.node(c[3])),
+                                    materials.of(e)) *
+                     ue);
+    for (int a = 0; a < nodes_per_tet_; ++a)
+      for (int k = 0; k < 3; ++k)
+        if (const int i = dofs_.free_dof(t[u(a)], k); i >= 0) load[i] -= fe[3 * a + k];
   }
   return load;
 }
@@ -161,7 +186,13 @@ Vector lumped_node_mass(const mesh::TetMesh& mesh, double rho) {
 Vector lumped_node_mass(const mesh::TetMesh& mesh, const MaterialMap& materials) {
   Vector m = Vector::Zero(mesh.num_nodes());
   for (Index e = 0; e < mesh.num_tets(); ++e) {
-    const double quarter = materials.of(e).rho * std::abs(mesh::signed_volume(mesh, e)) / 4.0;
+    const double mass = materials.of(e).rho * std::abs(mesh::signed_volume(mesh, e));
+    if (mesh.is_quadratic()) {
+      for (int a : mesh.tets[u(e)]) m[a] += tet10_corner_mass * mass;
+      for (int a : mesh.midside.of_tet[u(e)]) m[a] += tet10_midside_mass * mass;
+      continue;
+    }
+    const double quarter = mass / 4.0;
     for (int a : mesh.tets[u(e)]) m[a] += quarter;
   }
   return m;

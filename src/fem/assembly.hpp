@@ -7,8 +7,11 @@
 ///      write and cost 14x the element matrices). Columns are independent, so OpenMP threads share
 ///      them without races, and each column sums in a fixed order: results do not depend on the
 ///      thread count.
-///  M:  lumped mass, M_ii = sum over the node's tetrahedra of rho V / 4 (a diagonal, as a vector).
+///  M:  lumped mass, M_ii = sum over the node's tetrahedra of rho V / 4 (a diagonal, as a vector);
+///      on a quadratic mesh HRZ's (fem/tet10.hpp): rho V/36 per corner, 4 rho V/27 per midpoint.
+/// On a quadratic mesh (mesh/quadratic_mesh.hpp) K is the 10-node tetrahedron's.
 ///  f_D = -K_fp u_p: the load that prescribed (non-zero) Dirichlet values put on the free dofs.
+#include <span>
 #include <vector>
 
 #include "common/types.hpp"
@@ -36,13 +39,18 @@ class StiffnessAssembler {
  private:
   const mesh::TetMesh& mesh_;
   const DofMap& dofs_;
+  int nodes_per_tet_ = 4;           ///< 4, or 10 on a quadratic mesh
+  std::vector<int> element_nodes_;  ///< per tetrahedron its nodes_per_tet_ nodes
+  std::span<const int> nodes_of(Index e) const {
+    return {element_nodes_.data() + e * nodes_per_tet_, static_cast<std::size_t>(nodes_per_tet_)};
+  }
   std::vector<int> adjacency_start_, adjacency_;  ///< node graph (CSR, sorted, self included)
   std::vector<int> adjacency_offset_;             ///< free rows before adjacency entry k in its column
   std::vector<int> column_start_, row_index_;     ///< the CSC pattern of K_ff
   std::vector<int> tet_start_, tet_list_;         ///< node -> tetrahedra incidence (CSR)
 };
 
-/// Lumped mass per node, rho V / 4 from each tetrahedron (kg; rho: each tetrahedron's own).
+/// Lumped mass per node, rho V / 4 from each tetrahedron (HRZ's on a quadratic mesh) (kg; rho: each tetrahedron's own).
 Vector lumped_node_mass(const mesh::TetMesh& mesh, const MaterialMap& materials);
 Vector lumped_node_mass(const mesh::TetMesh& mesh, double rho);
 /// Lumped mass on the free dofs (the diagonal of M_ff).

@@ -8,13 +8,14 @@
 #include "common/errors.hpp"
 #include "fem/assembly.hpp"
 #include "fem/nodal_pressure.hpp"
+#include "mesh/quadratic_mesh.hpp"
 
 namespace roifem::fem {
 
 namespace {
 
-constexpr std::array<std::pair<Element, std::string_view>, 2> element_names{
-    {{Element::tet4, "tet4"}, {Element::nodal_pressure, "nodal-pressure"}}};
+constexpr std::array<std::pair<Element, std::string_view>, 3> element_names{
+    {{Element::tet4, "tet4"}, {Element::nodal_pressure, "nodal-pressure"}, {Element::tet10, "tet10"}}};
 
 }  // namespace
 
@@ -30,10 +31,18 @@ Element parse_element(std::string_view name) {
     if (known == name) return value;
     names.emplace_back(known);
   }
-  throw InputError("unknown element '" + std::string(name) + "'" + did_you_mean(name, names) + ": use tet4 or nodal-pressure");
+  throw InputError("unknown element '" + std::string(name) + "'" + did_you_mean(name, names) +
+                   ": use tet4, nodal-pressure or tet10");
+}
+
+mesh::TetMesh element_mesh(mesh::TetMesh linear, Element element) {
+  return element == Element::tet10 ? mesh::with_midside_nodes(linear) : linear;
 }
 
 SparseMatrix stiffness(const mesh::TetMesh& mesh, const DofMap& dofs, const MaterialMap& materials, Element element) {
+  if (mesh.is_quadratic() != (element == Element::tet10))
+    throw Error("internal: " + std::string(element_name(element)) + " assembled on a " +
+                (mesh.is_quadratic() ? "quadratic" : "linear") + " mesh (fem::element_mesh makes the mesh an element needs)");
   if (element == Element::nodal_pressure) return nodal_pressure_stiffness(mesh, dofs, materials, 0.0);
   return StiffnessAssembler(mesh, dofs).stiffness(materials);
 }

@@ -2,8 +2,14 @@
 
 #include "common/errors.hpp"
 #include "fem/assembly.hpp"
+#include "fem/tet10.hpp"
 
 namespace roifem::fem {
+
+mesh::Triangle facet_load_nodes(const mesh::TetMesh& mesh, const mesh::Triangle& t) {
+  if (!mesh.is_quadratic()) return t;
+  return {mesh.midside.at(t[0], t[1]), mesh.midside.at(t[1], t[2]), mesh.midside.at(t[2], t[0])};
+}
 
 Vector set_force(const mesh::TetMesh& mesh, const std::string& set_name, const Vec3& total_force) {
   const auto& set = mesh.set(set_name);
@@ -13,11 +19,18 @@ Vector set_force(const mesh::TetMesh& mesh, const std::string& set_name, const V
   if (!set.triangles.empty()) {
     for (const auto& tri : set.triangles) {
       const double area = 0.5 * (mesh.node(tri[1]) - mesh.node(tri[0])).cross(mesh.node(tri[2]) - mesh.node(tri[0])).norm();
-      for (int a : tri) weight[a] += area / 3.0;
+      for (int a : facet_load_nodes(mesh, tri)) weight[a] += area / 3.0;
     }
   } else if (!set.tets.empty()) {
-    for (int e : set.tets)
-      for (int a : mesh.tets[static_cast<std::size_t>(e)]) weight[a] += std::abs(mesh::signed_volume(mesh, e)) / 4.0;
+    for (int e : set.tets) {
+      const double volume = std::abs(mesh::signed_volume(mesh, e));
+      if (mesh.is_quadratic()) {
+        for (int a : mesh.tets[static_cast<std::size_t>(e)]) weight[a] += tet10_corner_mass * volume;
+        for (int a : mesh.midside.of_tet[static_cast<std::size_t>(e)]) weight[a] += tet10_midside_mass * volume;
+        continue;
+      }
+      for (int a : mesh.tets[static_cast<std::size_t>(e)]) weight[a] += volume / 4.0;
+    }
   } else {
     for (int a : set.nodes) weight[a] = 1.0;
   }
@@ -35,7 +48,8 @@ Vec3 set_mean_displacement(const mesh::TetMesh& mesh, const std::string& set_nam
     const Vec3 a = mesh.node(f[0]), b = mesh.node(f[1]), c = mesh.node(f[2]);
     const double A = 0.5 * (b - a).cross(c - a).norm();
     area += A;
-    sum += A / 3 * (u.segment<3>(3 * f[0]) + u.segment<3>(3 * f[1]) + u.segment<3>(3 * f[2]));
+    const mesh::Triangle at = facet_load_nodes(mesh, f);
+    sum += A / 3 * (u.segment<3>(3 * at[0]) + u.segment<3>(3 * at[1]) + u.segment<3>(3 * at[2]));
   }
   if (area <= 0) throw InputError(mesh.source + ": set '" + set_name + "' has no boundary triangles to average over");
   return sum / area;

@@ -18,6 +18,8 @@ SparseMatrix nodal_pressure_stiffness(const mesh::TetMesh& mesh, const DofMap& d
 
 SparseMatrix nodal_pressure_stiffness(const mesh::TetMesh& mesh, const DofMap& dofs, const MaterialMap& materials,
                                       double stabilization) {
+  if (mesh.is_quadratic())
+    throw Error("internal: the nodal-pressure tetrahedron takes a linear mesh, not " + mesh.source + "'s quadratic one");
   if (!(stabilization >= 0 && stabilization <= 1))
     throw InputError("nodal-pressure tetrahedron: stabilization " + number_text(stabilization) + " must lie in [0, 1]");
   auto kappa_of = [](const Material& m) { return m.lambda + 2.0 / 3.0 * m.mu; };

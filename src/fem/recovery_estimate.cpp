@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "common/errors.hpp"
 #include "fem/tet4.hpp"
 
 namespace roifem::fem {
@@ -36,6 +37,8 @@ std::vector<ElementStrain> element_strains(const mesh::TetMesh& mesh, const Vect
 
 RecoveryEstimate recovery_estimate(const mesh::TetMesh& mesh, const MaterialMap& materials, Element element, const Vector& u) {
   assert(u.size() == 3 * mesh.num_nodes());
+  if (element == Element::tet10)
+    throw InputError(mesh.source + ": the recovery estimate is for the linear elements (tet4, nodal-pressure), not tet10");
   const std::vector<ElementStrain> strains = element_strains(mesh, u);
 
   // Recovery: volume-weighted nodal means of the element strains.

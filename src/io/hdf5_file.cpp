@@ -93,10 +93,14 @@ void write_mesh(Hdf5Writer& h5, const mesh::TetMesh& mesh) {
   const Eigen::Matrix3Xd nodes_mm = mesh.nodes / mm;
   h5.write("mesh/nodes_mm", std::vector<double>(nodes_mm.data(), nodes_mm.data() + nodes_mm.size()),
            {static_cast<hsize_t>(mesh.num_nodes()), 3});
+  const hsize_t per_tet = mesh.is_quadratic() ? 10 : 4;
   std::vector<int> tets;
-  tets.reserve(mesh.tets.size() * 4);
-  for (const auto& t : mesh.tets) tets.insert(tets.end(), t.begin(), t.end());
-  h5.write("mesh/tets", tets, {static_cast<hsize_t>(mesh.num_tets()), 4});
+  tets.reserve(mesh.tets.size() * per_tet);
+  for (std::size_t e = 0; e < mesh.tets.size(); ++e) {
+    tets.insert(tets.end(), mesh.tets[e].begin(), mesh.tets[e].end());
+    if (mesh.is_quadratic()) tets.insert(tets.end(), mesh.midside.of_tet[e].begin(), mesh.midside.of_tet[e].end());
+  }
+  h5.write("mesh/tets", tets, {static_cast<hsize_t>(mesh.num_tets()), per_tet});
 }
 
 }  // namespace roifem::io

@@ -84,7 +84,9 @@ class Hdf5Writer {
   Handle file_;
 };
 
-/// Writes /mesh/nodes_mm (N x 3) and /mesh/tets (E x 4, 0-based): what XDMF files point at.
+/// Writes /mesh/nodes_mm (N x 3) and /mesh/tets (E x 4, 0-based; a quadratic mesh's E x 10, its
+/// corners then the midpoints of edges 01 12 20 03 13 23, VTK's and XDMF's Tetrahedron_10 order):
+/// what XDMF files point at.
 void write_mesh(Hdf5Writer& h5, const mesh::TetMesh& mesh);
 
 }  // namespace roifem::io

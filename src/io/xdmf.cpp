@@ -16,9 +16,10 @@ void write_xdmf(const std::filesystem::path& path, const XdmfSeries& s) {
     for (std::size_t k = 0; k < s.times.size(); ++k) {
       out << "   <Grid Name=\"t" << k << "\" GridType=\"Uniform\">\n"
           << "    <Time Value=\"" << s.times[k] << "\"/>\n"
-          << "    <Topology TopologyType=\"Tetrahedron\" NumberOfElements=\"" << s.tets << "\">\n"
-          << "     <DataItem Dimensions=\"" << s.tets << " 4\" NumberType=\"Int\" Format=\"HDF\">" << s.h5_name << ":"
-          << s.tets_dataset << "</DataItem>\n    </Topology>\n"
+          << "    <Topology TopologyType=\"" << (s.nodes_per_tet == 10 ? "Tetrahedron_10" : "Tetrahedron")
+          << "\" NumberOfElements=\"" << s.tets << "\">\n"
+          << "     <DataItem Dimensions=\"" << s.tets << " " << s.nodes_per_tet << "\" NumberType=\"Int\" Format=\"HDF\">"
+          << s.h5_name << ":" << s.tets_dataset << "</DataItem>\n    </Topology>\n"
           << "    <Geometry GeometryType=\"XYZ\">\n     <DataItem Dimensions=\"" << s.nodes
           << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << s.h5_name << ":" << s.nodes_dataset
           << "</DataItem>\n    </Geometry>\n"

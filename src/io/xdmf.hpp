@@ -10,6 +10,7 @@ namespace roifem::io {
 struct XdmfSeries {
   std::string h5_name;  ///< the HDF5 file's name relative to the .xdmf
   long nodes = 0, tets = 0;
+  int nodes_per_tet = 4;  ///< 4 (Tetrahedron) or 10 (Tetrahedron_10, a quadratic mesh's)
   std::string nodes_dataset = "/mesh/nodes_mm", tets_dataset = "/mesh/tets";
   std::vector<double> times;        ///< s
   std::vector<std::string> fields;  ///< a (nodes x 3) dataset per time

@@ -8,6 +8,9 @@ namespace roifem::mesh {
 
 namespace {
 
+/// The corner pairs of PointLocation::midside.
+constexpr std::array<std::array<std::size_t, 2>, 6> location_edges{{{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}}};
+
 /// Barycentric coordinates of p in tetrahedron e.
 std::array<double, 4> barycentric(const TetMesh& mesh, const Tet& tet, const Vec3& p) {
   const Vec3 x0 = mesh.node(tet[0]);
@@ -106,7 +109,7 @@ PointLocation PointLocator::locate(const Vec3& point) const {
       best.weights = w;
     }
   }
-  if (best_min >= -1e-10) return best;
+  if (best_min >= -1e-10) return with_midside(best);
   // Outside: the nearest boundary point.
   double best_d2 = std::numeric_limits<double>::infinity();
   Vec3 best_point = Vec3::Constant(-std::numeric_limits<double>::infinity());
@@ -127,13 +130,30 @@ PointLocation PointLocator::locate(const Vec3& point) const {
     }
   }
   best.outside_distance = std::sqrt(best_d2);
-  return best;
+  return with_midside(best);
+}
+
+PointLocation PointLocator::with_midside(PointLocation at) const {
+  if (!mesh_.is_quadratic()) return at;
+  at.quadratic = true;
+  for (std::size_t k = 0; k < at.midside.size(); ++k) {
+    const int i = location_edges[k][0], j = location_edges[k][1];
+    if (at.weights[i] != 0 && at.weights[j] != 0) at.midside[k] = mesh_.midside.at(at.nodes[i], at.nodes[j]);
+  }
+  return at;
 }
 
 Vec3 PointLocator::interpolate(const PointLocation& location, const Eigen::Ref<const Vector>& field) {
+  const bool quadratic = location.quadratic;
   Vec3 u = Vec3::Zero();
-  for (std::size_t k = 0; k < 4; ++k)
-    if (location.weights[k] != 0) u += location.weights[k] * field.segment<3>(3 * static_cast<Index>(location.nodes[k]));
+  for (std::size_t k = 0; k < 4; ++k) {
+    const double L = location.weights[k];
+    if (L != 0) u += (quadratic ? L * (2 * L - 1) : L) * field.segment<3>(3 * static_cast<Index>(location.nodes[k]));
+  }
+  for (std::size_t k = 0; k < location.midside.size(); ++k)
+    if (location.midside[k] >= 0)
+      u += 4 * location.weights[location_edges[k][0]] * location.weights[location_edges[k][1]] *
+           field.segment<3>(3 * static_cast<Index>(location.midside[k]));
   return u;
 }
 

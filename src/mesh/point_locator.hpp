@@ -17,13 +17,18 @@ struct PointLocation {
   std::array<int, 4> nodes{};
   std::array<double, 4> weights{};  ///< barycentric, summing to 1 (a boundary point uses three)
   double outside_distance = 0;      ///< m from the point to the mesh; 0 inside
+  /// On a quadratic mesh, the midpoints of the corner pairs (0 1), (1 2), (2 0), (0 3), (1 3), (2 3)
+  /// of `nodes` (-1 where there is none): interpolate() then uses the quadratic shape functions.
+  std::array<int, 6> midside{-1, -1, -1, -1, -1, -1};
+  bool quadratic = false;
 };
 
 class PointLocator {
  public:
   explicit PointLocator(const TetMesh& mesh);
   PointLocation locate(const Vec3& point) const;
-  /// The displacement at a location from a field over all nodes (3N).
+  /// The displacement at a location from a field over all nodes (3N): linear in the corners, or
+  /// quadratic on a quadratic mesh.
   static Vec3 interpolate(const PointLocation& location, const Eigen::Ref<const Vector>& field);
 
  private:
@@ -36,6 +41,7 @@ class PointLocator {
   std::vector<Triangle> boundary_;
   Index cell_index(Index i, Index j, Index k) const { return (k * cells_[1] + j) * cells_[0] + i; }
   std::array<Index, 3> cell_of(const Vec3& p) const;
+  PointLocation with_midside(PointLocation at) const;
 };
 
 }  // namespace roifem::mesh

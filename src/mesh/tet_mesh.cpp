@@ -9,6 +9,12 @@
 
 namespace roifem::mesh {
 
+int MidsideNodes::at(int a, int b) const {
+  const std::pair<int, int> key{std::min(a, b), std::max(a, b)};
+  const auto it = std::lower_bound(edges.begin(), edges.end(), key);
+  return it != edges.end() && *it == key ? static_cast<int>(first + (it - edges.begin())) : -1;
+}
+
 const NamedSet& TetMesh::set(const std::string& name) const {
   if (auto it = sets.find(name); it != sets.end()) return it->second;
   std::string known;
@@ -74,7 +80,11 @@ std::vector<Triangle> boundary_faces(const TetMesh& mesh) {
 
 std::vector<int> boundary_nodes(const TetMesh& mesh) {
   std::vector<int> nodes;
-  for (const Triangle& f : boundary_faces(mesh)) nodes.insert(nodes.end(), f.begin(), f.end());
+  for (const Triangle& f : boundary_faces(mesh)) {
+    nodes.insert(nodes.end(), f.begin(), f.end());
+    if (mesh.is_quadratic())
+      for (int k = 0; k < 3; ++k) nodes.push_back(mesh.midside.at(f[k], f[(k + 1) % 3]));
+  }
   std::sort(nodes.begin(), nodes.end());
   nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
   return nodes;

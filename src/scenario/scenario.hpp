@@ -22,7 +22,7 @@ struct Scenario {
   fem::Material material;
   /// [[material_region]]: named volume sets with their own material (in order; a later one wins)
   std::vector<fem::RegionMaterial> material_regions;
-  fem::Element element = fem::Element::tet4;  ///< top-level `element`: tet4 or nodal-pressure
+  fem::Element element = fem::Element::tet4;  ///< top-level `element`: tet4, nodal-pressure or tet10
   std::vector<std::string> fixed_sets{"base"};
   std::vector<model::SetLoad> loads;
   std::vector<model::SetTool> tools;  ///< [[tool]]: attached nodes follow a prescribed path

@@ -34,7 +34,10 @@ ResultsRecorder::ResultsRecorder(const scenario::Scenario& scenario, const Scena
       strain_(h5_.appendable("energy/strain_J", {})),
       dissipated_(h5_.appendable("energy/dissipated_J", {})),
       work_(h5_.appendable("energy/external_work_J", {})),
-      xdmf_{.h5_name = "results.h5", .nodes = model.mesh.num_nodes(), .tets = model.mesh.num_tets()},
+      xdmf_{.h5_name = "results.h5",
+            .nodes = model.mesh.num_nodes(),
+            .tets = model.mesh.num_tets(),
+            .nodes_per_tet = model.mesh.is_quadratic() ? 10 : 4},
       ledger_(model.system(), initial, &model.tools) {
   if (!model.roi_nodes.empty()) roi_series_.emplace(h5_.appendable("roi/displacement_mm", {model.roi_nodes.size(), 3}, 16));
   roi_position_ = model.roi_components();

@@ -64,6 +64,7 @@ std::unique_ptr<ScenarioModel> build_scenario_model(const scenario::Scenario& sc
   auto m = std::make_unique<ScenarioModel>();
   m->mesh = mesh::read_mesh(sc.mesh);
   mesh::check_mesh(m->mesh);
+  m->mesh = fem::element_mesh(std::move(m->mesh), sc.element);
   m->full = model::build_fem_model(m->mesh, fem::MaterialMap(m->mesh, sc.material, sc.material_regions), sc.fixed_sets, sc.loads,
                                    sc.tools, sc.element);
   const fem::DofMap& dofs = *m->full.dofs;

@@ -1,7 +1,7 @@
 #pragma once
 /// `roifem run`: one scenario, full or condensed, integrated and written to DIR/results.h5 and
 /// DIR/results.xdmf. results.h5 holds (lengths in mm, energies in J):
-///   /mesh/nodes_mm (N x 3), /mesh/tets (E x 4)
+///   /mesh/nodes_mm (N x 3), /mesh/tets (E x 4; E x 10 with element = "tet10")
 ///   /time_s (K+1), /step_wall_time_s (K+1, 0 at t_0)
 ///   /energy/{kinetic_J, strain_J, dissipated_J, external_work_J} (K+1), tool_work_J with tools
 ///   /tools/NAME/{nodes, displacement_mm (K+1 x 3), force_N (K+1 x 3)}   (with [[tool]]s; the

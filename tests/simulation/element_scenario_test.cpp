@@ -1,15 +1,21 @@
-// A scenario's `element`: the nodal-pressure tetrahedron reaches the model, static condensation
-// stays exact at rest with its wider stiffness pattern, and the nearly incompressible paper brain
-// is less stiff than with linear tetrahedra (which lock).
+// A scenario's `element`: the nodal-pressure and 10-node tetrahedra reach the model, static
+// condensation stays exact at rest with their wider stiffness patterns, the nearly incompressible
+// paper brain is less stiff than with linear tetrahedra (which lock), the 10-node model's static
+// answer is CalculiX's C3D10 on the same mesh, and the trapezoidal rule conserves either's energy.
 #include <gtest/gtest.h>
 
 #include <Eigen/SparseCholesky>
 #include <cstdio>
+#include <sstream>
 
+#include "experiments/calculix_static.hpp"
+#include "fem/assembly.hpp"
+#include "fem/loads.hpp"
 #include "fem/nodal_pressure.hpp"
 #include "integrators/trapezoid.hpp"
 #include "scenario/scenario.hpp"
 #include "simulation/scenario_model.hpp"
+#include "test_support.hpp"
 
 namespace roifem::simulation {
 namespace {
@@ -72,10 +78,56 @@ TEST(ElementScenario, TheNodalPressureTetrahedronReachesTheModelAndCondensesExac
   EXPECT_GT(o_nodal, 1.2 * o_tet4);
 }
 
-TEST(ElementScenario, TheUndampedNodalPressureModelConservesTheTrapezoidalRulesEnergy) {
-  // Without damping and load, the trapezoidal rule conserves v^T M v / 2 + u^T K u / 2 exactly
-  // for any constant symmetric K: the nodal-pressure one, started with a velocity field.
+/// The static opening (m) as the loads do work on it: the area-weighted means of the walls.
+double mean_opening(const mesh::TetMesh& mesh, const Vector& u) {
+  return fem::set_mean_displacement(mesh, "opening_right", u).x() - fem::set_mean_displacement(mesh, "opening_left", u).x();
+}
+
+TEST(ElementScenario, TheTenNodeTetrahedronCondensesExactlyAndIsCalculixsC3d10) {
+  const auto tet10 = build_scenario_model(paper_setup1("tet10"));
+  const mesh::TetMesh& q = tet10->mesh;
+  ASSERT_TRUE(q.is_quadratic());
+  EXPECT_EQ((tet10->full.system.K - fem::StiffnessAssembler(q, *tet10->full.dofs).stiffness(tet10->full.material)).norm(), 0.0);
+  // HRZ: the model's mass is the brain's.
+  const Vector m = fem::lumped_node_mass(q, tet10->full.material.rho);
+  EXPECT_NEAR(m.sum(), tet10->full.material.rho * mesh::total_volume(q), 1e-12 * m.sum());
+
+  // At rest, static condensation is exact.
+  const Vector f = tet10->full.system.load.at(1.0);
+  const Vector u_full = Eigen::SimplicialLDLT<SparseMatrix>(tet10->full.system.K).solve(f);
+  const Vector u_roi = Eigen::SimplicialLDLT<SparseMatrix>(tet10->system().K).solve(tet10->system().load.at(1.0));
+  const auto& d = tet10->condensation->partition().d;
+  double worst = 0;
+  for (std::size_t i = 0; i < d.size(); ++i) worst = std::max(worst, std::abs(u_roi[static_cast<Index>(i)] - u_full[d[i]]));
+  EXPECT_LT(worst, 1e-9 * u_full.cwiseAbs().maxCoeff());
+
+  // The same mesh, supports and loads solved by CalculiX with C3D10 elements.
+  const double opening_roifem = mean_opening(q, tet10->full.dofs->expand(u_full));
   const auto nodal = build_scenario_model(paper_setup1("nodal-pressure"));
+  const double opening_nodal = mean_opening(
+      nodal->mesh,
+      nodal->full.dofs->expand(Eigen::SimplicialLDLT<SparseMatrix>(nodal->full.system.K).solve(nodal->full.system.load.at(1.0))));
+  std::printf("paper brain, 16 mN per wall: static opening %.4f mm (tet10, %lld dofs), %.4f mm (nodal pressure)\n",
+              opening_roifem / mm, static_cast<long long>(tet10->full.system.size()), opening_nodal / mm);
+  if (!experiments::calculix_available())
+    GTEST_SKIP() << "CalculiX (ccx) is not installed: scripts/setup.sh installs calculix-ccx";
+  const test::TempDir dir;
+  experiments::CalculixProblem problem{.mesh = &q, .material = tet10->full.material, .fixed_nodes = q.set("base").nodes};
+  problem.forces = fem::set_force(q, "opening_left", Vec3(-0.016, 0, 0)) + fem::set_force(q, "opening_right", Vec3(0.016, 0, 0));
+  std::ostringstream log;
+  const Vector u_ccx = experiments::solve_with_calculix(problem, {1.0}, false, dir.path(), log).front().u;
+  const double opening_ccx = mean_opening(q, u_ccx);
+  std::printf("  CalculiX C3D10 on the same nodes: %.4f mm\n", opening_ccx / mm);
+  EXPECT_NEAR(opening_roifem, opening_ccx, 1e-5 * opening_ccx);
+  EXPECT_LT((tet10->full.dofs->expand(u_full) - u_ccx).cwiseAbs().maxCoeff(), 1e-5 * u_ccx.cwiseAbs().maxCoeff());
+}
+
+class UndampedModel : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(UndampedModel, ConservesTheTrapezoidalRulesEnergy) {
+  // Without damping and load, the trapezoidal rule conserves v^T M v / 2 + u^T K u / 2 exactly
+  // for any constant symmetric K, started with a velocity field.
+  const auto nodal = build_scenario_model(paper_setup1(GetParam()));
   model::SecondOrderSystem system = nodal->full.system;
   system.C = 0 * system.C;
   system.damping = model::Damping::mass_proportional(0);
@@ -94,6 +146,9 @@ TEST(ElementScenario, TheUndampedNodalPressureModelConservesTheTrapezoidalRulesE
   EXPECT_GT(s.u.norm(), 0.0);
   EXPECT_LT(worst, 1e-10 * initial);
 }
+
+INSTANTIATE_TEST_SUITE_P(ElementScenario, UndampedModel, ::testing::Values("nodal-pressure", "tet10"),
+                         [](const auto& instance) { return std::string(instance.param) == "tet10" ? "Tet10" : "NodalPressure"; });
 
 }  // namespace
 }  // namespace roifem::simulation

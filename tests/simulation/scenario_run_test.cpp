@@ -14,8 +14,8 @@ namespace {
 
 using test::read_h5;
 
-scenario::Scenario paper_scenario(const std::string& roi_block, long steps) {
-  const std::string text = "mesh = \"" + std::string(ROIFEM_MESH_DIR) + "/brain-800.msh\"\n" +
+scenario::Scenario paper_scenario(const std::string& roi_block, long steps, const std::string& element = "tet4") {
+  const std::string text = "mesh = \"" + std::string(ROIFEM_MESH_DIR) + "/brain-800.msh\"\nelement = \"" + element + "\"\n" +
                            R"([material]
 preset = "paper"
 [[load]]
@@ -48,10 +48,13 @@ TEST(ScenarioRun, RoiOfAllNodesWritesTheSameFieldsAsTheFullModel) {
   EXPECT_LT(diff, 1e-12 * norm);
 }
 
-TEST(ScenarioRun, XdmfPointsAtDatasetsThatExistWithTheRightShape) {
+class ScenarioRunByElement : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(ScenarioRunByElement, XdmfPointsAtDatasetsThatExistWithTheRightShape) {
   test::TempDir dir;
   std::ostringstream log;
-  run_scenario(paper_scenario("[roi]\nkind = \"nearest\"\ntarget_mm = [0, 0, 40]\nnodes = 100\n", 30), dir.path(), log);
+  const std::string element = GetParam();
+  run_scenario(paper_scenario("[roi]\nkind = \"nearest\"\ntarget_mm = [0, 0, 40]\nnodes = 100\n", 30, element), dir.path(), log);
   std::ifstream xdmf(dir / "results.xdmf");
   const std::string text((std::istreambuf_iterator<char>(xdmf)), std::istreambuf_iterator<char>());
   const hid_t file = H5Fopen((dir / "results.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
@@ -75,7 +78,11 @@ TEST(ScenarioRun, XdmfPointsAtDatasetsThatExistWithTheRightShape) {
   }
   H5Fclose(file);
   EXPECT_EQ(references, 4 * 3);  // fields at steps 0, 10, 20, 30: topology, geometry, displacement each
+  // Quadratic elements as ParaView's quadratic cells, with every node's displacement.
+  EXPECT_EQ(text.find("TopologyType=\"Tetrahedron_10\"") != std::string::npos, element == "tet10");
 }
+
+INSTANTIATE_TEST_SUITE_P(ScenarioRun, ScenarioRunByElement, ::testing::Values("tet4", "tet10"));
 
 TEST(ScenarioRun, StoredEnergiesSatisfyTheDiscreteBalance) {
   test::TempDir dir;
