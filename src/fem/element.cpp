@@ -36,7 +36,8 @@ Element parse_element(std::string_view name) {
 }
 
 mesh::TetMesh element_mesh(mesh::TetMesh linear, Element element) {
-  return element == Element::tet10 ? mesh::with_midside_nodes(linear) : linear;
+  if (element != Element::tet10) return linear;  // moved, not copied
+  return mesh::with_midside_nodes(linear);
 }
 
 SparseMatrix stiffness(const mesh::TetMesh& mesh, const DofMap& dofs, const MaterialMap& materials, Element element) {

@@ -64,7 +64,8 @@ TetMesh extract_tet_mesh(const std::string& source, double length_unit) {
       gmsh::model::mesh::getElementsByType(gmsh_tet10, tags10, nodes10);
       if (!tags10.empty())
         throw InputError(source + ": has " + std::to_string(tags10.size()) +
-                         " 10-node tetrahedra; roifem needs linear 4-node tetrahedra (Mesh.ElementOrder = 1)");
+                         " 10-node tetrahedra; roifem needs linear 4-node tetrahedra (Mesh.ElementOrder = 1), "
+                         "and adds the midpoints itself for the scenario key element = \"tet10\"");
       throw InputError(source + ": the mesh has no tetrahedra (is it a surface mesh?)");
     }
 

@@ -120,6 +120,7 @@ TEST(LameSphere, DISABLED_ElementTable) {
   const test::TempDir dir;
   const std::vector<double> sizes{0.004, 0.002, 0.001};
   std::vector<mesh::TetMesh> meshes;
+  meshes.reserve(sizes.size());
   for (double h : sizes) meshes.push_back(mesh::sphere_shell_octant_mesh(0.01, 0.02, h));
   std::printf("Lame sphere, relative nodal L2 error (order) [dofs], by element:\n");
   for (const double nu : {0.3, 0.49, 0.499, 0.4999})
@@ -137,7 +138,7 @@ TEST(LameSphere, DISABLED_ElementTable) {
         const Index nodes = quadratic ? mesh::with_midside_nodes(meshes[k]).num_nodes() : meshes[k].num_nodes();
         std::printf("  %9.3e", e);
         std::printf(k > 0 ? " (%4.2f)" : "       ", k > 0 ? std::log(previous / e) / std::log(sizes[k - 1] / sizes[k]) : 0.0);
-        std::printf(" [%6lld]", static_cast<long long>(3 * nodes));
+        std::printf(" [%6lld]", 3 * static_cast<long long>(nodes));
         previous = e;
       }
       std::printf("\n");

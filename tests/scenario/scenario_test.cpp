@@ -83,8 +83,11 @@ TEST(ScenarioReader, ReadsTheElementAndNamesAnUnknownOne) {
   EXPECT_EQ(s.element, fem::Element::nodal_pressure);
   EXPECT_EQ(parse_scenario(s.resolved_toml(), "resolved.toml", "/data").element, fem::Element::nodal_pressure);
   EXPECT_EQ(error_of(replaced(valid, "mesh = \"brain.msh\"", "mesh = \"brain.msh\"\nelement = \"nodal_pressure\"")),
-            "s.toml: key 'element': unknown element 'nodal_pressure' (did you mean 'nodal-pressure'?): use tet4 or "
-            "nodal-pressure");
+            "s.toml: key 'element': unknown element 'nodal_pressure' (did you mean 'nodal-pressure'?): use tet4, "
+            "nodal-pressure or tet10");
+  const std::string tet10 = replaced(valid, "mesh = \"brain.msh\"", "mesh = \"brain.msh\"\nelement = \"tet10\"");
+  EXPECT_EQ(parse_scenario(parse_scenario(tet10, "s.toml", "/data").resolved_toml(), "resolved.toml", "/data").element,
+            fem::Element::tet10);
 }
 
 TEST(ScenarioReader, ReadsTheReductionOfTheStaticPart) {
