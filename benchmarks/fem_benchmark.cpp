@@ -1,4 +1,5 @@
-// Foundation benchmarks: mesh read, stiffness assembly (pattern + values), Cholesky factorization
+// Foundation benchmarks: mesh read, stiffness assembly (pattern + values; the 10-node tetrahedron's
+// values too, up to 20k nodes), Cholesky factorization
 // of K (base fixed), and the condensation of K onto an ROI two ways, side by side: one partial
 // factorization with the interface ordered last (what roifem does), and the straightforward
 // factor of K_ss followed by one solve per interface column (X = K_ss^-1 K_sI, S = K_Is X).
@@ -13,6 +14,7 @@
 #include "fem/assembly.hpp"
 #include "fem/static_solve.hpp"
 #include "mesh/gmsh_reader.hpp"
+#include "mesh/quadratic_mesh.hpp"
 #include "roi/roi.hpp"
 #include "solvers/partial_cholesky.hpp"
 
@@ -22,7 +24,10 @@ namespace {
 struct Model {
   mesh::TetMesh mesh;
   std::unique_ptr<fem::DofMap> dofs;
-  explicit Model(long nodes) : mesh(mesh::read_mesh(brain_mesh_file(nodes))) {
+  /// The brain at `nodes` nodes; `quadratic`: with the edges' midpoints, for the 10-node tetrahedron.
+  explicit Model(long nodes, bool quadratic = false)
+      : mesh(quadratic ? mesh::with_midside_nodes(mesh::read_mesh(brain_mesh_file(nodes)))
+                       : mesh::read_mesh(brain_mesh_file(nodes))) {
     fem::Constraints constraints(mesh.num_nodes());
     constraints.fix_set(mesh, "base");
     dofs = std::make_unique<fem::DofMap>(constraints);
@@ -46,6 +51,15 @@ void assemble_values(benchmark::State& state, long nodes) {
   const fem::StiffnessAssembler assembler(model.mesh, *model.dofs);
   for (auto _ : state) benchmark::DoNotOptimize(assembler.stiffness(material));
   state.counters["nnz"] = static_cast<double>(assembler.nonzeros());
+}
+
+/// The 10-node tetrahedron's K on the same brain (its vertices; ~7x the dofs).
+void assemble_values_tet10(benchmark::State& state, long nodes) {
+  const Model model(nodes, true);
+  const fem::StiffnessAssembler assembler(model.mesh, *model.dofs);
+  for (auto _ : state) benchmark::DoNotOptimize(assembler.stiffness(material));
+  state.counters["nnz"] = static_cast<double>(assembler.nonzeros());
+  state.counters["dofs"] = static_cast<double>(model.dofs->num_free());
 }
 
 void assemble_total(benchmark::State& state, long nodes) {
@@ -121,6 +135,9 @@ int main(int argc, char** argv) {
     benchmark::RegisterBenchmark(("assemble_pattern" + suffix).c_str(), assemble_pattern, n)->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark(("assemble_values" + suffix).c_str(), assemble_values, n)->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark(("assemble_total" + suffix).c_str(), assemble_total, n)->Unit(benchmark::kMillisecond);
+    if (n <= 20000)  // 100k vertices: 2.4M dofs, a few GB of K
+      benchmark::RegisterBenchmark(("assemble_values_tet10" + suffix).c_str(), assemble_values_tet10, n)
+          ->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark(("factorize" + suffix).c_str(), factorize, n)->Unit(benchmark::kMillisecond);
     for (long roi : {300L, 1000L}) {
       if (roi * 2 > n) continue;

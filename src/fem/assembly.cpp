@@ -128,16 +128,16 @@ SparseMatrix StiffnessAssembler::stiffness(const MaterialMap& materials) const {
     };
     for (int k = tet_start_[u(b)]; k < tet_start_[u(b) + 1]; ++k) {
       const int e = tet_list_[u(k)];
-      const auto t = nodes_of(e);
-      const auto& corners = mesh_.tets[u(e)];
+      const auto& t = mesh_.tets[u(e)];  // the corners
       const Material& material = materials.of(e);
-      const int local_b = static_cast<int>(std::find(t.begin(), t.end(), static_cast<int>(b)) - t.begin());
       if (nodes_per_tet_ == tet10_nodes) {
-        const Tet10Geometry g =
-            tet10_geometry(mesh_.node(corners[0]), mesh_.node(corners[1]), mesh_.node(corners[2]), mesh_.node(corners[3]));
-        for (int a = 0; a < tet10_nodes; ++a) add_block(t[u(a)], tet10_stiffness_block(g, material, a, local_b));
+        const auto nodes = nodes_of(e);
+        const int local_b = static_cast<int>(std::find(nodes.begin(), nodes.end(), static_cast<int>(b)) - nodes.begin());
+        const Tet10Geometry g = tet10_geometry(mesh_.node(t[0]), mesh_.node(t[1]), mesh_.node(t[2]), mesh_.node(t[3]));
+        for (int a = 0; a < tet10_nodes; ++a) add_block(nodes[u(a)], tet10_stiffness_block(g, material, a, local_b));
         continue;
       }
+      const int local_b = static_cast<int>(std::find(t.begin(), t.end(), static_cast<int>(b)) - t.begin());
       const double lambda = material.lambda, mu = material.mu;
       const Tet4Geometry g = tet4_geometry(mesh_.node(t[0]), mesh_.node(t[1]), mesh_.node(t[2]), mesh_.node(t[3]));
       const double V = std::abs(g.volume);
