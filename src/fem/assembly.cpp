@@ -160,10 +160,10 @@ Vector StiffnessAssembler::prescribed_load(const MaterialMap& materials) const {
   const Vector& up = dofs_.prescribed();
   for (Index e = 0; e < mesh_.num_tets(); ++e) {
     const auto t = nodes_of(e);
+    if (std::all_of(t.begin(), t.end(), [&](int n) { return up.segment<3>(3 * n).isZero(0.0); })) continue;
     const auto& c = mesh_.tets[u(e)];
     Vector ue(3 * nodes_per_tet_);
     for (int a = 0; a < nodes_per_tet_; ++a) ue.segment<3>(3 * a) = up.segment<3>(3 * t[u(a)]);
-    if (ue.isZero(0.0)) continue;
     const Vector fe =
         nodes_per_tet_ == tet10_nodes
             ? Vector(tet10_stiffness(tet10_geometry(mesh_.node(c[0]), mesh_.node(c[1]), mesh_.node(c[2]), mesh_.node(c[3])),
