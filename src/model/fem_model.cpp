@@ -67,9 +67,9 @@ std::vector<Tool> attach_tools(const mesh::TetMesh& mesh, const fem::Constraints
 }
 
 SecondOrderSystem assemble(const mesh::TetMesh& mesh, const fem::MaterialMap& materials, fem::Element element,
-                           const fem::DofMap& dofs) {
+                           const fem::DofMap& dofs, bool with_stiffness = true) {
   SecondOrderSystem system;
-  system.K = fem::stiffness(mesh, dofs, materials, element);
+  if (with_stiffness) system.K = fem::stiffness(mesh, dofs, materials, element);
   const Vector m = fem::lumped_mass(mesh, dofs, materials);
   system.M = diagonal_matrix(m);
   system.C = diagonal_matrix(materials.alpha() * m);
@@ -112,6 +112,23 @@ FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::Material& materia
                          const std::vector<SetLoad>& loads, const std::vector<SetTool>& tools, fem::Element element) {
   material.validate();
   return build_fem_model(mesh, fem::MaterialMap(material), fixed_sets, loads, tools, element);
+}
+
+FemModel build_fem_model_without_stiffness(const mesh::TetMesh& mesh, const fem::MaterialMap& materials,
+                                           const std::vector<std::string>& fixed_sets, const std::vector<SetLoad>& loads,
+                                           fem::Element element) {
+  for (const fem::Material& m : materials.materials()) m.validate();
+  FemModel model;
+  model.mesh = &mesh;
+  model.material = materials.base();
+  model.materials = materials;
+  model.element = element;
+  model.dofs = std::make_unique<fem::DofMap>(fixed_constraints(mesh, fixed_sets));
+  if (model.dofs->num_constrained() == 0)
+    throw ModelError(mesh.source + ": no node is fixed, so the brain can move as a rigid body (fix a set such as 'base')");
+  model.system = assemble(mesh, materials, element, *model.dofs, false);
+  model.system.load = loads_on(mesh, materials, *model.dofs, loads, model.warnings);
+  return model;
 }
 
 FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::MaterialMap& materials, const std::vector<std::string>& fixed_sets,

@@ -60,6 +60,11 @@ struct FemModel {
 FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::Material& material, const std::vector<std::string>& fixed_sets,
                          const std::vector<SetLoad>& loads, const std::vector<SetTool>& tools = {},
                          fem::Element element = fem::Element::tet4);
+/// The same model without K (system.K left empty) and without tools: the dof map, M, C and the
+/// loads, for an engine that assembles K itself (src/distributed: each rank its own elements).
+FemModel build_fem_model_without_stiffness(const mesh::TetMesh& mesh, const fem::MaterialMap& materials,
+                                           const std::vector<std::string>& fixed_sets, const std::vector<SetLoad>& loads,
+                                           fem::Element element = fem::Element::tet4);
 /// The same with materials by region (fem::MaterialMap).
 FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::MaterialMap& materials, const std::vector<std::string>& fixed_sets,
                          const std::vector<SetLoad>& loads, const std::vector<SetTool>& tools = {},

@@ -1,0 +1,167 @@
+#include "distributed/distributed_run.hpp"
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <ostream>
+
+#include "common/atomic_file.hpp"
+#include "common/errors.hpp"
+#include "common/timer.hpp"
+#include "distributed/distributed_trapezoid.hpp"
+#include "fem/element.hpp"
+#include "io/csv.hpp"
+#include "io/hdf5_file.hpp"
+#include "io/xdmf.hpp"
+#include "mesh/gmsh_reader.hpp"
+#include "mesh/mesh_checks.hpp"
+#include "simulation/progress.hpp"
+
+namespace roifem::distributed {
+
+double peak_resident_megabytes(MPI_Comm comm) {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  double mine = static_cast<double>(usage.ru_maxrss) / 1024.0, largest = 0;  // ru_maxrss: kB
+  MPI_Allreduce(&mine, &largest, 1, MPI_DOUBLE, MPI_MAX, comm);
+  return largest;
+}
+
+namespace {
+
+/// Rank 0's results file: the series appended step by step, the fields every field_every steps.
+class RootRecorder {
+ public:
+  RootRecorder(const scenario::Scenario& sc, const model::FemModel& frame, const std::filesystem::path& out,
+               const std::string& integrator)
+      : sc_(sc),
+        frame_(frame),
+        out_(out),
+        file_(out / "results.h5"),
+        h5_(file_.temporary_path()),
+        time_s_(header().appendable("time_s", {})),
+        wall_s_(h5_.appendable("step_wall_time_s", {})),
+        kinetic_(h5_.appendable("energy/kinetic_J", {})),
+        strain_(h5_.appendable("energy/strain_J", {})),
+        iterations_(h5_.appendable("ksp_iterations", {})),
+        xdmf_{.h5_name = "results.h5",
+              .nodes = frame.mesh->num_nodes(),
+              .tets = frame.mesh->num_tets(),
+              .nodes_per_tet = frame.mesh->is_quadratic() ? 10 : 4} {
+    h5_.attribute("integrator", integrator);
+  }
+  void record(long k, double t, double wall_s, double kinetic, double strain, double iterations, const Vector* u_free) {
+    for (auto [series, value] : {std::pair{&time_s_, t}, {&wall_s_, wall_s}, {&kinetic_, kinetic}, {&strain_, strain},
+                                 {&iterations_, iterations}})
+      series->append(&value);
+    if (u_free) {
+      const std::string name = io::format("fields/displacement_mm_%06ld", k);
+      const Vector field_mm = frame_.displacement(*u_free, t) / mm;
+      h5_.write(name, std::vector<double>(field_mm.data(), field_mm.data() + field_mm.size()),
+                {static_cast<hsize_t>(frame_.mesh->num_nodes()), 3});
+      xdmf_.times.push_back(t);
+      xdmf_.fields.push_back("/" + name);
+    }
+    if (k % 50 == 0) h5_.flush();
+  }
+  void finish() {
+    h5_.attribute("status", "complete");
+    h5_.close();
+    file_.commit();
+    if (!xdmf_.times.empty()) io::write_xdmf(out_ / "results.xdmf", xdmf_);
+  }
+  void abandon(const std::string& why) {
+    h5_.attribute("status", "incomplete: " + why);
+    h5_.close();
+    file_.commit_as(out_ / "results.incomplete.h5");
+  }
+
+ private:
+  io::Hdf5Writer& header() {
+    io::write_mesh(h5_, *frame_.mesh);
+    h5_.attribute("scenario", sc_.resolved_toml());
+    return h5_;
+  }
+  const scenario::Scenario& sc_;
+  const model::FemModel& frame_;
+  std::filesystem::path out_;
+  AtomicFile file_;
+  io::Hdf5Writer h5_;
+  io::AppendableDataset time_s_, wall_s_, kinetic_, strain_, iterations_;
+  io::XdmfSeries xdmf_;
+};
+
+}  // namespace
+
+DistributedRunSummary run_distributed(const scenario::Scenario& sc, const std::filesystem::path& out, std::ostream& log,
+                                      MPI_Comm comm) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  DistributedRunSummary summary;
+  MPI_Comm_size(comm, &summary.ranks);
+  if (!sc.tools.empty()) throw InputError("roifem-mpi: scenario " + sc.file.string() + " has tools; the distributed model takes loads only");
+  if (sc.rtol) throw InputError("roifem-mpi: scenario " + sc.file.string() + " sets rtol; the distributed model steps at a fixed dt");
+  const Stopwatch setup;
+  mesh::TetMesh mesh = mesh::read_mesh(sc.mesh);
+  mesh::check_mesh(mesh);
+  mesh = fem::element_mesh(std::move(mesh), sc.element);
+  const model::FemModel frame = model::build_fem_model_without_stiffness(
+      mesh, fem::MaterialMap(mesh, sc.material, sc.material_regions), sc.fixed_sets, sc.loads, sc.element);
+  const DistributedModel model = distribute_model(frame, comm);
+  DistributedTrapezoid trapezoid(model, sc.dt);
+  summary.dofs = model.dofs();
+  summary.solver = trapezoid.solver();
+  summary.setup_s = setup.seconds();
+  const std::string integrator =
+      io::format("trapezoid (PETSc, %s, %d ranks)", summary.solver.c_str(), summary.ranks);
+  if (rank == 0) {
+    log << io::format("%s: full model, %ld dofs on %d ranks (%ld nodes, %ld elements, %s), %s\n", sc.file.string().c_str(),
+                      summary.dofs, summary.ranks, static_cast<long>(mesh.num_nodes()), static_cast<long>(mesh.num_tets()),
+                      std::string(fem::element_name(sc.element)).c_str(), integrator.c_str());
+    if (sc.roi) log << "  (the scenario's [roi] is for roifem run: here every free node is dynamic)\n";
+    for (const auto& w : frame.warnings) log << "warning: " << w << '\n';
+    log << io::format("setup %.2f s (read, partition, assemble, set up K_eff's solver)\n", summary.setup_s);
+  }
+  std::unique_ptr<RootRecorder> recorder;
+  if (rank == 0) {
+    check_output_directory(out);
+    recorder = std::make_unique<RootRecorder>(sc, frame, out, integrator);
+  }
+  auto record = [&](long k, double wall_s) {
+    const bool field = sc.field_every > 0 && k % sc.field_every == 0;
+    const double kinetic = trapezoid.kinetic_energy(), strain = trapezoid.strain_energy();
+    const Vector u = field ? model.gather(trapezoid.u(), false) : Vector();
+    if (recorder) recorder->record(k, trapezoid.t(), wall_s, kinetic, strain, k > 0 ? trapezoid.last_iterations() : 0, field ? &u : nullptr);
+  };
+  std::vector<double> step_s;
+  try {
+    record(0, 0.0);
+    simulation::ProgressReporter progress(rank == 0 ? "roifem-mpi" : "", rank == 0 ? sc.steps : 0);
+    for (long k = 1; k <= sc.steps; ++k) {
+      const Stopwatch clock;
+      trapezoid.step();
+      step_s.push_back(clock.seconds());
+      record(k, step_s.back());
+      if (rank == 0) progress.update(k, io::format("%d KSP iterations", static_cast<int>(trapezoid.last_iterations())));
+    }
+  } catch (const Error& e) {
+    if (recorder) recorder->abandon(e.what());
+    throw;
+  }
+  if (recorder) recorder->finish();
+  std::nth_element(step_s.begin(), step_s.begin() + static_cast<long>(step_s.size() / 2), step_s.end());
+  summary.steps = sc.steps;
+  summary.step_s_median = step_s.empty() ? 0 : step_s[step_s.size() / 2];
+  summary.iterations_per_step = sc.steps > 0 ? static_cast<double>(trapezoid.total_iterations()) / static_cast<double>(sc.steps) : 0;
+  summary.final_kinetic_J = trapezoid.kinetic_energy();
+  summary.final_strain_J = trapezoid.strain_energy();
+  summary.peak_rss_mb = peak_resident_megabytes(comm);
+  if (rank == 0)
+    log << io::format("done: %ld steps, median %.4f s per step, %.1f KSP iterations per step; final kinetic %.3e J, strain %.3e J; "
+                      "peak memory %.0f MB on one rank\nresults: %s (ParaView: results.xdmf)\n",
+                      summary.steps, summary.step_s_median, summary.iterations_per_step, summary.final_kinetic_J,
+                      summary.final_strain_J, summary.peak_rss_mb, (out / "results.h5").string().c_str());
+  return summary;
+}
+
+}  // namespace roifem::distributed

@@ -1,0 +1,37 @@
+#pragma once
+/// `roifem-mpi run`: a scenario's full model (every free node dynamic; its [roi] and integrator are
+/// roifem run's) integrated by the trapezoidal rule at its dt on P ranks (distributed_trapezoid.hpp),
+/// written by rank 0 to DIR/results.h5 and DIR/results.xdmf in roifem run's layout:
+///   /mesh/nodes_mm, /mesh/tets, /time_s, /step_wall_time_s, /energy/{kinetic_J, strain_J},
+///   /ksp_iterations (per step), /fields/displacement_mm_NNNNNN every output.field_every steps,
+///   attributes scenario, integrator ("trapezoid (PETSc, cg + gamg, rtol 1e-10, 2 ranks)"), status.
+/// Written under a temporary name and moved into place when complete (common/atomic_file.hpp).
+#include <filesystem>
+#include <iosfwd>
+#include <string>
+
+#include <mpi.h>
+
+#include "scenario/scenario.hpp"
+
+namespace roifem::distributed {
+
+struct DistributedRunSummary {
+  long dofs = 0, steps = 0;
+  int ranks = 1;
+  std::string solver;
+  double setup_s = 0;           ///< reading, partitioning, assembly, K_eff's factorization or preconditioner
+  double step_s_median = 0;     ///< wall time per step
+  double iterations_per_step = 0;
+  double peak_rss_mb = 0;       ///< the largest resident memory of one rank (MB)
+  double final_strain_J = 0, final_kinetic_J = 0;
+};
+
+/// Runs on every rank of `comm`; `log` is written by rank 0 only.
+DistributedRunSummary run_distributed(const scenario::Scenario& scenario, const std::filesystem::path& out, std::ostream& log,
+                                      MPI_Comm comm);
+
+/// The largest resident set of any rank of `comm` so far (MB).
+double peak_resident_megabytes(MPI_Comm comm);
+
+}  // namespace roifem::distributed
