@@ -9,6 +9,7 @@
 #include "common/errors.hpp"
 #include "common/timer.hpp"
 #include "distributed/distributed_trapezoid.hpp"
+#include "distributed/root_work.hpp"
 #include "fem/element.hpp"
 #include "io/csv.hpp"
 #include "io/hdf5_file.hpp"
@@ -101,6 +102,7 @@ DistributedRunSummary run_distributed(const scenario::Scenario& sc, const std::f
   MPI_Comm_size(comm, &summary.ranks);
   if (!sc.tools.empty()) throw InputError("roifem-mpi: scenario " + sc.file.string() + " has tools; the distributed model takes loads only");
   if (sc.rtol) throw InputError("roifem-mpi: scenario " + sc.file.string() + " sets rtol; the distributed model steps at a fixed dt");
+  on_root(comm, [&] { check_output_directory(out); });  // before any work
   const Stopwatch setup;
   mesh::TetMesh mesh = mesh::read_mesh(sc.mesh);
   mesh::check_mesh(mesh);
@@ -123,15 +125,14 @@ DistributedRunSummary run_distributed(const scenario::Scenario& sc, const std::f
     log << io::format("setup %.2f s (read, partition, assemble, set up K_eff's solver)\n", summary.setup_s);
   }
   std::unique_ptr<RootRecorder> recorder;
-  if (rank == 0) {
-    check_output_directory(out);
-    recorder = std::make_unique<RootRecorder>(sc, frame, out, integrator);
-  }
+  on_root(comm, [&] { recorder = std::make_unique<RootRecorder>(sc, frame, out, integrator); });
   auto record = [&](long k, double wall_s) {
     const bool field = sc.field_every > 0 && k % sc.field_every == 0;
     const double kinetic = trapezoid.kinetic_energy(), strain = trapezoid.strain_energy();
     const Vector u = field ? model.gather(trapezoid.u(), false) : Vector();
-    if (recorder) recorder->record(k, trapezoid.t(), wall_s, kinetic, strain, k > 0 ? trapezoid.last_iterations() : 0, field ? &u : nullptr);
+    on_root(comm, [&] {
+      recorder->record(k, trapezoid.t(), wall_s, kinetic, strain, k > 0 ? trapezoid.last_iterations() : 0, field ? &u : nullptr);
+    });
   };
   std::vector<double> step_s;
   try {
@@ -148,7 +149,7 @@ DistributedRunSummary run_distributed(const scenario::Scenario& sc, const std::f
     if (recorder) recorder->abandon(e.what());
     throw;
   }
-  if (recorder) recorder->finish();
+  on_root(comm, [&] { recorder->finish(); });
   std::nth_element(step_s.begin(), step_s.begin() + static_cast<long>(step_s.size() / 2), step_s.end());
   summary.steps = sc.steps;
   summary.step_s_median = step_s.empty() ? 0 : step_s[step_s.size() / 2];

@@ -97,6 +97,13 @@ DistributedCondensation condense_with_mumps(const DistributedModel& model, const
   out.factor_s = clock.seconds();
   out.factor_entries = id.infog[28] >= 0 ? static_cast<double>(id.infog[28]) : -1e6 * id.infog[28];  // <0: millions
   out.peak_megabytes = id.infog[20];
+  if (rank == 0) {
+    // For a symmetric matrix MUMPS returns the Schur complement's lower triangle by rows: the upper
+    // triangle of this column-major array. The other triangle is not cleared (it held 655 to 2944
+    // in norm on the paper brain, depending on what ran before), so it is never read.
+    const Eigen::Map<const DenseMatrix> S(schur.data(), s, s);
+    out.K_tilde = S.selfadjointView<Eigen::Upper>();
+  }
 
   // The reduced right-hand sides, one per load pattern, from the patterns gathered on the host.
   const auto patterns = static_cast<MUMPS_INT>(model.loads.size());
@@ -128,11 +135,6 @@ DistributedCondensation condense_with_mumps(const DistributedModel& model, const
     mumps.run(job_solve, "the reduction of the load patterns onto the ROI");
   }
   if (rank != 0) return out;
-  // A symmetric problem's Schur complement comes back as one triangle: complete it.
-  const Eigen::Map<const DenseMatrix> S(schur.data(), s, s);
-  const bool upper = S.triangularView<Eigen::StrictlyUpper>().toDenseMatrix().squaredNorm() >=
-                     S.triangularView<Eigen::StrictlyLower>().toDenseMatrix().squaredNorm();
-  out.K_tilde = upper ? DenseMatrix(S.selfadjointView<Eigen::Upper>()) : DenseMatrix(S.selfadjointView<Eigen::Lower>());
   for (MUMPS_INT k = 0; k < patterns; ++k)
     out.f_tilde.push_back(Eigen::Map<const Vector>(reduced.data() + static_cast<std::size_t>(k) * static_cast<std::size_t>(s), s));
   return out;

@@ -1,0 +1,44 @@
+#!/bin/sh
+# `mpirun -n 2 roifem-mpi run` writes roifem run's results: the same displacement fields as the
+# serial full model to 1e-8 (CG + GAMG at rtol 1e-10), a complete status, an XDMF beside them;
+# and a failing run (an unwritable --out) stops every rank with a message and leaves no file.
+# usage: mpi_run.sh MPIEXEC ROIFEM_MPI ROIFEM SCENARIO_DIR WORK_DIR
+set -eu
+mpiexec=$1 roifem_mpi=$2 roifem=$3 scenarios=$4 work=$5
+rm -rf "$work"
+mkdir -p "$work"
+"$mpiexec" -n 2 "$roifem_mpi" run "$scenarios/paper-full.toml" --out "$work/mpi" -- -ksp_type cg -pc_type gamg -ksp_rtol 1e-10 \
+  > "$work/mpi.log" 2>&1 || { cat "$work/mpi.log"; exit 1; }
+cat "$work/mpi.log"
+grep -q "2052 dofs on 2 ranks" "$work/mpi.log"
+"$roifem" run "$scenarios/paper-full.toml" --out "$work/serial" > "$work/serial.log"
+test -f "$work/mpi/results.xdmf"
+/usr/bin/python3 - "$work/mpi/results.h5" "$work/serial/results.h5" <<'PY'
+import sys
+import h5py
+import numpy as np
+with h5py.File(sys.argv[1], "r") as a, h5py.File(sys.argv[2], "r") as b:
+    status = a.attrs["status"]
+    status = status.decode() if isinstance(status, bytes) else status
+    assert status == "complete", status
+    integrator = a.attrs["integrator"]
+    integrator = integrator.decode() if isinstance(integrator, bytes) else integrator
+    assert "cg + gamg" in integrator, integrator
+    assert list(a["fields"]) == list(b["fields"]) and len(a["fields"]) == 21
+    gap = max(np.abs(a["fields"][k][()] - b["fields"][k][()]).max() for k in a["fields"])
+    scale = max(np.abs(b["fields"][k][()]).max() for k in b["fields"])
+    assert gap <= 1e-8 * scale, f"fields differ by {gap / scale:.2e} of the largest"
+    assert np.allclose(a["time_s"][()], b["time_s"][()], rtol=0, atol=1e-12)
+    strain = np.abs(a["energy/strain_J"][()] - b["energy/strain_J"][()]).max() / b["energy/strain_J"][()].max()
+    assert strain <= 1e-8, f"strain energies differ by {strain:.2e}"
+    assert (a["ksp_iterations"][1:] >= 1).all()
+    print(f"fields within {gap / scale:.1e} of the serial run's; strain energy within {strain:.1e}")
+PY
+# An output directory under a file: every rank stops, the message names it, nothing is written.
+touch "$work/a-file"
+if "$mpiexec" -n 2 "$roifem_mpi" run "$scenarios/paper-full.toml" --out "$work/a-file/out" > "$work/bad.log" 2>&1; then
+  echo "an unwritable --out succeeded"; exit 1
+fi
+grep -q "a-file" "$work/bad.log" || { cat "$work/bad.log"; exit 1; }
+test ! -e "$work/a-file/out"
+echo "mpi_run: passed"
