@@ -5,7 +5,11 @@
 namespace roifem::integrators {
 
 std::unique_ptr<Integrator> make_integrator(const std::string& name, const StepControl& control) {
-  const IntegratorInfo& info = integrator_info(name);
+  return make_integrator(integrator_info(name), control);
+}
+
+std::unique_ptr<Integrator> make_integrator(const IntegratorInfo& info, const StepControl& control) {
+  const std::string& name = info.name;
   StepControl chosen = control;
   if (!chosen.adaptive && !info.fixed_step) {  // always error-controlled: a "fixed step" gets tight tolerances
     chosen.adaptive = true;

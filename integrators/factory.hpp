@@ -14,6 +14,8 @@
 namespace roifem::integrators {
 
 std::unique_ptr<Integrator> make_integrator(const std::string& name, const StepControl& control);
+/// The same from a row (the table's, or one beyond it: CompareOptions::extra_rows).
+std::unique_ptr<Integrator> make_integrator(const IntegratorInfo& info, const StepControl& control);
 inline std::unique_ptr<Integrator> make_integrator(const std::string& name, double dt) {
   return make_integrator(name, StepControl{.dt = dt});
 }

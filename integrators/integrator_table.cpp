@@ -267,6 +267,8 @@ std::string_view family_name(Family family) {
       return "IDA";
     case Family::gsl:
       return "GSL odeiv2";
+    case Family::petsc:
+      return "PETSc TS";
   }
   return "?";
 }

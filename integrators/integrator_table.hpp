@@ -14,7 +14,8 @@
 
 namespace roifem::integrators {
 
-enum class Family { trapezoid, arkode, ida, gsl };
+/// petsc: PETSc's TS (src/distributed/petsc_ts.hpp), rows that roifem-mpi compare adds (CompareOptions::extra_rows).
+enum class Family { trapezoid, arkode, ida, gsl, petsc };
 
 /// What solves the method's linear systems.
 enum class LinearSolver {

@@ -6,6 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libsundials-dev          # ARKODE, IDA, SUNLinSol_KLU (6.4)
+  libpetsc-real-dev libmumps-dev libopenmpi-dev openmpi-bin   # roifem-mpi (libsundials-dev pulls them in too)
   libeigen3-dev            # sparse matrices, CHOLMOD/KLU wrappers
   libspectra-dev           # Lanczos eigenvalues (highest frequency, stability limits)
   libsuitesparse-dev       # CHOLMOD, KLU

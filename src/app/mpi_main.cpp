@@ -16,6 +16,8 @@
 #include "common/timer.hpp"
 #include "distributed/condensed_roi.hpp"
 #include "distributed/distributed_run.hpp"
+#include "distributed/petsc_ts.hpp"
+#include "experiments/compare_experiment.hpp"
 #include "fem/element.hpp"
 #include "integrators/trapezoid.hpp"
 #include "io/csv.hpp"
@@ -62,22 +64,25 @@ void condense(const roifem::scenario::Scenario& sc, const std::filesystem::path&
   const distributed::DistributedCondensation condensed = distributed::condense_with_mumps(model, d);
   int ranks = 1;
   MPI_Comm_size(comm, &ranks);
-  const double memory_mb = distributed::peak_resident_megabytes(comm);
+  const distributed::ResidentMemory memory = distributed::peak_resident_megabytes(comm);
   if (rank != 0) return;
   std::cout << roifem::io::format(
       "%s: K~ on %zu ROI dofs (%zu nodes) from %ld dofs on %d ranks: assembly %.2f s, MUMPS analysis + factorization "
-      "with the Schur complement %.2f s, %.3g entries in the factors, MUMPS peak %.0f MB on one rank, process peak %.0f MB\n",
+      "with the Schur complement %.2f s, %.3g entries in the factors, MUMPS peak %.0f MB on one rank; process peaks %.0f MB on "
+      "one "
+      "rank, %.0f MB on all\n",
       sc.file.string().c_str(), d.size(), roi_nodes.size(), static_cast<long>(model.dofs()), ranks, assembly_s,
-      condensed.factor_s, condensed.factor_entries, condensed.peak_megabytes, memory_mb);
+      condensed.factor_s, condensed.factor_entries, condensed.peak_megabytes, memory.largest, memory.total);
   const roifem::model::SecondOrderSystem roi = distributed::condensed_roi_system(model, condensed, d);
   const double peak = roi_peak(roi, sc);
-  std::cout << roifem::io::format("the condensed ROI model, trapezoid at dt = %g s over %ld steps on one rank: peak %.6g mm\n", sc.dt,
-                                  sc.steps, peak / roifem::mm);
+  std::cout << roifem::io::format("the condensed ROI model, trapezoid at dt = %g s over %ld steps on one rank: peak %.6g mm\n",
+                                  sc.dt, sc.steps, peak / roifem::mm);
   {
     roifem::AtomicFile file(out / "condensation.h5");
     roifem::io::Hdf5Writer h5(file.temporary_path());
     const auto s = static_cast<hsize_t>(d.size());
-    h5.write("K_tilde", std::vector<double>(condensed.K_tilde.data(), condensed.K_tilde.data() + condensed.K_tilde.size()), {s, s});
+    h5.write("K_tilde", std::vector<double>(condensed.K_tilde.data(), condensed.K_tilde.data() + condensed.K_tilde.size()),
+             {s, s});
     std::vector<double> f;
     for (const Vector& p : condensed.f_tilde) f.insert(f.end(), p.data(), p.data() + p.size());
     h5.write("f_tilde", f, {condensed.f_tilde.size(), s});
@@ -88,7 +93,8 @@ void condense(const roifem::scenario::Scenario& sc, const std::filesystem::path&
     h5.close();
     file.commit();
   }
-  std::cout << "written: " << (out / "condensation.h5").string() << " (K_tilde, f_tilde per load pattern, the ROI's nodes and dofs)\n";
+  std::cout << "written: " << (out / "condensation.h5").string()
+            << " (K_tilde, f_tilde per load pattern, the ROI's nodes and dofs)\n";
   if (!check_serial) return;
   if (!sc.reduction.is_static_condensation())
     throw roifem::InputError("roifem-mpi condense --check: the scenario's reduction is not static condensation");
@@ -108,9 +114,7 @@ void condense(const roifem::scenario::Scenario& sc, const std::filesystem::path&
       f_scale > 0 ? f_gap / f_scale : 0.0, peak_ref / roifem::mm, std::abs(peak - peak_ref) / peak_ref);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run_cli(int argc, char** argv) {
   // roifem-mpi's own arguments before --, PETSc's after it.
   const auto separator = std::find_if(argv, argv + argc, [](const char* a) { return std::strcmp(a, "--") == 0; });
   const int own_argc = static_cast<int>(separator - argv);
@@ -123,15 +127,30 @@ int main(int argc, char** argv) {
       "Run under MPI; options after -- go to PETSc, e.g. the solver of K + 2/dt C + 4/dt^2 M:\n"
       "  mpirun -n 2 roifem-mpi run scenarios/paper-full.toml --out results/mpi                  (MUMPS Cholesky)\n"
       "  mpirun -n 2 roifem-mpi run scenarios/paper-full.toml --out results/mpi -- -ksp_type cg -pc_type gamg -ksp_rtol 1e-10\n"
-      "  mpirun -n 2 roifem-mpi condense scenarios/paper-setup1.toml --out results/condensed --check"};
+      "  mpirun -n 2 roifem-mpi condense scenarios/paper-setup1.toml --out results/condensed --check\n"
+      "  roifem-mpi compare scenarios/paper-setup1.toml --out results/compare-petsc                 (one rank)"};
   app.require_subcommand(1);
   std::filesystem::path scenario_file, out = "results/mpi";
   bool check_serial = false;
-  auto* run = app.add_subcommand("run", "Integrate the scenario's full model (every free node dynamic) with the trapezoidal rule");
+  auto* run =
+      app.add_subcommand("run", "Integrate the scenario's full model (every free node dynamic) with the trapezoidal rule");
   run->add_option("scenario", scenario_file, "Scenario file (TOML; its mesh, material, supports, loads, dt and steps)")
       ->required()
       ->check(CLI::ExistingFile);
   run->add_option("--out", out, "Directory for results.h5 and results.xdmf")->capture_default_str();
+  roifem::experiments::CompareOptions compare_options;
+  auto* compare = app.add_subcommand(
+      "compare", "roifem compare with PETSc's integrators added (petsc-alpha2: TSALPHA2, petsc-theta: TSTHETA); one rank");
+  compare->add_option("scenario", scenario_file, "Scenario file (.toml); its dt is the output grid")
+      ->required()
+      ->check(CLI::ExistingFile);
+  compare->add_option("--out", compare_options.out, "Output directory")->required();
+  compare->add_option("--integrators", compare_options.integrators,
+                      "Only these (default: trapezoid, petsc-alpha2, petsc-theta; any of roifem compare's names too)");
+  compare->add_option("--t-end", compare_options.t_end, "Simulated time in s (0: the scenario's dt * steps)")
+      ->capture_default_str();
+  compare->add_option("--fixed-levels", compare_options.fixed_levels, "Fixed steps dt, dt/2, ...")->capture_default_str();
+  compare->add_flag("!--no-plots", compare_options.plots, "Skip the PNG plots");
   auto* cond = app.add_subcommand("condense", "Condense the scenario's [roi] from the distributed K by MUMPS's Schur complement");
   cond->add_option("scenario", scenario_file, "Scenario file with an [roi]")->required()->check(CLI::ExistingFile);
   cond->add_option("--out", out, "Directory for condensation.h5")->capture_default_str();
@@ -145,10 +164,17 @@ int main(int argc, char** argv) {
     const distributed::PetscSession session(static_cast<int>(petsc_argv.size()) - 1, petsc_argv.data());
     try {
       const roifem::scenario::Scenario sc = roifem::scenario::read_scenario(scenario_file);
-      if (run->parsed())
+      if (run->parsed()) {
         distributed::run_distributed(sc, out, std::cout, session.comm());
-      else
+      } else if (compare->parsed()) {
+        if (session.size() > 1)
+          throw roifem::InputError("roifem-mpi compare runs on one rank (PETSc's integrators on PETSC_COMM_SELF)");
+        compare_options.extra_rows = distributed::petsc_ts_rows();
+        if (compare_options.integrators.empty()) compare_options.integrators = {"trapezoid", "petsc-alpha2", "petsc-theta"};
+        roifem::experiments::run_compare(sc, compare_options, std::cout);
+      } else {
         condense(sc, out, check_serial, session.comm());
+      }
     } catch (const std::exception& e) {
       // One rank's failure must not leave the others waiting in a collective call: stop them all.
       std::cerr << "roifem-mpi: error (rank " << session.rank() << "): " << e.what() << '\n';
@@ -162,4 +188,15 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run_cli(argc, argv);
+  } catch (const std::exception& e) {  // before or after the PETSc session (CLI11's set-up, PetscFinalize)
+    std::cerr << "roifem-mpi: error: " << e.what() << '\n';
+    return 1;
+  }
 }

@@ -81,8 +81,9 @@ Vector DistributedModel::gather(Vec x, bool to_all) const {
 
 DistributedModel distribute_model(const model::FemModel& frame, MPI_Comm comm) {
   if (frame.element == fem::Element::nodal_pressure)
-    throw InputError("roifem-mpi: element = \"nodal-pressure\" is not distributed (its K couples nodes two elements apart); "
-                     "use \"tet4\" or \"tet10\"");
+    throw InputError(
+        "roifem-mpi: element = \"nodal-pressure\" is not distributed (its K couples nodes two elements apart); "
+        "use \"tet4\" or \"tet10\"");
   if (frame.dofs->prescribed().squaredNorm() > 0)
     throw InputError("roifem-mpi: non-zero prescribed displacements are not distributed; fix nodes at zero");
   const mesh::TetMesh& mesh = *frame.mesh;

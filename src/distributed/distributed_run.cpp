@@ -20,12 +20,14 @@
 
 namespace roifem::distributed {
 
-double peak_resident_megabytes(MPI_Comm comm) {
+ResidentMemory peak_resident_megabytes(MPI_Comm comm) {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
-  double mine = static_cast<double>(usage.ru_maxrss) / 1024.0, largest = 0;  // ru_maxrss: kB
-  MPI_Allreduce(&mine, &largest, 1, MPI_DOUBLE, MPI_MAX, comm);
-  return largest;
+  double mine = static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss: kB
+  ResidentMemory m;
+  MPI_Allreduce(&mine, &m.largest, 1, MPI_DOUBLE, MPI_MAX, comm);
+  MPI_Allreduce(&mine, &m.total, 1, MPI_DOUBLE, MPI_SUM, comm);
+  return m;
 }
 
 namespace {
@@ -52,8 +54,8 @@ class RootRecorder {
     h5_.attribute("integrator", integrator);
   }
   void record(long k, double t, double wall_s, double kinetic, double strain, double iterations, const Vector* u_free) {
-    for (auto [series, value] : {std::pair{&time_s_, t}, {&wall_s_, wall_s}, {&kinetic_, kinetic}, {&strain_, strain},
-                                 {&iterations_, iterations}})
+    for (auto [series, value] :
+         {std::pair{&time_s_, t}, {&wall_s_, wall_s}, {&kinetic_, kinetic}, {&strain_, strain}, {&iterations_, iterations}})
       series->append(&value);
     if (u_free) {
       const std::string name = io::format("fields/displacement_mm_%06ld", k);
@@ -100,8 +102,10 @@ DistributedRunSummary run_distributed(const scenario::Scenario& sc, const std::f
   MPI_Comm_rank(comm, &rank);
   DistributedRunSummary summary;
   MPI_Comm_size(comm, &summary.ranks);
-  if (!sc.tools.empty()) throw InputError("roifem-mpi: scenario " + sc.file.string() + " has tools; the distributed model takes loads only");
-  if (sc.rtol) throw InputError("roifem-mpi: scenario " + sc.file.string() + " sets rtol; the distributed model steps at a fixed dt");
+  if (!sc.tools.empty())
+    throw InputError("roifem-mpi: scenario " + sc.file.string() + " has tools; the distributed model takes loads only");
+  if (sc.rtol)
+    throw InputError("roifem-mpi: scenario " + sc.file.string() + " sets rtol; the distributed model steps at a fixed dt");
   on_root(comm, [&] { check_output_directory(out); });  // before any work
   const Stopwatch setup;
   mesh::TetMesh mesh = mesh::read_mesh(sc.mesh);
@@ -114,8 +118,7 @@ DistributedRunSummary run_distributed(const scenario::Scenario& sc, const std::f
   summary.dofs = model.dofs();
   summary.solver = trapezoid.solver();
   summary.setup_s = setup.seconds();
-  const std::string integrator =
-      io::format("trapezoid (PETSc, %s, %d ranks)", summary.solver.c_str(), summary.ranks);
+  const std::string integrator = io::format("trapezoid (PETSc, %s, %d ranks)", summary.solver.c_str(), summary.ranks);
   if (rank == 0) {
     log << io::format("%s: full model, %ld dofs on %d ranks (%ld nodes, %ld elements, %s), %s\n", sc.file.string().c_str(),
                       summary.dofs, summary.ranks, static_cast<long>(mesh.num_nodes()), static_cast<long>(mesh.num_tets()),
@@ -153,15 +156,19 @@ DistributedRunSummary run_distributed(const scenario::Scenario& sc, const std::f
   std::nth_element(step_s.begin(), step_s.begin() + static_cast<long>(step_s.size() / 2), step_s.end());
   summary.steps = sc.steps;
   summary.step_s_median = step_s.empty() ? 0 : step_s[step_s.size() / 2];
-  summary.iterations_per_step = sc.steps > 0 ? static_cast<double>(trapezoid.total_iterations()) / static_cast<double>(sc.steps) : 0;
+  summary.iterations_per_step =
+      sc.steps > 0 ? static_cast<double>(trapezoid.total_iterations()) / static_cast<double>(sc.steps) : 0;
   summary.final_kinetic_J = trapezoid.kinetic_energy();
   summary.final_strain_J = trapezoid.strain_energy();
-  summary.peak_rss_mb = peak_resident_megabytes(comm);
+  const ResidentMemory memory = peak_resident_megabytes(comm);
+  summary.peak_rss_mb = memory.largest;
+  summary.total_rss_mb = memory.total;
   if (rank == 0)
-    log << io::format("done: %ld steps, median %.4f s per step, %.1f KSP iterations per step; final kinetic %.3e J, strain %.3e J; "
-                      "peak memory %.0f MB on one rank\nresults: %s (ParaView: results.xdmf)\n",
-                      summary.steps, summary.step_s_median, summary.iterations_per_step, summary.final_kinetic_J,
-                      summary.final_strain_J, summary.peak_rss_mb, (out / "results.h5").string().c_str());
+    log << io::format(
+        "done: %ld steps, median %.4f s per step, %.1f KSP iterations per step; final kinetic %.3e J, strain %.3e J; "
+        "peak memory %.0f MB on one rank, %.0f MB on all\nresults: %s (ParaView: results.xdmf)\n",
+        summary.steps, summary.step_s_median, summary.iterations_per_step, summary.final_kinetic_J, summary.final_strain_J,
+        summary.peak_rss_mb, summary.total_rss_mb, (out / "results.h5").string().c_str());
   return summary;
 }
 

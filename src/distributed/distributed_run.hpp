@@ -20,10 +20,11 @@ struct DistributedRunSummary {
   long dofs = 0, steps = 0;
   int ranks = 1;
   std::string solver;
-  double setup_s = 0;           ///< reading, partitioning, assembly, K_eff's factorization or preconditioner
-  double step_s_median = 0;     ///< wall time per step
+  double setup_s = 0;        ///< reading, partitioning, assembly, K_eff's factorization or preconditioner
+  double step_s_median = 0;  ///< wall time per step
   double iterations_per_step = 0;
-  double peak_rss_mb = 0;       ///< the largest resident memory of one rank (MB)
+  double peak_rss_mb = 0;   ///< the largest resident memory of one rank (MB)
+  double total_rss_mb = 0;  ///< the ranks' peak resident memories summed (MB)
   double final_strain_J = 0, final_kinetic_J = 0;
 };
 
@@ -31,7 +32,10 @@ struct DistributedRunSummary {
 DistributedRunSummary run_distributed(const scenario::Scenario& scenario, const std::filesystem::path& out, std::ostream& log,
                                       MPI_Comm comm);
 
-/// The largest resident set of any rank of `comm` so far (MB).
-double peak_resident_megabytes(MPI_Comm comm);
+/// The peak resident sets of the ranks of `comm` so far (MB): the largest and their sum.
+struct ResidentMemory {
+  double largest = 0, total = 0;
+};
+ResidentMemory peak_resident_megabytes(MPI_Comm comm);
 
 }  // namespace roifem::distributed

@@ -76,6 +76,7 @@ DistributedCondensation condense_with_mumps(const DistributedModel& model, const
   }
   const auto s = static_cast<MUMPS_INT>(roi_dofs.size());
   std::vector<MUMPS_INT> schur_variables;
+  schur_variables.reserve(roi_dofs.size());
   for (const Index d : roi_dofs) schur_variables.push_back(static_cast<MUMPS_INT>(model.index_of_free_dof(d) + 1));
   DistributedCondensation out;
   std::vector<double> schur(rank == 0 ? static_cast<std::size_t>(s) * static_cast<std::size_t>(s) : 0);
@@ -136,7 +137,8 @@ DistributedCondensation condense_with_mumps(const DistributedModel& model, const
   }
   if (rank != 0) return out;
   for (MUMPS_INT k = 0; k < patterns; ++k)
-    out.f_tilde.push_back(Eigen::Map<const Vector>(reduced.data() + static_cast<std::size_t>(k) * static_cast<std::size_t>(s), s));
+    out.f_tilde.emplace_back(
+        Eigen::Map<const Vector>(reduced.data() + static_cast<std::size_t>(k) * static_cast<std::size_t>(s), s));
   return out;
 }
 

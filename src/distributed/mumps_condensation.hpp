@@ -12,11 +12,11 @@
 namespace roifem::distributed {
 
 struct DistributedCondensation {
-  DenseMatrix K_tilde;           ///< on rank 0: #d x #d, in the order of the dofs given (empty elsewhere)
-  std::vector<Vector> f_tilde;   ///< on rank 0: per load pattern of the model, #d
-  double factor_s = 0;           ///< the analysis and factorization (wall, s)
-  double factor_entries = 0;     ///< MUMPS's INFOG(29): entries in the factors, all ranks
-  double peak_megabytes = 0;     ///< MUMPS's INFOG(21): the largest memory of one rank in the factorization (MB)
+  DenseMatrix K_tilde;          ///< on rank 0: #d x #d, in the order of the dofs given (empty elsewhere)
+  std::vector<Vector> f_tilde;  ///< on rank 0: per load pattern of the model, #d
+  double factor_s = 0;          ///< the analysis and factorization (wall, s)
+  double factor_entries = 0;    ///< MUMPS's INFOG(29): entries in the factors, all ranks
+  double peak_megabytes = 0;    ///< MUMPS's INFOG(21): the largest memory of one rank in the factorization (MB)
 };
 
 /// The condensation onto `roi_dofs` (the serial free numbering of model.frame, e.g.

@@ -79,13 +79,21 @@ RunError measure(integrators::Integrator& integrator, const model::SecondOrderSy
   return e;
 }
 
+/// The row of `name`: one of the options' extra rows, else the table's (InputError listing the table's names).
+const integrators::IntegratorInfo& row_of(const CompareOptions& o, const std::string& name) {
+  for (const auto& row : o.extra_rows)
+    if (row.name == name) return row;
+  return integrators::integrator_info(name);
+}
+
 /// Largest dt on the output grid's divisors (interval / m) not above `target`.
 double grid_step(double interval, double target) { return interval / std::ceil(interval / target - 1e-9); }
 
 /// Stable in practice: finite and bounded (10x the exact peak) over the window.
-bool runs_stably(const std::string& name, double dt, const model::SecondOrderSystem& system, double t_end, double bound) {
+bool runs_stably(const integrators::IntegratorInfo& info, double dt, const model::SecondOrderSystem& system, double t_end,
+                 double bound) {
   try {
-    auto integrator = integrators::make_integrator(name, dt);
+    auto integrator = integrators::make_integrator(info, {.dt = dt});
     model::State state = model::State::at_rest(system.size());
     integrator->reset(system, state);
     const long steps = std::min<long>(4000, std::lround(t_end / dt));
@@ -214,7 +222,8 @@ void sweep_fixed_steps(Sweep& w, const integrators::IntegratorInfo& info, double
       w.log << format("  %-20s fixed    %9.3g  skipped: %.0f steps > --max-steps\n", info.name.c_str(), dt, w.t_end / dt);
       continue;
     }
-    if (!record_run(w, info.name, "fixed", dt, integrators::make_integrator(info.name, dt))) break;  // smaller dt: longer still
+    if (!record_run(w, info.name, "fixed", dt, integrators::make_integrator(info, {.dt = dt})))
+      break;  // smaller dt: longer still
   }
   report_observed_order(w, info);
 }
@@ -225,18 +234,17 @@ void sweep_tolerances(Sweep& w, const integrators::IntegratorInfo& info, double 
                                            .adaptive = true,
                                            .rtol = tol,
                                            .atol = tol * w.peak};
-    if (!record_run(w, info.name, "adaptive", tol, integrators::make_integrator(info.name, control)))
-      break;  // tighter: longer still
+    if (!record_run(w, info.name, "adaptive", tol, integrators::make_integrator(info, control))) break;  // tighter: longer still
   }
 }
 
 /// Bisection between a stable and an unstable step, around the predicted limit.
 void search_stability_limit(Sweep& w, const integrators::IntegratorInfo& info, double limit) {
   double lo = 0.25 * limit, hi = 2.0 * limit;
-  if (runs_stably(info.name, hi, w.system, w.t_end, 10 * w.peak)) lo = hi;
+  if (runs_stably(info, hi, w.system, w.t_end, 10 * w.peak)) lo = hi;
   for (int k = 0; k < 10 && lo < hi; ++k) {
     const double mid = 0.5 * (lo + hi);
-    (runs_stably(info.name, mid, w.system, w.t_end, 10 * w.peak) ? lo : hi) = mid;
+    (runs_stably(info, mid, w.system, w.t_end, 10 * w.peak) ? lo : hi) = mid;
   }
   w.results.stability.push_back({info.name, limit, lo});
   w.log << format("  %-20s stability limit: predicted %.4e s, largest stable found %.4e s (ratio %.3f)\n", info.name.c_str(),
@@ -268,8 +276,8 @@ void write_compare_files(const CompareOptions& o, const CompareResults& results)
       std::string status = r.status;
       std::replace(status.begin(), status.end(), '"', '\'');
       csv.row(format("%s,%s,%.6g,%d,%ld,%ld,%ld,%ld,%ld,%.6g,%s,%s,%s,%s,\"%s\"", r.integrator.c_str(), r.mode.c_str(),
-                     r.dt_or_tol, integrators::integrator_info(r.integrator).order, r.steps, r.rhs_evals, r.jac_evals,
-                     r.lin_setups, r.lin_solves, r.wall_s, figures ? format("%.6e", r.err_max_mm).c_str() : "",
+                     r.dt_or_tol, row_of(o, r.integrator).order, r.steps, r.rhs_evals, r.jac_evals, r.lin_setups, r.lin_solves,
+                     r.wall_s, figures ? format("%.6e", r.err_max_mm).c_str() : "",
                      figures ? format("%.6e", r.err_rms_mm).c_str() : "",
                      r.status.starts_with("stopped") ? "" : (r.stable ? "1" : "0"),
                      figures ? format("%.6e", r.energy_drift).c_str() : "", status.c_str()));
@@ -324,8 +332,10 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
   if (names.empty())  // every integrator that applies: the tools' DAE forms where there are tools, ...
     for (const auto& info : integrators::integrator_table())
       if (applies(info)) names.push_back(info.name);
+  if (o.integrators.empty())
+    for (const auto& info : o.extra_rows) names.push_back(info.name);
   for (const auto& name : names) {  // unknown names, and a DAE form that does not apply, fail before any work
-    const integrators::IntegratorInfo& info = integrators::integrator_info(name);
+    const integrators::IntegratorInfo& info = row_of(o, name);
     if (info.needs_tools && !system.constrained)
       throw InputError("compare: " + name + " integrates a model with tools ([[tool]]) as a DAE, and " + sc.file.string() +
                        (built->condensation
@@ -347,7 +357,7 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
                 modal.alpha());
 
   for (const auto& name : names) {
-    const integrators::IntegratorInfo& info = integrators::integrator_info(name);
+    const integrators::IntegratorInfo& info = row_of(o, name);
     const double limit = integrators::predicted_stability_limit(info, modal.frequencies(), modal.alpha());
     if (info.fixed_step) sweep_fixed_steps(w, info, limit);
     if (info.adaptive) sweep_tolerances(w, info, limit);

@@ -13,15 +13,18 @@
 #include <string>
 #include <vector>
 
+#include "integrators/integrator_table.hpp"
 #include "scenario/scenario.hpp"
 
 namespace roifem::experiments {
 
 struct CompareOptions {
   std::filesystem::path out;
-  std::vector<std::string> integrators;  ///< empty: all
-  double t_end = 0;                      ///< s of simulated time (0: the scenario's dt * steps)
-  int fixed_levels = 5;                  ///< dt = T/2^0 .. T/2^(levels-1), T the scenario's dt
+  std::vector<std::string> integrators;  ///< empty: all (the table's that apply, then extra_rows)
+  /// Integrators beyond the table, by the same rules (roifem-mpi compare: PETSc's TS methods).
+  std::vector<integrators::IntegratorInfo> extra_rows;
+  double t_end = 0;      ///< s of simulated time (0: the scenario's dt * steps)
+  int fixed_levels = 5;  ///< dt = T/2^0 .. T/2^(levels-1), T the scenario's dt
   std::vector<double> tolerances{1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8};
   long max_steps = 200000;  ///< fixed-step runs needing more are skipped
   double max_run_s = 60;    ///< a run taking longer is stopped: its row keeps the reason, no figures (tighter ones not run)

@@ -9,9 +9,12 @@
 #include "condensation/reduced_model.hpp"
 #include "distributed/condensed_roi.hpp"
 #include "distributed/distributed_trapezoid.hpp"
+#include "distributed/petsc_ts.hpp"
 #include "fem/element.hpp"
 #include "integrators/trapezoid.hpp"
+#include "mesh/box_mesh.hpp"
 #include "mesh/gmsh_reader.hpp"
+#include "model/modal_reference.hpp"
 #include "roi/roi.hpp"
 
 namespace roifem::distributed {
@@ -50,7 +53,8 @@ TEST(DistributedModel, NumbersEveryFreeNodeOnceInContiguousRanges) {
   EXPECT_EQ(3 * m.nodes.count(), brain.frame.dofs->num_free());
   int size = 1;
   MPI_Comm_size(world(), &size);
-  for (int r = 0; r < size; ++r) EXPECT_GT(m.nodes.first[static_cast<std::size_t>(r) + 1], m.nodes.first[static_cast<std::size_t>(r)]);
+  for (int r = 0; r < size; ++r)
+    EXPECT_GT(m.nodes.first[static_cast<std::size_t>(r) + 1], m.nodes.first[static_cast<std::size_t>(r)]);
   for (std::size_t i = 0; i < m.nodes.owned_nodes.size(); ++i)
     EXPECT_EQ(m.nodes.number[static_cast<std::size_t>(m.nodes.owned_nodes[i])], m.nodes.owned_begin() + static_cast<PetscInt>(i));
 }
@@ -111,7 +115,8 @@ double trapezoid_gap(const Brain& brain, const std::string& prefix, long steps, 
   }
   const double strain = 0.5 * state.u.dot(brain.serial.system.K * state.u);
   EXPECT_NEAR(distributed.strain_energy(), strain, 1e-7 * strain);
-  if (iterations_per_step) *iterations_per_step = static_cast<double>(distributed.total_iterations()) / static_cast<double>(steps);
+  if (iterations_per_step)
+    *iterations_per_step = static_cast<double>(distributed.total_iterations()) / static_cast<double>(steps);
   return gap / scale;
 }
 
@@ -201,6 +206,63 @@ TEST(MumpsCondensation, NamesAnEmptyRoi) {
   const Brain brain;
   const DistributedModel m = distribute_model(brain.frame, world());
   EXPECT_THROW((void)condense_with_mumps(m, {}), ModelError);
+}
+
+/// PETSc's TS integrators (one rank's, on every rank alike).
+TEST(PetscTs, ThetaOneHalfIsTheTrapezoidalRule) {
+  // Crank-Nicolson on y = [u; v] and Newmark's average acceleration are the same recurrence on a
+  // linear system (from the same consistent start): two implementations, one answer.
+  const Brain brain;
+  const model::SecondOrderSystem& system = brain.serial.system;
+  PetscTs theta(PetscTs::Method::theta, 0.05);
+  integrators::Trapezoid trapezoid(0.05);
+  auto a = model::State::at_rest(system.size()), b = a;
+  theta.reset(system, a);
+  trapezoid.reset(system, b);
+  double gap = 0, scale = 0;
+  for (int k = 1; k <= 40; ++k) {
+    theta.advance_to(0.05 * k, a);
+    trapezoid.advance_to(0.05 * k, b);
+    EXPECT_DOUBLE_EQ(a.t, b.t);
+    gap = std::max(gap, (a.u - b.u).lpNorm<Eigen::Infinity>());
+    scale = std::max(scale, b.u.lpNorm<Eigen::Infinity>());
+  }
+  EXPECT_LT(gap / scale, 1e-9);
+  EXPECT_EQ(theta.stats().steps, 40);
+  EXPECT_EQ(theta.stats().lin_setups, 1);  // a fixed step: one factorization
+}
+
+/// The largest error of petsc-alpha2 at step dt against the exact modal solution of a damped beam
+/// (60 x 20 x 20 mm, held at one end, its far end pulled in z with a ramp of 0.2 s) over 0.4 s.
+double alpha2_error(double dt) {
+  const mesh::TetMesh beam = mesh::structured_box_mesh(6, 2, 2, 0.06, 0.02, 0.02);
+  const model::FemModel m = model::build_fem_model(beam, fem::Material::from_young_poisson(3000, 0.45, 1000, 0.8), {"x0"},
+                                                   {{"x1", Vec3(0, 0, 1e-3), model::Ramp{0.2}, {}}});
+  const model::ModalReference exact(m.system, model::State::at_rest(m.system.size()));
+  PetscTs alpha2(PetscTs::Method::alpha2, dt);
+  auto state = model::State::at_rest(m.system.size());
+  alpha2.reset(m.system, state);
+  double error = 0;
+  for (long k = 1; k <= std::lround(0.4 / dt); ++k) {
+    alpha2.advance_to(static_cast<double>(k) * dt, state);
+    error = std::max(error, (state.u - exact.displacement(state.t)).lpNorm<Eigen::Infinity>());
+  }
+  return error;
+}
+
+TEST(PetscTs, Alpha2ConvergesAtSecondOrderToTheExactModalSolution) {
+  const double coarse = alpha2_error(0.001), fine = alpha2_error(0.0005);
+  const double order = std::log2(coarse / fine);
+  EXPECT_GT(order, 1.8) << coarse << " " << fine;
+  EXPECT_LT(order, 2.3) << coarse << " " << fine;
+}
+
+TEST(PetscTs, RowsMakeTheirIntegratorsWithAFixedStepOnly) {
+  for (const integrators::IntegratorInfo& row : petsc_ts_rows()) {
+    EXPECT_EQ(row.make(row, {.dt = 0.01})->name(), row.name);
+    EXPECT_TRUE(row.fixed_step && !row.adaptive) << row.name;
+    EXPECT_EQ(row.family, integrators::Family::petsc);
+  }
 }
 
 }  // namespace
