@@ -25,6 +25,7 @@ struct DistributedRunSummary {
   double iterations_per_step = 0;
   double peak_rss_mb = 0;   ///< the largest resident memory of one rank (MB)
   double total_rss_mb = 0;  ///< the ranks' peak resident memories summed (MB)
+  double now_rss_mb = 0;    ///< the largest resident memory of one rank at the end (MB)
   double final_strain_J = 0, final_kinetic_J = 0;
 };
 
@@ -32,9 +33,11 @@ struct DistributedRunSummary {
 DistributedRunSummary run_distributed(const scenario::Scenario& scenario, const std::filesystem::path& out, std::ostream& log,
                                       MPI_Comm comm);
 
-/// The peak resident sets of the ranks of `comm` so far (MB): the largest and their sum.
+/// The resident sets of the ranks of `comm` (MB): their peaks so far (the largest and the sum) and
+/// the largest now (after the transient peaks of reading the mesh with Gmsh, a factorization's
+/// workspace).
 struct ResidentMemory {
-  double largest = 0, total = 0;
+  double largest = 0, total = 0, largest_now = 0;
 };
 ResidentMemory peak_resident_megabytes(MPI_Comm comm);
 
