@@ -17,6 +17,7 @@
 #include "distributed/condensed_roi.hpp"
 #include "distributed/distributed_run.hpp"
 #include "distributed/petsc_ts.hpp"
+#include "distributed/root_work.hpp"
 #include "experiments/compare_experiment.hpp"
 #include "fem/element.hpp"
 #include "integrators/trapezoid.hpp"
@@ -50,7 +51,7 @@ void condense(const roifem::scenario::Scenario& sc, const std::filesystem::path&
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   if (!sc.roi) throw roifem::InputError("roifem-mpi condense: scenario " + sc.file.string() + " has no [roi] to condense onto");
-  if (rank == 0) roifem::check_output_directory(out);
+  distributed::on_root(comm, [&] { roifem::check_output_directory(out); });
   roifem::mesh::TetMesh mesh = roifem::mesh::read_mesh(sc.mesh);
   roifem::mesh::check_mesh(mesh);
   mesh = roifem::fem::element_mesh(std::move(mesh), sc.element);

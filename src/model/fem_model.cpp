@@ -87,6 +87,22 @@ LoadHistory loads_on(const mesh::TetMesh& mesh, const fem::MaterialMap& material
   return history;
 }
 
+/// A model of `mesh` with its materials (validated) and element, nothing assembled yet.
+FemModel unassembled_model(const mesh::TetMesh& mesh, const fem::MaterialMap& materials, fem::Element element) {
+  for (const fem::Material& m : materials.materials()) m.validate();
+  FemModel model;
+  model.mesh = &mesh;
+  model.material = materials.base();
+  model.materials = materials;
+  model.element = element;
+  return model;
+}
+
+void require_a_support(const mesh::TetMesh& mesh, const fem::DofMap& dofs) {
+  if (dofs.num_constrained() == 0)
+    throw ModelError(mesh.source + ": no node is fixed, so the brain can move as a rigid body (fix a set such as 'base')");
+}
+
 }  // namespace
 
 std::string SetTool::describe() const {
@@ -117,15 +133,9 @@ FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::Material& materia
 FemModel build_fem_model_without_stiffness(const mesh::TetMesh& mesh, const fem::MaterialMap& materials,
                                            const std::vector<std::string>& fixed_sets, const std::vector<SetLoad>& loads,
                                            fem::Element element) {
-  for (const fem::Material& m : materials.materials()) m.validate();
-  FemModel model;
-  model.mesh = &mesh;
-  model.material = materials.base();
-  model.materials = materials;
-  model.element = element;
+  FemModel model = unassembled_model(mesh, materials, element);
   model.dofs = std::make_unique<fem::DofMap>(fixed_constraints(mesh, fixed_sets));
-  if (model.dofs->num_constrained() == 0)
-    throw ModelError(mesh.source + ": no node is fixed, so the brain can move as a rigid body (fix a set such as 'base')");
+  require_a_support(mesh, *model.dofs);
   model.system = assemble(mesh, materials, element, *model.dofs, false);
   model.system.load = loads_on(mesh, materials, *model.dofs, loads, model.warnings);
   return model;
@@ -133,16 +143,10 @@ FemModel build_fem_model_without_stiffness(const mesh::TetMesh& mesh, const fem:
 
 FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::MaterialMap& materials, const std::vector<std::string>& fixed_sets,
                          const std::vector<SetLoad>& loads, const std::vector<SetTool>& tools, fem::Element element) {
-  for (const fem::Material& m : materials.materials()) m.validate();
-  FemModel model;
-  model.mesh = &mesh;
-  model.material = materials.base();
-  model.materials = materials;
-  model.element = element;
+  FemModel model = unassembled_model(mesh, materials, element);
   fem::Constraints constraints = fixed_constraints(mesh, fixed_sets);
   const fem::DofMap fixed_only(constraints);
-  if (fixed_only.num_constrained() == 0)
-    throw ModelError(mesh.source + ": no node is fixed, so the brain can move as a rigid body (fix a set such as 'base')");
+  require_a_support(mesh, fixed_only);
   const std::vector<Tool> attached = attach_tools(mesh, constraints, tools);
   if (attached.empty()) {
     model.dofs = std::make_unique<fem::DofMap>(constraints);

@@ -38,6 +38,12 @@ struct Brain {
   model::FemModel serial, frame;
 };
 
+/// PETSc options under a prefix: {"ksp_type", "cg"} sets -PREFIXksp_type cg.
+void set_options(const std::string& prefix, std::initializer_list<std::pair<const char*, const char*>> options) {
+  for (const auto& [key, value] : options)
+    ASSERT_EQ(PetscOptionsSetValue(nullptr, ("-" + prefix + key).c_str(), value), 0) << key;
+}
+
 double relative_gap(const Vector& a, const Vector& b) { return (a - b).lpNorm<Eigen::Infinity>() / b.lpNorm<Eigen::Infinity>(); }
 
 TEST(DistributedModel, NumbersEveryFreeNodeOnceInContiguousRanges) {
@@ -126,9 +132,7 @@ TEST(DistributedTrapezoid, MumpsCholeskyMatchesTheSerialTrapezoidOverThePapers20
 }
 
 TEST(DistributedTrapezoid, GamgPreconditionedCgMatchesTheSerialTrapezoidTo1e8) {
-  ASSERT_EQ(PetscOptionsSetValue(nullptr, "-gamg_ksp_type", "cg"), 0);
-  ASSERT_EQ(PetscOptionsSetValue(nullptr, "-gamg_pc_type", "gamg"), 0);
-  ASSERT_EQ(PetscOptionsSetValue(nullptr, "-gamg_ksp_rtol", "1e-10"), 0);
+  set_options("gamg_", {{"ksp_type", "cg"}, {"pc_type", "gamg"}, {"ksp_rtol", "1e-10"}});
   const Brain brain;
   double iterations = 0;
   EXPECT_LT(trapezoid_gap(brain, "gamg_", 200, &iterations), 1e-8);
@@ -137,10 +141,7 @@ TEST(DistributedTrapezoid, GamgPreconditionedCgMatchesTheSerialTrapezoidTo1e8) {
 }
 
 TEST(DistributedTrapezoid, BoomerAmgPreconditionedCgMatchesTheSerialTrapezoidTo1e8) {
-  ASSERT_EQ(PetscOptionsSetValue(nullptr, "-boomer_ksp_type", "cg"), 0);
-  ASSERT_EQ(PetscOptionsSetValue(nullptr, "-boomer_pc_type", "hypre"), 0);
-  ASSERT_EQ(PetscOptionsSetValue(nullptr, "-boomer_pc_hypre_type", "boomeramg"), 0);
-  ASSERT_EQ(PetscOptionsSetValue(nullptr, "-boomer_ksp_rtol", "1e-10"), 0);
+  set_options("boomer_", {{"ksp_type", "cg"}, {"pc_type", "hypre"}, {"pc_hypre_type", "boomeramg"}, {"ksp_rtol", "1e-10"}});
   const Brain brain;
   EXPECT_LT(trapezoid_gap(brain, "boomer_", 50), 1e-8);
 }
@@ -151,9 +152,7 @@ TEST(DistributedTrapezoid, TenNodeTetrahedraMatchTheSerialTrapezoid) {
 }
 
 TEST(DistributedTrapezoid, NamesTheStepWhereTheSolverFails) {
-  ASSERT_EQ(PetscOptionsSetValue(nullptr, "-fail_ksp_type", "cg"), 0);
-  ASSERT_EQ(PetscOptionsSetValue(nullptr, "-fail_pc_type", "none"), 0);
-  ASSERT_EQ(PetscOptionsSetValue(nullptr, "-fail_ksp_max_it", "2"), 0);
+  set_options("fail_", {{"ksp_type", "cg"}, {"pc_type", "none"}, {"ksp_max_it", "2"}});
   const Brain brain;
   const DistributedModel m = distribute_model(brain.frame, world());
   DistributedTrapezoid trapezoid(m, 0.05, 0.0, "fail_");
