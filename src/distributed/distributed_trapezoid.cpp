@@ -40,6 +40,7 @@ DistributedTrapezoid::DistributedTrapezoid(const DistributedModel& model, double
   f_ = model.new_vector();
   u_next_ = model.new_vector();
   a_next_ = model.new_vector();
+  product_ = model.new_vector();
   // At rest: M a_0 = f(t0).
   model.load_at(t0, f_.get());
   check(VecPointwiseDivide(a_.get(), f_.get(), model.mass.get()), "VecPointwiseDivide");
@@ -99,18 +100,16 @@ std::string DistributedTrapezoid::solver() const {
 }
 
 double DistributedTrapezoid::kinetic_energy() const {
-  OwnedVec mv = model_.new_vector();
-  check(VecPointwiseMult(mv.get(), model_.mass.get(), v_.get()), "VecPointwiseMult");
+  check(VecPointwiseMult(product_.get(), model_.mass.get(), v_.get()), "VecPointwiseMult");
   PetscScalar e = 0;
-  check(VecDot(mv.get(), v_.get(), &e), "VecDot");
+  check(VecDot(product_.get(), v_.get(), &e), "VecDot");
   return 0.5 * e;
 }
 
 double DistributedTrapezoid::strain_energy() const {
-  OwnedVec ku = model_.new_vector();
-  check(MatMult(model_.K.get(), u_.get(), ku.get()), "MatMult");
+  check(MatMult(model_.K.get(), u_.get(), product_.get()), "MatMult");
   PetscScalar e = 0;
-  check(VecDot(ku.get(), u_.get(), &e), "VecDot");
+  check(VecDot(product_.get(), u_.get(), &e), "VecDot");
   return 0.5 * e;
 }
 

@@ -44,6 +44,7 @@ class DistributedTrapezoid {
   OwnedNullSpace rigid_;
   OwnedKsp ksp_;
   OwnedVec u_, v_, a_, f_, w_, u_next_, a_next_;
+  OwnedVec product_;  // the energies' M v or K u
   PetscInt last_iterations_ = 0;
   long total_iterations_ = 0;
   double setup_s_ = 0;
