@@ -43,6 +43,58 @@ ResidentMemory peak_resident_megabytes(MPI_Comm comm) {
 
 namespace {
 
+/// The energy balance of the run, an observer of its states (model/energy.hpp's, for C = alpha M):
+///   kinetic v^T M v / 2 and strain u^T K u / 2; dissipated D += dt v_mid^T C v_mid with
+///   v_mid = (v_k + v_k+1) / 2; the loads' work W += (u_k+1 - u_k)^T (f_k + f_k+1) / 2,
+/// so that kinetic + strain + D = W exactly for the trapezoidal rule from rest.
+class DistributedEnergyLedger {
+ public:
+  DistributedEnergyLedger(const DistributedModel& model, const DistributedTrapezoid& trapezoid)
+      : model_(model),
+        trapezoid_(trapezoid),
+        u_(model.new_vector()),
+        v_(model.new_vector()),
+        f_(model.new_vector()),
+        f_next_(model.new_vector()),
+        work_(model.new_vector()) {
+    check(VecCopy(trapezoid.u(), u_.get()), "VecCopy");
+    check(VecCopy(trapezoid.v(), v_.get()), "VecCopy");
+    model.load_at(trapezoid.t(), f_.get());
+    update_state_energies();
+  }
+  /// After each step.
+  void record(double dt) {
+    model_.load_at(trapezoid_.t(), f_next_.get());
+    PetscScalar w = 0, d = 0;
+    check(VecAXPY(f_.get(), 1.0, f_next_.get()), "VecAXPY");                   // f_k + f_k+1
+    check(VecWAXPY(work_.get(), -1.0, u_.get(), trapezoid_.u()), "VecWAXPY");  // u_k+1 - u_k
+    check(VecDot(work_.get(), f_.get(), &w), "VecDot");
+    check(VecAXPBYPCZ(work_.get(), 0.5, 0.5, 0.0, v_.get(), trapezoid_.v()), "VecAXPBYPCZ");  // v_mid
+    check(VecPointwiseMult(v_.get(), model_.mass.get(), work_.get()), "VecPointwiseMult");    // M v_mid
+    check(VecDot(v_.get(), work_.get(), &d), "VecDot");
+    external_work_ += 0.5 * w;
+    dissipated_ += dt * model_.alpha * d;
+    std::swap(f_, f_next_);
+    check(VecCopy(trapezoid_.u(), u_.get()), "VecCopy");
+    check(VecCopy(trapezoid_.v(), v_.get()), "VecCopy");
+    update_state_energies();
+  }
+  double kinetic() const { return kinetic_; }
+  double strain() const { return strain_; }
+  double dissipated() const { return dissipated_; }
+  double external_work() const { return external_work_; }
+
+ private:
+  void update_state_energies() {
+    kinetic_ = trapezoid_.kinetic_energy();
+    strain_ = trapezoid_.strain_energy();
+  }
+  const DistributedModel& model_;
+  const DistributedTrapezoid& trapezoid_;
+  OwnedVec u_, v_, f_, f_next_, work_;
+  double kinetic_ = 0, strain_ = 0, dissipated_ = 0, external_work_ = 0;
+};
+
 /// Rank 0's results file: the series appended step by step, the fields every field_every steps.
 class RootRecorder {
  public:
@@ -57,6 +109,8 @@ class RootRecorder {
         wall_s_(h5_.appendable("step_wall_time_s", {})),
         kinetic_(h5_.appendable("energy/kinetic_J", {})),
         strain_(h5_.appendable("energy/strain_J", {})),
+        dissipated_(h5_.appendable("energy/dissipated_J", {})),
+        work_(h5_.appendable("energy/external_work_J", {})),
         iterations_(h5_.appendable("ksp_iterations", {})),
         xdmf_{.h5_name = "results.h5",
               .nodes = frame.mesh->num_nodes(),
@@ -64,9 +118,14 @@ class RootRecorder {
               .nodes_per_tet = frame.mesh->is_quadratic() ? 10 : 4} {
     h5_.attribute("integrator", integrator);
   }
-  void record(long k, double t, double wall_s, double kinetic, double strain, double iterations, const Vector* u_free) {
-    for (auto [series, value] :
-         {std::pair{&time_s_, t}, {&wall_s_, wall_s}, {&kinetic_, kinetic}, {&strain_, strain}, {&iterations_, iterations}})
+  void record(long k, double t, double wall_s, const DistributedEnergyLedger& energy, double iterations, const Vector* u_free) {
+    for (auto [series, value] : {std::pair{&time_s_, t},
+                                 {&wall_s_, wall_s},
+                                 {&kinetic_, energy.kinetic()},
+                                 {&strain_, energy.strain()},
+                                 {&dissipated_, energy.dissipated()},
+                                 {&work_, energy.external_work()},
+                                 {&iterations_, iterations}})
       series->append(&value);
     if (u_free) {
       const std::string name = io::format("fields/displacement_mm_%06ld", k);
@@ -101,7 +160,7 @@ class RootRecorder {
   std::filesystem::path out_;
   AtomicFile file_;
   io::Hdf5Writer h5_;
-  io::AppendableDataset time_s_, wall_s_, kinetic_, strain_, iterations_;
+  io::AppendableDataset time_s_, wall_s_, kinetic_, strain_, dissipated_, work_, iterations_;
   io::XdmfSeries xdmf_;
 };
 
@@ -140,12 +199,13 @@ DistributedRunSummary run_distributed(const scenario::Scenario& sc, const std::f
   }
   std::unique_ptr<RootRecorder> recorder;
   on_root(comm, [&] { recorder = std::make_unique<RootRecorder>(sc, frame, out, integrator); });
+  DistributedEnergyLedger energy(model, trapezoid);
   auto record = [&](long k, double wall_s) {
+    if (k > 0) energy.record(sc.dt);
     const bool field = sc.field_every > 0 && k % sc.field_every == 0;
-    const double kinetic = trapezoid.kinetic_energy(), strain = trapezoid.strain_energy();
     const Vector u = field ? model.gather(trapezoid.u(), false) : Vector();
     on_root(comm, [&] {
-      recorder->record(k, trapezoid.t(), wall_s, kinetic, strain, k > 0 ? trapezoid.last_iterations() : 0, field ? &u : nullptr);
+      recorder->record(k, trapezoid.t(), wall_s, energy, k > 0 ? trapezoid.last_iterations() : 0, field ? &u : nullptr);
     });
   };
   std::vector<double> step_s;
@@ -169,19 +229,23 @@ DistributedRunSummary run_distributed(const scenario::Scenario& sc, const std::f
   summary.step_s_median = step_s.empty() ? 0 : step_s[step_s.size() / 2];
   summary.iterations_per_step =
       sc.steps > 0 ? static_cast<double>(trapezoid.total_iterations()) / static_cast<double>(sc.steps) : 0;
-  summary.final_kinetic_J = trapezoid.kinetic_energy();
-  summary.final_strain_J = trapezoid.strain_energy();
+  summary.final_kinetic_J = energy.kinetic();
+  summary.final_strain_J = energy.strain();
+  summary.final_dissipated_J = energy.dissipated();
+  summary.final_work_J = energy.external_work();
   const ResidentMemory memory = peak_resident_megabytes(comm);
   summary.peak_rss_mb = memory.largest;
   summary.total_rss_mb = memory.total;
   summary.now_rss_mb = memory.largest_now;
   if (rank == 0)
     log << io::format(
-        "done: %ld steps, median %.4f s per step, %.1f KSP iterations per step; final kinetic %.3e J, strain %.3e J; "
+        "done: %ld steps, median %.4f s per step, %.1f KSP iterations per step; final kinetic %.3e J, strain %.3e J, "
+        "work %.3e J, dissipated %.3e J; "
         "peak memory %.0f MB on one rank, %.0f MB on all (%.0f MB on one rank at the end)\nresults: %s (ParaView: "
         "results.xdmf)\n",
         summary.steps, summary.step_s_median, summary.iterations_per_step, summary.final_kinetic_J, summary.final_strain_J,
-        summary.peak_rss_mb, summary.total_rss_mb, summary.now_rss_mb, (out / "results.h5").string().c_str());
+        summary.final_work_J, summary.final_dissipated_J, summary.peak_rss_mb, summary.total_rss_mb, summary.now_rss_mb,
+        (out / "results.h5").string().c_str());
   return summary;
 }
 

@@ -29,10 +29,16 @@ with h5py.File(sys.argv[1], "r") as a, h5py.File(sys.argv[2], "r") as b:
     scale = max(np.abs(b["fields"][k][()]).max() for k in b["fields"])
     assert gap <= 1e-8 * scale, f"fields differ by {gap / scale:.2e} of the largest"
     assert np.allclose(a["time_s"][()], b["time_s"][()], rtol=0, atol=1e-12)
+    for name in ("strain_J", "kinetic_J", "dissipated_J", "external_work_J"):
+        x, y = a["energy/" + name][()], b["energy/" + name][()]
+        energy_gap = np.abs(x - y).max() / np.abs(y).max()
+        assert energy_gap <= 1e-7, f"energy/{name} differs from the serial run's by {energy_gap:.2e} of its largest"
+    e = a["energy"]
+    balance = np.abs(e["kinetic_J"][()] + e["strain_J"][()] + e["dissipated_J"][()] - e["external_work_J"][()]).max()
+    assert balance <= 1e-7 * e["external_work_J"][()].max(), f"energy balance off by {balance:.2e} J"
     strain = np.abs(a["energy/strain_J"][()] - b["energy/strain_J"][()]).max() / b["energy/strain_J"][()].max()
-    assert strain <= 1e-8, f"strain energies differ by {strain:.2e}"
     assert (a["ksp_iterations"][1:] >= 1).all()
-    print(f"fields within {gap / scale:.1e} of the serial run's; strain energy within {strain:.1e}")
+    print(f"fields within {gap / scale:.1e} of the serial run's; strain energy within {strain:.1e}; balance {balance:.1e} J")
 PY
 # An output directory under a file: every rank stops, the message names it, nothing is written.
 touch "$work/a-file"
