@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "common/errors.hpp"
 #include "common/number_text.hpp"
@@ -15,47 +16,38 @@ namespace roifem::distributed {
 namespace {
 
 using RowMajor = Eigen::SparseMatrix<double, Eigen::RowMajor, PetscInt>;
-using ConstMap = Eigen::Map<const Vector>;
 
-/// A read-only view of a sequential Vec's values for the lifetime of the object.
-class ReadView {
+/// A view of a sequential Vec's values for the lifetime of the object: read-only, or writable.
+template <bool Writable>
+class VecView {
  public:
-  explicit ReadView(Vec v) : v_(v) {
+  using Scalar = std::conditional_t<Writable, PetscScalar, const PetscScalar>;
+  explicit VecView(Vec v) : v_(v) {
     PetscInt n = 0;
     check(VecGetLocalSize(v, &n), "VecGetLocalSize");
-    check(VecGetArrayRead(v, &data_), "VecGetArrayRead");
+    if constexpr (Writable)
+      check(VecGetArray(v, &data_), "VecGetArray");
+    else
+      check(VecGetArrayRead(v, &data_), "VecGetArrayRead");
     n_ = n;
   }
-  ReadView(const ReadView&) = delete;
-  ReadView& operator=(const ReadView&) = delete;
-  ~ReadView() { VecRestoreArrayRead(v_, &data_); }
-  ConstMap map() const { return {data_, n_}; }
+  VecView(const VecView&) = delete;
+  VecView& operator=(const VecView&) = delete;
+  ~VecView() {
+    if constexpr (Writable)
+      VecRestoreArray(v_, &data_);
+    else
+      VecRestoreArrayRead(v_, &data_);
+  }
+  Eigen::Map<std::conditional_t<Writable, Vector, const Vector>> map() const { return {data_, n_}; }
 
  private:
   Vec v_;
-  const PetscScalar* data_ = nullptr;
+  Scalar* data_ = nullptr;
   Index n_ = 0;
 };
-
-/// A writable view.
-class WriteView {
- public:
-  explicit WriteView(Vec v) : v_(v) {
-    PetscInt n = 0;
-    check(VecGetLocalSize(v, &n), "VecGetLocalSize");
-    check(VecGetArray(v, &data_), "VecGetArray");
-    n_ = n;
-  }
-  WriteView(const WriteView&) = delete;
-  WriteView& operator=(const WriteView&) = delete;
-  ~WriteView() { VecRestoreArray(v_, &data_); }
-  Eigen::Map<Vector> map() { return {data_, n_}; }
-
- private:
-  Vec v_;
-  PetscScalar* data_ = nullptr;
-  Index n_ = 0;
-};
+using ReadView = VecView<false>;
+using WriteView = VecView<true>;
 
 OwnedVec sequential_vector(const Eigen::Ref<const Vector>& values) {
   OwnedVec v;
