@@ -23,8 +23,6 @@
 #include "integrators/trapezoid.hpp"
 #include "io/csv.hpp"
 #include "io/hdf5_file.hpp"
-#include "mesh/gmsh_reader.hpp"
-#include "mesh/mesh_checks.hpp"
 #include "roi/roi.hpp"
 #include "simulation/scenario_model.hpp"
 
@@ -52,11 +50,9 @@ void condense(const roifem::scenario::Scenario& sc, const std::filesystem::path&
   MPI_Comm_rank(comm, &rank);
   if (!sc.roi) throw roifem::InputError("roifem-mpi condense: scenario " + sc.file.string() + " has no [roi] to condense onto");
   distributed::on_root(comm, [&] { roifem::check_output_directory(out); });
-  roifem::mesh::TetMesh mesh = roifem::mesh::read_mesh(sc.mesh);
-  roifem::mesh::check_mesh(mesh);
-  mesh = roifem::fem::element_mesh(std::move(mesh), sc.element);
-  const auto frame = roifem::model::build_fem_model_without_stiffness(
-      mesh, roifem::fem::MaterialMap(mesh, sc.material, sc.material_regions), sc.fixed_sets, sc.loads, sc.element);
+  const auto built = distributed::scenario_frame(sc);
+  const roifem::mesh::TetMesh& mesh = built->mesh;
+  const roifem::model::FemModel& frame = built->model;
   const std::vector<int> roi_nodes = roifem::roi::select_roi_nodes(mesh, *frame.dofs, *sc.roi);
   const std::vector<Index> d = distributed::roi_free_dofs(*frame.dofs, roi_nodes);
   const roifem::Stopwatch clock;

@@ -1,8 +1,11 @@
 #include "distributed/distributed_model.hpp"
 
 #include "common/errors.hpp"
+#include "fem/element.hpp"
 #include "fem/tet10.hpp"
 #include "fem/tet4.hpp"
+#include "mesh/gmsh_reader.hpp"
+#include "mesh/mesh_checks.hpp"
 
 namespace roifem::distributed {
 
@@ -77,6 +80,16 @@ Vector DistributedModel::gather(Vec x, bool to_all) const {
   for (Index i = 0; i < serial.size(); ++i) serial(i) = w[index_of_free_dof(i)];
   check(VecRestoreArrayRead(whole.get(), &w), "VecRestoreArrayRead");
   return serial;
+}
+
+std::unique_ptr<ScenarioFrame> scenario_frame(const scenario::Scenario& sc) {
+  auto f = std::make_unique<ScenarioFrame>();
+  f->mesh = mesh::read_mesh(sc.mesh);
+  mesh::check_mesh(f->mesh);
+  f->mesh = fem::element_mesh(std::move(f->mesh), sc.element);
+  f->model = model::build_fem_model_without_stiffness(f->mesh, fem::MaterialMap(f->mesh, sc.material, sc.material_regions),
+                                                      sc.fixed_sets, sc.loads, sc.element);
+  return f;
 }
 
 DistributedModel distribute_model(const model::FemModel& frame, MPI_Comm comm) {

@@ -5,11 +5,13 @@
 /// M as a Vec, C = alpha M, and the load patterns with their ramps. Indexed by the partition's
 /// node numbers (node_partition.hpp): dof 3 number[n] + c. The arithmetic per element is the
 /// serial assembly's (fem/tet4.hpp, fem/tet10.hpp), so K differs from it by the order of sums only.
+#include <memory>
 #include <vector>
 
 #include "distributed/node_partition.hpp"
 #include "distributed/petsc_handle.hpp"
 #include "model/fem_model.hpp"
+#include "scenario/scenario.hpp"
 
 namespace roifem::distributed {
 
@@ -38,6 +40,14 @@ struct DistributedModel {
   /// The distributed index of a serial free dof.
   PetscInt index_of_free_dof(Index free) const;
 };
+
+/// What every rank builds of a scenario before distributing it: the mesh (read, checked, and made
+/// the scenario element's) and the model without K. Held by unique_ptr: the model refers to its mesh.
+struct ScenarioFrame {
+  mesh::TetMesh mesh;
+  model::FemModel model;
+};
+std::unique_ptr<ScenarioFrame> scenario_frame(const scenario::Scenario& scenario);
 
 /// Distributes `frame` (build_fem_model_without_stiffness) over `comm` and assembles K.
 /// InputError for the nodal-pressure element (its K couples nodes two elements apart; not built

@@ -17,8 +17,6 @@
 #include "io/csv.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/xdmf.hpp"
-#include "mesh/gmsh_reader.hpp"
-#include "mesh/mesh_checks.hpp"
 #include "simulation/progress.hpp"
 
 namespace roifem::distributed {
@@ -178,11 +176,9 @@ DistributedRunSummary run_distributed(const scenario::Scenario& sc, const std::f
     throw InputError("roifem-mpi: scenario " + sc.file.string() + " sets rtol; the distributed model steps at a fixed dt");
   on_root(comm, [&] { check_output_directory(out); });  // before any work
   const Stopwatch setup;
-  mesh::TetMesh mesh = mesh::read_mesh(sc.mesh);
-  mesh::check_mesh(mesh);
-  mesh = fem::element_mesh(std::move(mesh), sc.element);
-  const model::FemModel frame = model::build_fem_model_without_stiffness(
-      mesh, fem::MaterialMap(mesh, sc.material, sc.material_regions), sc.fixed_sets, sc.loads, sc.element);
+  const std::unique_ptr<ScenarioFrame> built = scenario_frame(sc);
+  const mesh::TetMesh& mesh = built->mesh;
+  const model::FemModel& frame = built->model;
   const DistributedModel model = distribute_model(frame, comm);
   DistributedTrapezoid trapezoid(model, sc.dt);
   summary.dofs = model.dofs();
