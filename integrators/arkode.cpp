@@ -71,7 +71,7 @@ int Arkode::mass(double, SUNMatrix M, void* self, N_Vector, N_Vector, N_Vector) 
   return 0;
 }
 
-void Arkode::reset(const model::SecondOrderSystem& system, const model::State& initial) {
+void Arkode::prepare(const model::SecondOrderSystem& system, const model::State& initial) {
   system_ = &system;
   t0_ = initial.t;
   memory_.reset();  // before the solvers and vectors it refers to
@@ -179,8 +179,7 @@ void Arkode::attach_linear_solvers() {
   if (!control_.adaptive) check(ARKStepSetDeltaGammaMax(memory, 1e-8), "ARKStepSetDeltaGammaMax");
 }
 
-void Arkode::advance_to(double t_out, model::State& state) {
-  if (!memory_) throw Error("internal: " + method_.name + ": advance_to before reset");
+void Arkode::advance(double t_out, model::State& state) {
   check(ARKStepSetStopTime(memory_.get(), t_out), "ARKStepSetStopTime");
   double t_reached = state.t;
   const int flag = ARKStepEvolve(memory_.get(), t_out, y_.get(), &t_reached, ARK_NORMAL);
@@ -197,9 +196,6 @@ void Arkode::advance_to(double t_out, model::State& state) {
                       "): " + sundials::flag_name(ARKStepGetReturnFlagName(flag)) + last_error_.detail());
   const Index n = system_->size();
   const auto y = sundials::view(y_.get());
-  if (!y.allFinite())
-    throw SolverError(method_.name + ": the solution diverged (non-finite values) by t = " + number_text(t_reached) +
-                      " s, step " + std::to_string(steps) + "; the step is beyond the method's stability limit");
   state.t = t_reached;
   state.u = y.head(n);
   state.v = y.tail(n);

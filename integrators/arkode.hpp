@@ -49,11 +49,11 @@ class Arkode final : public Integrator {
  public:
   Arkode(ArkodeMethod method, StepControl control);
   std::string_view name() const override { return method_.name; }
-  void reset(const model::SecondOrderSystem& system, const model::State& initial) override;
-  void advance_to(double t_out, model::State& state) override;
   Stats stats() const override;
 
  private:
+  void prepare(const model::SecondOrderSystem& system, const model::State& initial) override;
+  void advance(double t_out, model::State& state) override;
   static int rhs(double t, N_Vector y, N_Vector ydot, void* self);
   static int jacobian(double t, N_Vector y, N_Vector fy, SUNMatrix J, void* self, N_Vector, N_Vector, N_Vector);
   static int unit_weights(N_Vector y, N_Vector ewt, void* self);

@@ -41,7 +41,7 @@ int GslOdeiv2::jacobian(double, const double*, double* dfdy, double dfdt[], void
   return GSL_SUCCESS;
 }
 
-void GslOdeiv2::reset(const model::SecondOrderSystem& system, const model::State& initial) {
+void GslOdeiv2::prepare(const model::SecondOrderSystem& system, const model::State& initial) {
   const Index n = system.size();
   if (n > max_gsl_dofs)
     throw InputError(name_ + ": GSL's dense Jacobian is limited to " + std::to_string(max_gsl_dofs) + " dofs; this system has " +
@@ -65,8 +65,7 @@ void GslOdeiv2::reset(const model::SecondOrderSystem& system, const model::State
   gsl_odeiv2_driver_set_nmax(driver_.get(), 10000000);
 }
 
-void GslOdeiv2::advance_to(double t_out, model::State& state) {
-  if (!driver_) throw Error("internal: " + name_ + ": advance_to before reset");
+void GslOdeiv2::advance(double t_out, model::State& state) {
   int status = GSL_SUCCESS;
   if (control_.adaptive) {
     status = gsl_odeiv2_driver_apply(driver_.get(), &t_, t_out, y_.data());
@@ -79,9 +78,6 @@ void GslOdeiv2::advance_to(double t_out, model::State& state) {
   }
   if (pending_) std::rethrow_exception(std::exchange(pending_, nullptr));
   if (status != GSL_SUCCESS) throw SolverError(name_ + ": failed at t = " + number_text(t_) + " s: " + gsl_strerror(status));
-  if (!y_.allFinite())
-    throw SolverError(name_ + ": the solution diverged (non-finite values) by t = " + number_text(t_) +
-                      " s; the step is beyond the method's stability limit");
   stats_.steps = static_cast<long>(driver_->e->count);  // cumulative; the driver's n is per call
   stats_.failed_steps = static_cast<long>(driver_->e->failed_steps);
   const Index n = system_->size();

@@ -29,11 +29,11 @@ class GslOdeiv2 final : public Integrator {
  public:
   GslOdeiv2(std::string name, const gsl_odeiv2_step_type* stepper, StepControl control);
   std::string_view name() const override { return name_; }
-  void reset(const model::SecondOrderSystem& system, const model::State& initial) override;
-  void advance_to(double t_out, model::State& state) override;
   Stats stats() const override { return stats_; }
 
  private:
+  void prepare(const model::SecondOrderSystem& system, const model::State& initial) override;
+  void advance(double t_out, model::State& state) override;
   static int rhs(double t, const double y[], double dydt[], void* self);
   static int jacobian(double t, const double y[], double* dfdy, double dfdt[], void* self);
 

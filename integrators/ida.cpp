@@ -42,7 +42,7 @@ int Ida::jacobian(double, double c_j, N_Vector, N_Vector, N_Vector, SUNMatrix J,
   return guarded_callback(me->pending_, -1, [&] { sundials::write_newton_matrix(me->dF_dy_, me->dF_dyp_, c_j, J); });
 }
 
-void Ida::reset(const model::SecondOrderSystem& system, const model::State& initial) {
+void Ida::prepare(const model::SecondOrderSystem& system, const model::State& initial) {
   system_ = &system;
   const Index n = system.size();
   force_.resize(n);
@@ -85,8 +85,7 @@ void Ida::reset(const model::SecondOrderSystem& system, const model::State& init
   check(IDASetJacFn(memory_.get(), jacobian), "IDASetJacFn");
 }
 
-void Ida::advance_to(double t_out, model::State& state) {
-  if (!memory_) throw Error("internal: " + name_ + ": advance_to before reset");
+void Ida::advance(double t_out, model::State& state) {
   IDASetStopTime(memory_.get(), t_out);
   double t_reached = state.t;
   const int flag = IDASolve(memory_.get(), t_out, &t_reached, y_.get(), yp_.get(), IDA_NORMAL);
@@ -98,7 +97,6 @@ void Ida::advance_to(double t_out, model::State& state) {
                       "): " + sundials::flag_name(IDAGetReturnFlagName(flag)) + last_error_.detail());
   const Index n = system_->size();
   const auto y = sundials::view(y_.get());
-  if (!y.allFinite()) throw SolverError(name_ + ": non-finite solution at t = " + number_text(t_reached) + " s");
   state.t = t_reached;
   state.u = y.head(n);
   state.v = y.tail(n);

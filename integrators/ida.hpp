@@ -22,11 +22,11 @@ class Ida final : public Integrator {
  public:
   Ida(std::string name, int max_order, StepControl control);
   std::string_view name() const override { return name_; }
-  void reset(const model::SecondOrderSystem& system, const model::State& initial) override;
-  void advance_to(double t_out, model::State& state) override;
   Stats stats() const override;
 
  private:
+  void prepare(const model::SecondOrderSystem& system, const model::State& initial) override;
+  void advance(double t_out, model::State& state) override;
   static int residual(double t, N_Vector y, N_Vector yp, N_Vector r, void* self);
   static int jacobian(double t, double c_j, N_Vector, N_Vector, N_Vector, SUNMatrix J, void* self, N_Vector, N_Vector, N_Vector);
 

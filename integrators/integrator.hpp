@@ -3,9 +3,16 @@
 ///   M u'' + C u' + K u = f(t)
 /// from a State, converting it to whatever form its method needs. Output, energy and error are
 /// observers of the run loop, never code inside an integrator.
+///
+/// The seam checks every method's answer the same way: after each advance_to, a state that is
+/// not finite, or whose kinetic energy exceeds 100 times the most the loads can have given the
+/// exact solution by then (model/energy_bound.hpp), is a divergence, a SolverError naming the
+/// method, the time and its step. An explicit method past its stability limit trips it within a
+/// few steps, long before its numbers overflow; no family checks this on its own.
 #include <optional>
 #include <string_view>
 
+#include "model/energy_bound.hpp"
 #include "model/second_order_system.hpp"
 
 namespace roifem::integrators {
@@ -26,18 +33,30 @@ struct ConstraintReport {
 
 class Integrator {
  public:
+  /// ||v||_M beyond this factor of the exact solution's bound is a divergence (kinetic energy 100x).
+  static constexpr double divergence_factor = 10;
+
   virtual ~Integrator() = default;
   virtual std::string_view name() const = 0;
   /// Prepares for `system` from `initial` (factorizations, solver memory). The system must outlive
   /// the integrator's use of it.
-  virtual void reset(const model::SecondOrderSystem& system, const model::State& initial) = 0;
-  /// Advances `state` to t_out; throws SolverError naming the method, t and step on failure.
-  /// The state's storage is the caller's: a method writes into u and v, never swaps or resizes
-  /// them, so that views of them (the Python module's arrays) stay valid.
-  virtual void advance_to(double t_out, model::State& state) = 0;
+  void reset(const model::SecondOrderSystem& system, const model::State& initial);
+  /// Advances `state` to t_out; throws SolverError naming the method, t and step on failure or
+  /// divergence (above). The state's storage is the caller's: a method writes into u and v, never
+  /// swaps or resizes them, so that views of them (the Python module's arrays) stay valid.
+  void advance_to(double t_out, model::State& state);
   virtual Stats stats() const = 0;
   /// The constraints' report after the last advance_to, from methods that hold constraints (else none).
   virtual std::optional<ConstraintReport> constraints() const { return std::nullopt; }
+
+ private:
+  /// What each method implements: reset() and advance_to() without the divergence check.
+  virtual void prepare(const model::SecondOrderSystem& system, const model::State& initial) = 0;
+  virtual void advance(double t_out, model::State& state) = 0;
+  /// SolverError when `state` has diverged.
+  void check_bounded(const model::State& state);
+
+  std::optional<model::EnergyBound> bound_;
 };
 
 }  // namespace roifem::integrators

@@ -14,7 +14,7 @@ RoiDae::RoiDae(StepControl control) : control_(control) {
   if (!(control_.rtol > 0 && control_.atol > 0)) throw InputError("ida-roi-dae: tolerances rtol and atol must be positive");
 }
 
-void RoiDae::reset(const model::SecondOrderSystem& system, const model::State& initial) {
+void RoiDae::prepare(const model::SecondOrderSystem& system, const model::State& initial) {
   if (!system.uncondensed)
     throw InputError(
         "ida-roi-dae integrates an ROI model with its static part kept as algebraic unknowns: it needs a scenario with "
@@ -29,8 +29,7 @@ void RoiDae::reset(const model::SecondOrderSystem& system, const model::State& i
   dae_->reset(initial.t);
 }
 
-void RoiDae::advance_to(double t_out, model::State& state) {
-  if (!dae_) throw Error("internal: ida-roi-dae: advance_to before reset");
+void RoiDae::advance(double t_out, model::State& state) {
   dae_->advance_to(t_out, u_d_, u_s_);
   state.u = u_d_;
   state.v = dae_->velocity_d();

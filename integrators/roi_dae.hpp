@@ -19,13 +19,13 @@ class RoiDae final : public Integrator {
  public:
   explicit RoiDae(StepControl control);
   std::string_view name() const override { return "ida-roi-dae"; }
-  /// InputError for a system that is not a static condensation (no system.uncondensed) or a
-  /// start away from rest.
-  void reset(const model::SecondOrderSystem& system, const model::State& initial) override;
-  void advance_to(double t_out, model::State& state) override;
   Stats stats() const override;
 
  private:
+  /// InputError for a system that is not a static condensation (no system.uncondensed) or a
+  /// start away from rest.
+  void prepare(const model::SecondOrderSystem& system, const model::State& initial) override;
+  void advance(double t_out, model::State& state) override;
   StepControl control_;
   std::unique_ptr<IdaRoiDae> dae_;
   Vector u_d_, u_s_;

@@ -14,7 +14,7 @@ ToolDae::ToolDae(std::string name, ToolFormulation formulation, StepControl cont
   if (!(control_.rtol > 0 && control_.atol > 0)) throw InputError(name_ + ": tolerances rtol and atol must be positive");
 }
 
-void ToolDae::reset(const model::SecondOrderSystem& system, const model::State& initial) {
+void ToolDae::prepare(const model::SecondOrderSystem& system, const model::State& initial) {
   if (!system.constrained)
     throw InputError(name_ + " integrates a model with tools ([[tool]]) as a constrained DAE, and this one has " +
                      (system.modal ? "its tools eliminated by a reduction whose basis is learnt from the eliminated model's "
@@ -27,8 +27,7 @@ void ToolDae::reset(const model::SecondOrderSystem& system, const model::State& 
   dae_->reset(initial.t);
 }
 
-void ToolDae::advance_to(double t_out, model::State& state) {
-  if (!dae_) throw Error("internal: " + name_ + ": advance_to before reset");
+void ToolDae::advance(double t_out, model::State& state) {
   dae_->advance_to(t_out);
   const Vector u = dae_->displacement(), v = dae_->velocity();
   for (std::size_t i = 0; i < form_->kept.size(); ++i) {

@@ -19,15 +19,15 @@ class ToolDae final : public Integrator {
  public:
   ToolDae(std::string name, ToolFormulation formulation, StepControl control);
   std::string_view name() const override { return name_; }
-  /// InputError for a system without tools (no system.constrained) or a start away from rest.
-  void reset(const model::SecondOrderSystem& system, const model::State& initial) override;
-  void advance_to(double t_out, model::State& state) override;
   Stats stats() const override;
   std::optional<ConstraintReport> constraints() const override;
   /// The DAE itself (its multipliers, drifts), after reset().
   const IdaToolDae& dae() const { return *dae_; }
 
  private:
+  /// InputError for a system without tools (no system.constrained) or a start away from rest.
+  void prepare(const model::SecondOrderSystem& system, const model::State& initial) override;
+  void advance(double t_out, model::State& state) override;
   std::string name_;
   ToolFormulation formulation_;
   StepControl control_;

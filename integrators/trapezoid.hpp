@@ -35,9 +35,6 @@ class Trapezoid final : public Integrator {
   /// The same rule with K_eff solved by conjugate gradients instead of a factorization.
   Trapezoid(double dt, solvers::CgSettings cg);
   std::string_view name() const override { return cg_ ? "trapezoid-cg" : "trapezoid"; }
-  void reset(const model::SecondOrderSystem& system, const model::State& initial) override;
-  /// t_out must lie on the grid t_0 + k dt (within 1e-9 dt).
-  void advance_to(double t_out, model::State& state) override;
   Stats stats() const override { return stats_; }
   /// One step from the current state (the hot path a simulator calls each tick).
   void step(model::State& state);
@@ -46,6 +43,9 @@ class Trapezoid final : public Integrator {
   bool eliminates_modal_coordinates() const { return eliminates_modal_; }
 
  private:
+  void prepare(const model::SecondOrderSystem& system, const model::State& initial) override;
+  /// t_out must lie on the grid t_0 + k dt (within 1e-9 dt).
+  void advance(double t_out, model::State& state) override;
   model::AverageAcceleration rule_;  // the recurrence; K_eff_ solves its one linear system
   const model::SecondOrderSystem* system_ = nullptr;
   std::optional<solvers::CgSettings> cg_;  // set: K_eff is solved iteratively

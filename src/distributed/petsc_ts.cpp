@@ -174,7 +174,7 @@ void PetscTs::rethrow_pending() {
   if (pending) std::rethrow_exception(std::exchange(pending, nullptr));
 }
 
-void PetscTs::reset(const model::SecondOrderSystem& system, const model::State& initial) {
+void PetscTs::prepare(const model::SecondOrderSystem& system, const model::State& initial) {
   const Stopwatch clock;
   system_ = &system;
   t0_ = initial.t;
@@ -238,8 +238,7 @@ void PetscTs::reset(const model::SecondOrderSystem& system, const model::State& 
   setup_s_ = clock.seconds();
 }
 
-void PetscTs::advance_to(double t_out, model::State& state) {
-  if (!system_) throw Error("internal: " + std::string(name()) + ": advance_to before reset");
+void PetscTs::advance(double t_out, model::State& state) {
   const double steps = (t_out - t0_) / dt_;
   const long target = std::lround(steps);
   if (std::abs(steps - static_cast<double>(target)) > 1e-9 * std::max(1.0, std::abs(steps)) || target < k_)

@@ -32,9 +32,6 @@ class PetscTs final : public integrators::Integrator {
   enum class Method { alpha2, theta };
   PetscTs(Method method, double dt);
   std::string_view name() const override { return method_ == Method::alpha2 ? "petsc-alpha2" : "petsc-theta"; }
-  void reset(const model::SecondOrderSystem& system, const model::State& initial) override;
-  /// t_out on the grid t_0 + k dt.
-  void advance_to(double t_out, model::State& state) override;
   integrators::Stats stats() const override;
 
   /// Callbacks' bodies (public for the C trampolines in petsc_ts.cpp).
@@ -45,6 +42,9 @@ class PetscTs final : public integrators::Integrator {
   std::exception_ptr pending;
 
  private:
+  void prepare(const model::SecondOrderSystem& system, const model::State& initial) override;
+  /// t_out on the grid t_0 + k dt.
+  void advance(double t_out, model::State& state) override;
   void rethrow_pending();
   Method method_;
   double dt_, t0_ = 0;

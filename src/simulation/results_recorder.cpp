@@ -57,8 +57,6 @@ double ResultsRecorder::bytes_per_step(const ScenarioModel& model) {
 }
 
 void ResultsRecorder::record(long k, const model::State& s, double seconds) {
-  if (!s.u.allFinite())
-    throw SolverError(io::format("%s: non-finite displacement at step %ld, t = %g s", scenario_.integrator.c_str(), k, s.t));
   if (k > 0) ledger_.record(s);
   time_s_.append(&s.t);
   wall_s_.append(&seconds);

@@ -1,0 +1,37 @@
+#include "integrators/integrator.hpp"
+
+#include <cmath>
+
+#include "common/errors.hpp"
+#include "common/number_text.hpp"
+#include "io/csv.hpp"
+
+namespace roifem::integrators {
+
+void Integrator::reset(const model::SecondOrderSystem& system, const model::State& initial) {
+  bound_.reset();
+  prepare(system, initial);
+  bound_.emplace(system, initial);
+}
+
+void Integrator::advance_to(double t_out, model::State& state) {
+  if (!bound_) throw Error("internal: " + std::string(name()) + ": advance_to before reset");
+  advance(t_out, state);
+  check_bounded(state);
+}
+
+void Integrator::check_bounded(const model::State& state) {
+  const double norm = bound_->velocity_norm(state);
+  const double bound = bound_->velocity_norm_bound(state.t);
+  const bool finite = std::isfinite(norm) && state.u.allFinite();
+  if (finite && norm <= divergence_factor * bound) return;
+  const std::string why =
+      finite ? io::format("its kinetic energy, %.3g J, is %.2g times the most the loads can have given the exact solution by then, %.3g J",
+                          0.5 * norm * norm, norm * norm / (bound * bound), 0.5 * bound * bound)
+             : std::string("non-finite values");
+  throw SolverError(std::string(name()) + ": the solution diverged (" + why + ") by t = " + number_text(state.t) + " s, step " +
+                    std::to_string(stats().steps) +
+                    "; an explicit method's step beyond its stability limit does this: a smaller time.dt_s, or an implicit method");
+}
+
+}  // namespace roifem::integrators
