@@ -9,11 +9,15 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace roifem::python {
 
 namespace py = pybind11;
+
+/// The Python type's name of a value, for messages.
+inline std::string type_name(py::handle value) { return py::str(py::type::handle_of(value).attr("__name__")); }
 
 void bind_errors(py::module_& m);
 void bind_mesh(py::module_& m);

@@ -14,8 +14,6 @@ namespace roifem::python {
 
 namespace {
 
-std::string type_name(py::handle value) { return py::str(py::type::handle_of(value).attr("__name__")); }
-
 /// The TOML form of a Python value: bool, int, float, str, dict (a table), list or tuple (an
 /// array); NumPy arrays and scalars through tolist(). `where` names the key in messages.
 using TomlValue = std::variant<bool, int64_t, double, std::string, toml::array, toml::table>;
@@ -42,7 +40,13 @@ toml::table table_of(const py::dict& d, const std::string& where) {
 
 TomlValue toml_value(py::handle value, const std::string& where) {
   if (PyBool_Check(value.ptr())) return value.cast<bool>();
-  if (PyLong_Check(value.ptr())) return static_cast<int64_t>(value.cast<long long>());
+  if (PyLong_Check(value.ptr())) {
+    int overflow = 0;
+    const long long x = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
+    if (overflow != 0)
+      throw InputError("key '" + where + "' = " + std::string(py::str(value)) + " does not fit a scenario's 64-bit integer");
+    return static_cast<int64_t>(x);
+  }
   if (PyFloat_Check(value.ptr())) return value.cast<double>();
   if (PyUnicode_Check(value.ptr())) return value.cast<std::string>();
   if (py::isinstance<py::dict>(value)) return table_of(value.cast<py::dict>(), where);
@@ -96,6 +100,10 @@ ScenarioHandle with_overrides(const ScenarioHandle& base, const py::dict& overri
 
 ScenarioHandle scenario_handle_of(py::handle scenario_or_file) {
   if (py::isinstance<ScenarioHandle>(scenario_or_file)) return scenario_or_file.cast<ScenarioHandle>();
+  if (!PyUnicode_Check(scenario_or_file.ptr()) && !PyBytes_Check(scenario_or_file.ptr()) &&
+      !py::hasattr(scenario_or_file, "__fspath__"))
+    throw py::type_error("scenario: expected a roifem.Scenario or a scenario file's path (str or os.PathLike), got " +
+                         type_name(scenario_or_file));
   return from_file(scenario_or_file.cast<std::filesystem::path>(), py::dict());
 }
 

@@ -1,6 +1,8 @@
 // roifem.Simulation: a scenario's model stepped from Python (simulation::ScenarioStepper), with its
 // state as NumPy views and everything `roifem run` records readable between steps.
+#include <climits>
 #include <filesystem>
+#include <optional>
 
 #include "bindings.hpp"
 #include "common/errors.hpp"
@@ -41,6 +43,9 @@ class Simulation {
     const std::shared_ptr<ScenarioStepper> keep = shared();  // alive through the observer's calls
     if (steps < 0) throw InputError("run: steps = " + std::to_string(steps) + " must be >= 0");
     if (every <= 0) throw InputError("run: every = " + std::to_string(every) + " must be positive");
+    if (!observer.is_none() && PyCallable_Check(observer.ptr()) == 0)
+      throw py::type_error("run: observer must be callable, as observer(sim) after every `every`-th step (got " +
+                           type_name(observer) + ")");
     for (long k = 1; k <= steps; ++k) {
       keep->step();
       if (!observer.is_none() && k % every == 0) observer(self);
@@ -54,6 +59,19 @@ class Simulation {
   std::shared_ptr<ScenarioStepper> stepper_;
   ScenarioHandle handle_;  ///< the scenario as given (Simulation.scenario)
 };
+
+/// A count given from Python: None, or an int that fits a long (InputError otherwise, naming `what`).
+std::optional<long> count_of(py::handle value, const char* what) {
+  if (value.is_none()) return std::nullopt;
+  if (PyBool_Check(value.ptr()) || PyLong_Check(value.ptr()) == 0)
+    throw py::type_error(std::string(what) + " must be an int (got " + type_name(value) + ")");
+  int overflow = 0;
+  const long count = PyLong_AsLongAndOverflow(value.ptr(), &overflow);
+  if (overflow != 0)
+    throw InputError(std::string(what) + " = " + std::string(py::str(value)) + " does not fit a 64-bit count (at most " +
+                     std::to_string(LONG_MAX) + ")");
+  return count;
+}
 
 py::dict stats_dict(const integrators::Stats& st) {
   py::dict d;
@@ -77,20 +95,16 @@ void bind_simulation(py::module_& m) {
                          "A scenario's model (full, or the ROI with the static part condensed or reduced) and its integrator, "
                          "stepped from Python on the grid t_k = k dt: the states equal `roifem run`'s bit for bit.\n\n"
                          "Simulation(scenario, energy=True, **overrides): `scenario` a Scenario or a file; overrides as in "
-                         "Scenario.replace, plus integrator=, dt=, steps=, rtol=, atol= for the [time] table. energy=False drops "
+                         "Scenario.replace, plus the [time] table's integrator=, dt_s= (or dt=), steps=, rtol=, atol=. energy=False drops "
                          "the energy ledger (one product with K and M per step).\n"
                          "u and v are read-only views of the state (valid as long as they live, even after close()).")
       .def(py::init([](const py::object& scenario, bool energy, const py::kwargs& kwargs) {
              py::dict overrides, time;
              for (const auto& [key, value] : kwargs) {
                const std::string name = py::str(key);
-               if (name == "integrator")
-                 time["integrator"] = value;
-               else if (name == "dt")
+               if (name == "dt" || name == "dt_s")  // the [time] table's dt_s; dt for short
                  time["dt_s"] = value;
-               else if (name == "steps")
-                 time["steps"] = value;
-               else if (name == "rtol" || name == "atol")
+               else if (name == "integrator" || name == "steps" || name == "rtol" || name == "atol")
                  time[name.c_str()] = value;
                else
                  overrides[key] = value;
@@ -104,14 +118,21 @@ void bind_simulation(py::module_& m) {
       .def(
           "step", [](Simulation& self) { self.live().step(); }, "One step of the grid, to t_{k+1}")
       .def(
-          "step_to", [](Simulation& self, double t) { return self.live().step_to(t); }, py::arg("t"),
-          "Steps along the grid until t_k >= t; returns the steps taken")
+          "step_to",
+          [](const py::object& me, double t) {
+            auto& self = me.cast<Simulation&>();
+            return self.run(me, self.live().steps_to(t), py::none(), 1);
+          },
+          py::arg("t"),
+          "Steps along the grid to its last point t_k <= t (s), which must be finite and ahead of sim.t; Ctrl-C "
+          "stops it between two steps (KeyboardInterrupt). Returns the steps taken.")
       .def(
           "run",
-          [](const py::object& me, std::optional<long> steps, const py::object& observer, long every) {
+          [](const py::object& me, const py::object& steps, const py::object& observer, long every) {
             auto& self = me.cast<Simulation&>();
             const ScenarioStepper& s = self.live();
-            return self.run(me, steps.value_or(std::max(0L, s.scenario().steps - s.steps_taken())), observer, every);
+            return self.run(me, count_of(steps, "run: steps").value_or(std::max(0L, s.scenario().steps - s.steps_taken())),
+                            observer, every);
           },
           py::arg("steps") = py::none(), py::arg("observer") = py::none(), py::arg("every") = 1,
           "Runs `steps` steps (default: the rest of the scenario's), calling observer(sim) after every `every`-th; "

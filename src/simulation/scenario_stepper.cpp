@@ -27,19 +27,24 @@ void ScenarioStepper::step() {
   // Views of u and v (the Python module's) rely on this.
   if (state_.u.data() != u_storage || state_.v.data() != v_storage)
     throw Error(scenario_.integrator + ": the state's storage moved during a step (a bug in the integrator)");
-  if (!state_.u.allFinite())
-    throw SolverError(
-        io::format("%s: non-finite displacement at step %ld, t = %g s", scenario_.integrator.c_str(), k_, state_.t));
   if (ledger_) ledger_->record(state_);
 }
 
+long ScenarioStepper::steps_to(double t) const {
+  if (!std::isfinite(t)) throw InputError(io::format("step_to: t = %g s is not a time to step to", t));
+  if (t <= state_.t)
+    throw InputError(io::format("step_to: t = %.9g s is not ahead of the simulation, which is at t = %.9g s (step %ld)", t,
+                                state_.t, k_));
+  // The last grid point t_k <= t (to within 1e-9 dt), counted without stepping there.
+  const double k = std::floor((t - t0_) / scenario_.dt + 1e-9);
+  if (k > 1e15) throw InputError(io::format("step_to: t = %g s is %.3g steps of dt = %g s away", t, k - k_, scenario_.dt));
+  return static_cast<long>(k) - k_;
+}
+
 long ScenarioStepper::step_to(double t) {
-  long taken = 0;
-  while (next_time() <= t + 1e-9 * scenario_.dt) {
-    step();
-    ++taken;
-  }
-  return taken;
+  const long steps = steps_to(t);
+  for (long k = 0; k < steps; ++k) step();
+  return steps;
 }
 
 std::vector<double> ScenarioStepper::roi_displacement_mm() const {

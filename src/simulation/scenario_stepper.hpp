@@ -22,10 +22,13 @@ class ScenarioStepper {
   explicit ScenarioStepper(const scenario::Scenario& scenario, bool energy = true);
 
   /// One step of the scenario's grid: to t_{k+1}. SolverError, naming the integrator, the step and
-  /// t, on failure or on a non-finite displacement; the state is then that of the failed attempt.
+  /// t, on failure or divergence (integrator.hpp); the state is then that of the failed attempt.
   void step();
-  /// Steps along the grid until t_k >= t (to within 1e-9 dt): returns the number of steps taken.
+  /// Steps along the grid to its last point t_k <= t (to within 1e-9 dt): returns the steps taken.
+  /// InputError for a t that is not finite or not ahead of the current time.
   long step_to(double t);
+  /// The steps step_to(t) takes (the same checks), for a driver that steps them itself.
+  long steps_to(double t) const;
 
   const scenario::Scenario& scenario() const { return scenario_; }
   const ScenarioModel& model() const { return *model_; }

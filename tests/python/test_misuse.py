@@ -1,0 +1,74 @@
+"""Misuse from Python (issue 35): each case is refused with an error that names the cause, or
+stopped, and never runs on quietly or for ever."""
+import math
+import os
+import subprocess
+import time
+
+import pytest
+
+import roifem
+
+
+def test_an_explicit_method_past_its_stability_limit_stops_naming_the_step(scenarios):
+    # gsl-rk4 at the paper's dt ran 200 steps to 1e211 m without a word.
+    sim = roifem.Simulation(scenarios / "paper-setup2.toml", integrator="gsl-rk4")
+    with pytest.raises(roifem.SolverError, match=r"gsl-rk4: the solution diverged \(.*\) by t = 0\.05 s, step 1"):
+        sim.run()
+    assert sim.step_index == 0
+
+
+def test_step_to_refuses_a_time_that_is_not_finite_or_not_ahead(scenarios):
+    sim = roifem.Simulation(scenarios / "paper-setup2.toml")
+    for t in (math.inf, -math.inf, math.nan):
+        with pytest.raises(roifem.InputError, match="is not a time to step to"):
+            sim.step_to(t)
+    assert sim.step_to(0.5) == 10
+    for t in (0.5, 0.2, -1.0):
+        with pytest.raises(roifem.InputError, match=r"is not ahead of the simulation, which is at t = 0\.5 s \(step 10\)"):
+            sim.step_to(t)
+    assert sim.step_to(0.52) == 0 and sim.step_to(0.55) == 1  # the grid's last point not beyond t
+
+
+def test_ctrl_c_from_outside_stops_a_long_step_to_within_a_second(scenarios):
+    sim = roifem.Simulation(scenarios / "paper-setup2.toml", energy=False)
+    sender = subprocess.Popen(["sh", "-c", f"sleep 0.5; kill -INT {os.getpid()}"])
+    start = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        sim.step_to(1e6)  # 2e7 steps: about 20 minutes
+    sender.wait()
+    assert time.monotonic() - start < 2.0
+    assert 0 < sim.step_index < 20_000_000
+    sim.step()  # the simulation is whole
+
+
+def test_counts_beyond_64_bits_are_named(scenarios):
+    with pytest.raises(roifem.InputError, match=r"key 'time\.steps' = 9223372036854775808 does not fit"):
+        roifem.Simulation(scenarios / "paper-setup2.toml", steps=2**63)
+    sim = roifem.Simulation(scenarios / "paper-setup2.toml")
+    with pytest.raises(roifem.InputError, match=r"run: steps = 9223372036854775808 does not fit a 64-bit count"):
+        sim.run(2**63)
+    with pytest.raises(TypeError, match="run: steps must be an int"):
+        sim.run(2.5)
+
+
+def test_a_simulation_of_nothing_names_what_it_takes():
+    with pytest.raises(TypeError, match=r"expected a roifem\.Scenario or a scenario file's path .* got NoneType"):
+        roifem.Simulation(None)
+    with pytest.raises(TypeError, match="got int"):
+        roifem.Simulation(42)
+
+
+def test_an_observer_that_cannot_be_called_is_refused_before_any_step(scenarios):
+    sim = roifem.Simulation(scenarios / "paper-setup2.toml")
+    with pytest.raises(TypeError, match=r"run: observer must be callable.*got int"):
+        sim.run(2, observer=3)
+    assert sim.step_index == 0
+
+
+def test_the_time_keywords_take_the_scenario_files_names(scenarios):
+    # dt_s as in the file's [time] table (the keyword dt= is its short form).
+    a = roifem.Simulation(scenarios / "paper-setup2.toml", dt_s=0.01, steps=3)
+    b = roifem.Simulation(scenarios / "paper-setup2.toml", dt=0.01, steps=3)
+    assert a.run() == 3 and b.run() == 3
+    assert a.t == pytest.approx(0.03) and a.t == b.t
