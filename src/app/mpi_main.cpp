@@ -59,6 +59,7 @@ void condense(const roifem::scenario::Scenario& sc, const std::filesystem::path&
   const distributed::DistributedModel model = distributed::distribute_model(frame, comm);
   const double assembly_s = clock.seconds();
   const distributed::DistributedCondensation condensed = distributed::condense_with_mumps(model, d);
+  distributed::check_options_used("once MUMPS factored K");
   int ranks = 1;
   MPI_Comm_size(comm, &ranks);
   const distributed::ResidentMemory memory = distributed::peak_resident_megabytes(comm);
@@ -160,7 +161,12 @@ int run_cli(int argc, char** argv) {
   try {
     const distributed::PetscSession session(static_cast<int>(petsc_argv.size()) - 1, petsc_argv.data());
     try {
-      const roifem::scenario::Scenario sc = roifem::scenario::read_scenario(scenario_file);
+      // Read and checked alike on every rank: a refusal is printed once, with no MPI_Abort.
+      roifem::scenario::Scenario sc;
+      distributed::on_every_rank(session.comm(), [&] {
+        sc = roifem::scenario::read_scenario(scenario_file);
+        if (!compare->parsed()) distributed::check_distributable(sc);
+      });
       if (run->parsed()) {
         distributed::run_distributed(sc, out, std::cout, session.comm());
       } else if (compare->parsed()) {
@@ -169,10 +175,17 @@ int run_cli(int argc, char** argv) {
         compare_options.extra_rows = distributed::petsc_ts_rows();
         if (compare_options.integrators.empty()) compare_options.integrators = {"trapezoid", "petsc-alpha2", "petsc-theta"};
         roifem::experiments::run_compare(sc, compare_options, std::cout);
+        distributed::check_options_used("by PETSc's integrators over the whole sweep");
       } else {
         condense(sc, out, check_serial, session.comm());
       }
     } catch (const std::exception& e) {
+      if (dynamic_cast<const distributed::AgreedByEveryRank*>(&e) != nullptr) {  // every rank is here: say it once
+        if (session.rank() == 0) std::cerr << "roifem-mpi: " << (dynamic_cast<const roifem::Interrupted*>(&e) ? "" : "error: ")
+                                           << e.what() << '\n';
+        const auto* interrupted = dynamic_cast<const roifem::Interrupted*>(&e);
+        return interrupted != nullptr ? 128 + interrupted->signal : 1;
+      }
       // One rank's failure must not leave the others waiting in a collective call: stop them all.
       std::cerr << "roifem-mpi: error (rank " << session.rank() << "): " << e.what() << '\n';
       std::cerr.flush();

@@ -82,7 +82,17 @@ Vector DistributedModel::gather(Vec x, bool to_all) const {
   return serial;
 }
 
+void check_distributable(const scenario::Scenario& sc) {
+  if (sc.tools.empty()) return;
+  std::string names;
+  for (const auto& tool : sc.tools) names += (names.empty() ? "'" : ", '") + tool.name + "'";
+  throw InputError("roifem-mpi: scenario " + sc.file.string() + " has [[tool]]s (" + names +
+                   "); the distributed model takes loads only and would leave them out: run it with `roifem run " +
+                   sc.file.string() + " --out DIR`, which takes them");
+}
+
 std::unique_ptr<ScenarioFrame> scenario_frame(const scenario::Scenario& sc) {
+  check_distributable(sc);
   auto f = std::make_unique<ScenarioFrame>();
   f->mesh = mesh::read_mesh(sc.mesh);
   mesh::check_mesh(f->mesh);

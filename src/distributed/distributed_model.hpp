@@ -49,6 +49,10 @@ struct ScenarioFrame {
 };
 std::unique_ptr<ScenarioFrame> scenario_frame(const scenario::Scenario& scenario);
 
+/// InputError for what the distributed model does not take, checked before any work: [[tool]]s (it
+/// takes loads only; roifem run takes them), naming the scenario and `roifem run` as the alternative.
+void check_distributable(const scenario::Scenario& scenario);
+
 /// Distributes `frame` (build_fem_model_without_stiffness) over `comm` and assembles K.
 /// InputError for the nodal-pressure element (its K couples nodes two elements apart; not built
 /// here) and for non-zero prescribed displacements.

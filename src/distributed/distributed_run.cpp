@@ -17,6 +17,7 @@
 #include "io/csv.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/xdmf.hpp"
+#include "simulation/interrupt.hpp"
 #include "simulation/progress.hpp"
 
 namespace roifem::distributed {
@@ -170,8 +171,7 @@ DistributedRunSummary run_distributed(const scenario::Scenario& sc, const std::f
   MPI_Comm_rank(comm, &rank);
   DistributedRunSummary summary;
   MPI_Comm_size(comm, &summary.ranks);
-  if (!sc.tools.empty())
-    throw InputError("roifem-mpi: scenario " + sc.file.string() + " has tools; the distributed model takes loads only");
+  check_distributable(sc);
   if (sc.rtol)
     throw InputError("roifem-mpi: scenario " + sc.file.string() + " sets rtol; the distributed model steps at a fixed dt");
   on_root(comm, [&] { check_output_directory(out); });  // before any work
@@ -181,6 +181,7 @@ DistributedRunSummary run_distributed(const scenario::Scenario& sc, const std::f
   const model::FemModel& frame = built->model;
   const DistributedModel model = distribute_model(frame, comm);
   DistributedTrapezoid trapezoid(model, sc.dt);
+  check_options_used("once K_eff's solver was set up");
   summary.dofs = model.dofs();
   summary.solver = trapezoid.solver();
   summary.setup_s = setup.seconds();
@@ -205,6 +206,7 @@ DistributedRunSummary run_distributed(const scenario::Scenario& sc, const std::f
     });
   };
   std::vector<double> step_s;
+  const simulation::InterruptGuard interrupts;
   try {
     record(0, 0.0);
     simulation::ProgressReporter progress(rank == 0 ? "roifem-mpi" : "", rank == 0 ? sc.steps : 0);
@@ -214,9 +216,19 @@ DistributedRunSummary run_distributed(const scenario::Scenario& sc, const std::f
       step_s.push_back(clock.seconds());
       record(k, step_s.back());
       if (rank == 0) progress.update(k, io::format("%d KSP iterations", static_cast<int>(trapezoid.last_iterations())));
+      // A signal reaches the ranks at different steps (mpirun forwards it, a batch system sends it
+      // to each): they agree after every step, so that all stop after the same one.
+      if (const int signal_number = agreed_signal(comm, simulation::InterruptGuard::signal_received()))
+        throw Agreed<Interrupted>(signal_number, io::format("interrupted by signal %d after step %ld of %ld (t = %g s)",
+                                                            signal_number, k, sc.steps, trapezoid.t()));
     }
   } catch (const Error& e) {
-    if (recorder) recorder->abandon(e.what());
+    if (recorder) {
+      recorder->abandon(e.what());
+      if (dynamic_cast<const Interrupted*>(&e) != nullptr)
+        log << "\nstopped: " << e.what() << "\nkept every completed step in " << (out / "results.incomplete.h5").string()
+            << " (status: incomplete)\n";
+    }
     throw;
   }
   on_root(comm, [&] { recorder->finish(); });

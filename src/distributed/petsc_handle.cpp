@@ -3,6 +3,7 @@
 #include <string>
 
 #include "common/errors.hpp"
+#include "distributed/root_work.hpp"
 
 namespace roifem::distributed {
 
@@ -12,6 +13,20 @@ void check(PetscErrorCode code, const char* what) {
   PetscErrorMessage(code, &text, nullptr);
   throw SolverError(std::string("PETSc: ") + what + " failed (PETSc error " + std::to_string(static_cast<int>(code)) + ": " +
                     (text ? text : "unknown") + ")");
+}
+
+void check_options_used(const char* after) {
+  PetscInt count = 0;
+  char** names = nullptr;
+  char** values = nullptr;
+  check(PetscOptionsLeftGet(nullptr, &count, &names, &values), "PetscOptionsLeftGet");
+  std::string unused;
+  for (PetscInt i = 0; i < count; ++i)
+    unused += std::string(unused.empty() ? "" : ", ") + "-" + names[i] + (values[i] ? std::string(" ") + values[i] : "");
+  check(PetscOptionsLeftRestore(nullptr, &count, &names, &values), "PetscOptionsLeftRestore");  // zeroes count
+  if (!unused.empty())
+    throw Agreed<InputError>("PETSc options that nothing read " + std::string(after) + ": " + unused +
+                             " (misspelt, or not for this command; `-help` after -- lists the ones each solver reads)");
 }
 
 PetscSession::PetscSession(int argc, char** argv) : argc_(argc), argv_(argv) {

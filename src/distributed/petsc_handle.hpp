@@ -11,6 +11,11 @@ namespace roifem::distributed {
 /// Throws SolverError("PETSc: WHAT failed (PETSc error N: TEXT)") unless code is 0.
 void check(PetscErrorCode code, const char* what);
 
+/// Agreed<InputError> naming every option of PETSc's database that nothing has read: a misspelt
+/// option (-ksp_typo) is otherwise ignored, and another solver runs than the one asked for. Call it
+/// once every PETSc object of the command has read its options (`after` says which).
+void check_options_used(const char* after);
+
 /// An owned PETSc object (Vec, Mat, KSP, IS, ...): destroyed with Destroy, never copied.
 template <class T, PetscErrorCode (*Destroy)(T*)>
 class Owned {
