@@ -13,6 +13,7 @@
 #include "anatomy/image_volume.hpp"
 #include "anatomy/voxel_mask.hpp"
 #include "common/errors.hpp"
+#include "io/csv.hpp"
 #include "mesh/msh_writer.hpp"
 #include "mesh/node_count_search.hpp"
 #include "mesh/quality_smoothing.hpp"
@@ -337,6 +338,23 @@ void name_sets(mesh::TetMesh& m, const BrainImageOptions& o, const ImageVolume& 
   }
 }
 
+/// InputError, before CGAL sees it, for a mask too small for the nodes asked: N nodes take elements
+/// of about h = cbrt(1.5 V / N), and one below two voxels follows no shape the image holds (CGAL's
+/// search for initial points on the surface of a voxel or of nothing never ends).
+void check_mask_holds_the_nodes(const BrainImageOptions& o, const ImageVolume& image, double volume_mm3) {
+  const double voxel = image.spacing_mm().minCoeff();
+  const double needed_mm3 = static_cast<double>(o.target_nodes) * std::pow(2 * voxel, 3) / 1.5;
+  if (volume_mm3 >= needed_mm3) return;
+  const std::string after = o.cut_height_mm > 0 || o.opening
+                                ? io::format(" after the bottom cut (--cut-mm %g)%s", o.cut_height_mm, o.opening ? " and the opening" : "")
+                                : "";
+  throw InputError(io::format(
+      "%s: the mask holds %.4g mm^3 (%.0f voxels of %.3g mm^3)%s, and --nodes %lld needs at least %.4g mm^3 (elements of two "
+      "voxels, %.3g mm, or larger): fewer --nodes%s",
+      image.source.c_str(), volume_mm3, volume_mm3 / image.voxel_volume_mm3(), image.voxel_volume_mm3(), after.c_str(),
+      static_cast<long long>(o.target_nodes), needed_mm3, 2 * voxel, o.cut_height_mm > 0 ? ", or a smaller --cut-mm" : ""));
+}
+
 }  // namespace
 
 std::filesystem::path colin27_image() {
@@ -369,6 +387,7 @@ BrainImageMesh mesh_brain_image(const BrainImageOptions& o, const std::filesyste
   }
   result.mask_volume_mm3 = integral_mm3(measured);
   const double native = image.spacing_mm().minCoeff();
+  check_mask_holds_the_nodes(o, image, result.mask_volume_mm3);
 
   // Node count against size: N ~ c V / h^3 with c from 1.3 (37k nodes) to 2 (2k) on Colin27; then a secant on
   // log N against log h within a bracket, as for the ellipsoid.

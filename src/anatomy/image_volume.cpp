@@ -3,6 +3,7 @@
 #include <nifti2_io.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstdint>
 #include <fstream>
 #include <memory>
@@ -29,6 +30,22 @@ Eigen::Matrix4d affine(const nifti_dmat44& m) {
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 4; ++c) a(r, c) = m.m[r][c];
   return a;
+}
+
+/// InputError unless the header's own voxel sizes pixdim[1..3] are positive and finite.
+void check_voxel_sizes(const std::string& name) {
+  int version = 0;
+  std::unique_ptr<void, decltype(&std::free)> header(nifti_read_header(name.c_str(), &version, 1), &std::free);
+  double pixdim[3] = {0, 0, 0};
+  if (header && version == 1)
+    for (int i = 0; i < 3; ++i) pixdim[i] = static_cast<const nifti_1_header*>(header.get())->pixdim[i + 1];
+  else if (header && version == 2)
+    for (int i = 0; i < 3; ++i) pixdim[i] = static_cast<const nifti_2_header*>(header.get())->pixdim[i + 1];
+  for (int i = 0; i < 3; ++i)
+    if (!(pixdim[i] > 0 && std::isfinite(pixdim[i])))
+      throw InputError(name + ": header field pixdim[" + std::to_string(i + 1) + "] (the voxel size along " + "xyz"[i] +
+                       ") is " + std::to_string(pixdim[i]) +
+                       ", and neither sform_code nor qform_code gives a voxel-to-millimetre transform: the image has no size");
 }
 
 }  // namespace
@@ -102,7 +119,9 @@ ImageVolume read_nifti(const std::filesystem::path& file) {
   }
 
   // The sform is the scanner-independent (template) space, the qform the scanner's; without
-  // either (ANALYZE-style), the voxel sizes alone.
+  // either (ANALYZE-style), the voxel sizes alone. libnifti reads a voxel size <= 0 as 1 mm: the
+  // header's own pixdim must say it.
+  if (image->sform_code <= 0 && image->qform_code <= 0) check_voxel_sizes(name);
   if (image->sform_code > 0)
     volume.index_to_mm = affine(image->sto_xyz);
   else if (image->qform_code > 0)

@@ -12,10 +12,11 @@
 
 namespace roifem::test {
 
-/// A float32 image of nx x ny x nz voxels of `voxel_mm`, origin at `origin_mm`, value(i, j, k).
+/// A float32 image of nx x ny x nz voxels of `voxel_mm`, origin at `origin_mm`, value(i, j, k);
+/// cut to `truncate_to` bytes when given; without an sform (sform_code 0) when `sform` is false.
 inline void write_nifti(const std::filesystem::path& file, std::array<int, 3> dims, double voxel_mm,
                         std::array<double, 3> origin_mm, const std::function<float(int, int, int)>& value,
-                        std::size_t truncate_to = 0) {
+                        std::size_t truncate_to = 0, bool sform = true) {
   std::array<char, 352> header{};
   auto put = [&](std::size_t offset, auto v) { std::memcpy(header.data() + offset, &v, sizeof v); };
   put(0, std::int32_t{348});
@@ -31,7 +32,7 @@ inline void write_nifti(const std::filesystem::path& file, std::array<int, 3> di
   std::memcpy(header.data() + 76, pixdim, sizeof pixdim);
   put(108, 352.0f);           // vox_offset
   put(112, 1.0f);             // scl_slope
-  put(254, std::int16_t{1});  // sform_code: scanner space
+  put(254, std::int16_t{sform ? 1 : 0});  // sform_code: scanner space, or none
   const float srow[12] = {static_cast<float>(voxel_mm),
                           0,
                           0,

@@ -59,6 +59,20 @@ TEST(NiftiReader, NamesAMissingATruncatedAndA2dImage) {
   EXPECT_INPUT_ERROR(read_nifti(flat), "slice.nii: a 8 x 8 x 1 image; .*a 2D slice");
 }
 
+TEST(NiftiReader, NamesAVoxelSizeOfZeroWithoutATransform) {
+  // libnifti reads pixdim 0 as 1 mm: such an image was meshed at 1 mm voxels without a word.
+  const auto sizeless = scratch("sizeless.nii");
+  test::write_nifti(
+      sizeless, {8, 8, 8}, 0.0, {0, 0, 0}, [](int, int, int) { return 1.0f; }, 0, /*sform=*/false);
+  EXPECT_INPUT_ERROR(read_nifti(sizeless),
+                     "sizeless.nii: header field pixdim\\[1\\] \\(the voxel size along x\\) is 0.000000, and neither "
+                     "sform_code nor qform_code gives a voxel-to-millimetre transform");
+  const auto sized = scratch("sized.nii");  // the same without an sform, sized: read by its voxel sizes
+  test::write_nifti(
+      sized, {8, 8, 8}, 2.0, {0, 0, 0}, [](int, int, int) { return 1.0f; }, 0, /*sform=*/false);
+  EXPECT_DOUBLE_EQ(read_nifti(sized).voxel_volume_mm3(), 8.0);
+}
+
 /// A 20^3 grid: a ball of radius 6 around (10, 10, 10) with a hollow of radius 2 at its centre,
 /// and a single loose voxel in a corner.
 ImageVolume hollow_ball_with_a_speck() {
