@@ -208,6 +208,8 @@ void IdaToolDae::reset(double t0) {
     for (const Index i : tool_dofs_) id[n() + i] = 0;
   make_consistent(t0, Vector::Zero(n()), Vector::Zero(n()));
   start(t0);
+  kinks_ = kinks_after(t0);
+  next_kink_ = 0;
 }
 
 std::vector<double> IdaToolDae::kinks_after(double t) const {
@@ -216,15 +218,16 @@ std::vector<double> IdaToolDae::kinks_after(double t) const {
   for (const auto& tool : tools_) add(tool.path.kinks_after(t));
   for (const auto& term : all_.load.terms()) add(term.ramp.kinks_after(t));
   std::sort(kinks.begin(), kinks.end());
+  kinks.erase(std::unique(kinks.begin(), kinks.end()), kinks.end());
   return kinks;
 }
 
 void IdaToolDae::advance_to(double t_out) {
   if (!memory_) throw Error("internal: IDA tool DAE: advance_to before reset");
   while (t_ < t_out) {
-    const std::vector<double> kinks = kinks_after(t_);
-    const bool to_kink = !kinks.empty() && kinks.front() <= t_out;
-    const double target = to_kink ? kinks.front() : t_out;
+    while (next_kink_ < kinks_.size() && kinks_[next_kink_] <= t_) ++next_kink_;
+    const bool to_kink = next_kink_ < kinks_.size() && kinks_[next_kink_] <= t_out;
+    const double target = to_kink ? kinks_[next_kink_] : t_out;
     IDASetStopTime(memory_.get(), target);
     const int flag = IDASolve(memory_.get(), target, &t_, y_.get(), yp_.get(), IDA_NORMAL);
     if (pending_) std::rethrow_exception(std::exchange(pending_, nullptr));

@@ -70,6 +70,7 @@ class IdaToolDae {
   /// Consistent y, y' at t from u_f, v_f (the dofs off the tools).
   void make_consistent(double t, const Vector& u, const Vector& v);
   void start(double t0);  ///< IDAInit or IDAReInit from y_, yp_
+  /// Where the paths' and loads' rates jump after t, ascending, each once.
   std::vector<double> kinks_after(double t) const;
 
   const model::SecondOrderSystem& all_;
@@ -90,6 +91,8 @@ class IdaToolDae {
   std::unique_ptr<sundials::KluSolver> solver_;
   sundials::IdaMemory memory_;
   double t_ = 0;
+  std::vector<double> kinks_;   ///< after the reset's t0 (kinks_after), computed once: a sampled path has one per sample
+  std::size_t next_kink_ = 0;   ///< the first of kinks_ not yet passed
   Stats restarted_;  ///< counters of the runs before the last restart
   std::exception_ptr pending_;
   sundials::LastError last_error_;

@@ -11,7 +11,7 @@
 #include "experiments/paper_experiment.hpp"
 #include "experiments/roi_size.hpp"
 #include "scenario_handle.hpp"
-#include "simulation/interrupt.hpp"
+#include "common/interrupt.hpp"
 
 namespace roifem::python {
 
@@ -36,12 +36,12 @@ class Log {
 /// released meanwhile: other Python threads run (the log takes it back for each line it prints).
 template <class Study>
 auto interruptible(Study&& study) {
-  const simulation::InterruptGuard guard;
+  const InterruptGuard guard;
   auto result = [&] {
     const py::gil_scoped_release unlocked;
     return study();
   }();
-  if (const int signal_number = simulation::InterruptGuard::signal_received())
+  if (const int signal_number = InterruptGuard::signal_received())
     throw Interrupted(signal_number, "interrupted by signal " + std::to_string(signal_number));
   return result;
 }

@@ -17,7 +17,7 @@
 #include "io/csv.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/xdmf.hpp"
-#include "simulation/interrupt.hpp"
+#include "common/interrupt.hpp"
 #include "simulation/progress.hpp"
 
 namespace roifem::distributed {
@@ -206,7 +206,7 @@ DistributedRunSummary run_distributed(const scenario::Scenario& sc, const std::f
     });
   };
   std::vector<double> step_s;
-  const simulation::InterruptGuard interrupts;
+  const InterruptGuard interrupts;
   try {
     record(0, 0.0);
     simulation::ProgressReporter progress(rank == 0 ? "roifem-mpi" : "", rank == 0 ? sc.steps : 0);
@@ -218,7 +218,7 @@ DistributedRunSummary run_distributed(const scenario::Scenario& sc, const std::f
       if (rank == 0) progress.update(k, io::format("%d KSP iterations", static_cast<int>(trapezoid.last_iterations())));
       // A signal reaches the ranks at different steps (mpirun forwards it, a batch system sends it
       // to each): they agree after every step, so that all stop after the same one.
-      if (const int signal_number = agreed_signal(comm, simulation::InterruptGuard::signal_received()))
+      if (const int signal_number = agreed_signal(comm, InterruptGuard::signal_received()))
         throw Agreed<Interrupted>(signal_number, io::format("interrupted by signal %d after step %ld of %ld (t = %g s)",
                                                             signal_number, k, sc.steps, trapezoid.t()));
     }

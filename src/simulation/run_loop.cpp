@@ -7,7 +7,7 @@
 #include "common/errors.hpp"
 #include "common/number_text.hpp"
 #include "common/timer.hpp"
-#include "simulation/interrupt.hpp"
+#include "common/interrupt.hpp"
 #include "simulation/progress.hpp"
 
 namespace roifem::simulation {
@@ -24,7 +24,12 @@ RunSummary run(integrators::Integrator& integrator, model::State& state, double 
   const double t0 = state.t;
   for (long k = 1; k <= steps; ++k) {
     Stopwatch clock;
-    integrator.advance_to(t0 + static_cast<double>(k) * dt, state);
+    try {
+      integrator.advance_to(t0 + static_cast<double>(k) * dt, state);
+    } catch (const Interrupted& e) {  // heard inside the step (integrators/callback_guard.hpp)
+      throw Interrupted(e.signal, "interrupted by signal " + std::to_string(e.signal) + " during step " + std::to_string(k) +
+                                      " of " + std::to_string(steps) + " (from t = " + number_text(state.t) + " s)");
+    }
     const double seconds = clock.seconds();
     summary.step_seconds.push_back(seconds);
     summary.steps = k;

@@ -1,6 +1,6 @@
-#include "simulation/interrupt.hpp"
+#include "common/interrupt.hpp"
 
-namespace roifem::simulation {
+namespace roifem {
 
 namespace {
 volatile std::sig_atomic_t received = 0;
@@ -23,4 +23,4 @@ InterruptGuard::~InterruptGuard() {
 
 int InterruptGuard::signal_received() { return received; }
 
-}  // namespace roifem::simulation
+}  // namespace roifem

@@ -5,7 +5,7 @@
 /// of process-wide state in roifem, written only by the handler and read only through this class.
 #include <csignal>
 
-namespace roifem::simulation {
+namespace roifem {
 
 class InterruptGuard {
  public:
@@ -23,4 +23,4 @@ class InterruptGuard {
   }, previous_term_{};
 };
 
-}  // namespace roifem::simulation
+}  // namespace roifem
