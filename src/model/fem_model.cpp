@@ -1,5 +1,6 @@
 #include "model/fem_model.hpp"
 
+#include <algorithm>
 #include <map>
 
 #include "common/errors.hpp"
@@ -43,8 +44,39 @@ std::vector<int> tool_nodes(const mesh::TetMesh& mesh, const SetTool& tool) {
   return nodes;
 }
 
-/// Each tool's nodes, checked: some, none fixed, none another tool's.
-std::vector<Tool> attach_tools(const mesh::TetMesh& mesh, const fem::Constraints& fixed, const std::vector<SetTool>& tools) {
+/// Mean length of the edges of the elements that touch `nodes` (m).
+double edge_length_around(const mesh::TetMesh& mesh, const std::vector<int>& nodes) {
+  std::vector<bool> held(static_cast<std::size_t>(mesh.num_nodes()));
+  for (const int n : nodes) held[static_cast<std::size_t>(n)] = true;
+  double sum = 0;
+  long count = 0;
+  for (const auto& t : mesh.tets) {
+    if (std::none_of(t.begin(), t.begin() + 4, [&](int n) { return held[static_cast<std::size_t>(n)]; })) continue;
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b, ++count) sum += (mesh.node(t[a]) - mesh.node(t[b])).norm();
+  }
+  return count > 0 ? sum / static_cast<double>(count) : 0.0;
+}
+
+/// A tool should hold a patch of the surface, not a node or two: below three nodes, its force is
+/// that of the nodes the mesh happens to put there (on the 806-node brain a 4 mm and an 8 mm
+/// spatula hold one node each and feel 142 mN; at 20k nodes, 93 mN).
+constexpr std::size_t fewest_tool_nodes = 3;
+
+void warn_of_a_tool_below_the_mesh(const mesh::TetMesh& mesh, const SetTool& t, const Tool& tool,
+                                   std::vector<std::string>& warnings) {
+  if (tool.nodes.size() >= fewest_tool_nodes) return;
+  warnings.push_back(io::format(
+      "%s holds %zu node%s, and the elements there have %.3g mm edges: its force is that of the nodes the mesh puts there, "
+      "and changes with the mesh; give it a footprint of %zu nodes or more (%s)",
+      t.describe().c_str(), tool.nodes.size(), tool.nodes.size() == 1 ? "" : "s", edge_length_around(mesh, tool.nodes) / mm,
+      fewest_tool_nodes, t.set.empty() ? "a radius of about an element's edge, or a finer mesh there" : "a larger set"));
+}
+
+/// Each tool's nodes, checked: some, none fixed, none another tool's; a warning for one that holds
+/// too few nodes to be more than the mesh's choice.
+std::vector<Tool> attach_tools(const mesh::TetMesh& mesh, const fem::Constraints& fixed, const std::vector<SetTool>& tools,
+                               std::vector<std::string>& warnings) {
   std::vector<Tool> attached;
   std::map<int, std::size_t> holder;
   for (std::size_t a = 0; a < tools.size(); ++a) {
@@ -61,9 +93,23 @@ std::vector<Tool> attach_tools(const mesh::TetMesh& mesh, const fem::Constraints
         throw InputError(mesh.source + ": " + t.describe() + " and " + tools[it->second].describe() + " both hold node " +
                          std::to_string(n) + ": tools must not overlap");
     }
+    warn_of_a_tool_below_the_mesh(mesh, t, tool, warnings);
     attached.push_back(std::move(tool));
   }
   return attached;
+}
+
+/// ModelError when the tools hold every free node: nothing is left to integrate.
+void require_a_free_node(const mesh::TetMesh& mesh, const fem::DofMap& unfixed, const std::vector<Tool>& attached) {
+  std::size_t held = 0;
+  std::string names;
+  for (const Tool& tool : attached) {
+    held += tool.nodes.size();
+    names += (names.empty() ? "'" : ", '") + tool.name + "'";
+  }
+  if (3 * static_cast<Index>(held) < unfixed.num_free()) return;
+  throw ModelError(mesh.source + ": the tools (" + names + ") hold every free node (" + std::to_string(held) +
+                   "): nothing is left to integrate; let them hold fewer nodes, or fix fewer");
 }
 
 SecondOrderSystem assemble(const mesh::TetMesh& mesh, const fem::MaterialMap& materials, fem::Element element,
@@ -147,7 +193,8 @@ FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::MaterialMap& mate
   fem::Constraints constraints = fixed_constraints(mesh, fixed_sets);
   const fem::DofMap fixed_only(constraints);
   require_a_support(mesh, fixed_only);
-  const std::vector<Tool> attached = attach_tools(mesh, constraints, tools);
+  const std::vector<Tool> attached = attach_tools(mesh, constraints, tools, model.warnings);
+  if (!attached.empty()) require_a_free_node(mesh, fixed_only, attached);
   if (attached.empty()) {
     model.dofs = std::make_unique<fem::DofMap>(constraints);
     model.system = assemble(mesh, materials, element, *model.dofs);

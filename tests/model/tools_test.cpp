@@ -156,5 +156,35 @@ TEST(Tools, BadToolsAndLoadsOnSupportsAreRefusedByName) {
   EXPECT_NE(partly.warnings[0].find(io::format("%.3g N", std::sqrt(lost))), std::string::npos) << partly.warnings[0];
 }
 
+TEST(Tools, ToolsThatHoldEveryFreeNodeLeaveNothingToIntegrate) {
+  // A 2 x 2 x 2-node cube held at x = 0 with a tool on x = 1: no unknown is left. This reached
+  // CHOLMOD, SUNDIALS or GSL as an empty system ("CHOLMOD analysis failed (status -4)").
+  const mesh::TetMesh cube = mesh::structured_box_mesh(1, 1, 1, 0.02, 0.02, 0.02);
+  const fem::Material material = fem::Material::from_young_poisson(3000, 0.45, 1000, 0.8);
+  try {
+    build_fem_model(cube, material, {"x0"}, {}, {SetTool{.name = "lid", .set = "x1", .path = {}}});
+    FAIL() << "an empty model was built";
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find("the tools ('lid') hold every free node (4): nothing is left to integrate"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(Tools, AToolBelowTheMeshsSizeIsWarnedOf) {
+  // On the beam (10 mm elements) a ball of 1 mm around a corner of the far face holds one node.
+  const PushedBeam b;
+  SetTool probe{.name = "probe", .center = Vec3(0.06, 0.02, 0.02), .radius = 1e-3, .path = {Vec3(0, 0, 1e-3), Ramp{0.2}}};
+  const FemModel one = build_fem_model(b.mesh, b.material, {"x0"}, {}, {probe});
+  ASSERT_EQ(one.warnings.size(), 1u);
+  EXPECT_NE(one.warnings[0].find("tool 'probe' (boundary nodes within 1 mm of (60, 20, 20) mm) holds 1 node, and the elements "
+                                 "there have"),
+            std::string::npos)
+      << one.warnings[0];
+  EXPECT_NE(one.warnings[0].find("give it a footprint of 3 nodes or more"), std::string::npos) << one.warnings[0];
+  // The whole far face (9 nodes) is a footprint: no word.
+  EXPECT_TRUE(build_fem_model(b.mesh, b.material, {"x0"}, {}, {b.tool}).warnings.empty());
+}
+
 }  // namespace
 }  // namespace roifem::model
