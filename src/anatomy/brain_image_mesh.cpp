@@ -12,6 +12,7 @@
 #include "anatomy/image_mesher.hpp"
 #include "anatomy/image_volume.hpp"
 #include "anatomy/voxel_mask.hpp"
+#include "common/did_you_mean.hpp"
 #include "common/errors.hpp"
 #include "io/csv.hpp"
 #include "mesh/msh_writer.hpp"
@@ -204,17 +205,24 @@ int label_under(const ImageVolume& atlas, const Face& f) {
   return 0;
 }
 
-/// The message for a label that is neither a number nor a name in the atlas's table.
+/// The message for a label that is neither a number nor a name in the atlas's table, with the
+/// name it may be a typo of (case aside).
 std::string unknown_label(const RegionSpec& r, const std::string& label, const std::map<std::string, int>& table) {
   std::string known;
-  int shown = 0;
-  for (const auto& [name, number] : table)
-    if (shown++ < 6) {
-      if (!known.empty()) known += ", ";
-      known += name;
-    }
-  return "--region " + r.text + ": '" + label + "' is neither a label number nor a name in the atlas's table (" + known +
-         ", ...)";
+  std::vector<std::string> names;
+  for (const auto& [name, number] : table) {
+    if (names.size() < 6) known += (known.empty() ? "" : ", ") + name;
+    names.push_back(name);
+  }
+  std::string hint;
+  for (const auto& name : names)
+    if (name.size() == label.size() && std::equal(name.begin(), name.end(), label.begin(), [](char a, char b) {
+          return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b));
+        }))
+      hint = " (did you mean '" + name + "'?)";
+  if (hint.empty()) hint = did_you_mean(label, names);
+  return "--region " + r.text + ": '" + label + "' is neither a label number nor a name in the atlas's table" + hint + " (" +
+         known + ", ... " + std::to_string(names.size()) + " in all)";
 }
 
 std::vector<bool> region_faces(const RegionSpec& r, const std::vector<Face>& faces, const ImageVolume* atlas,
@@ -249,16 +257,23 @@ std::vector<bool> region_faces(const RegionSpec& r, const std::vector<Face>& fac
       labels.insert(it->second);
       continue;
     }
+    std::optional<int> number;
     try {
       std::size_t used = 0;
-      const int number = std::stoi(l, &used);
-      if (used == l.size()) {
-        labels.insert(number);
-        continue;
-      }
+      const int n = std::stoi(l, &used);
+      if (used == l.size()) number = n;
     } catch (const std::exception&) {
     }
-    throw InputError(unknown_label(r, l, table));
+    if (!number) throw InputError(unknown_label(r, l, table));
+    const bool listed = std::any_of(table.begin(), table.end(), [&](const auto& entry) { return entry.second == *number; });
+    if (!listed && !table.empty()) {
+      const auto [low, high] =
+          std::minmax_element(table.begin(), table.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+      throw InputError("--region " + r.text + ": the atlas's table has no label " + std::to_string(*number) + " (its " +
+                       std::to_string(table.size()) + " labels run from " + std::to_string(low->second) + " to " +
+                       std::to_string(high->second) + ")");
+    }
+    labels.insert(*number);
   }
   for (std::size_t f = 0; f < faces.size(); ++f) chosen[f] = labels.count(label_under(*atlas, faces[f])) > 0;
   if (std::find(chosen.begin(), chosen.end(), true) == chosen.end())

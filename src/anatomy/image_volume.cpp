@@ -59,6 +59,7 @@ float ImageVolume::nearest(const Eigen::Vector3d& mm, float outside) const {
 
 ImageVolume read_nifti(const std::filesystem::path& file) {
   const std::string name = file.string();
+  if (std::filesystem::is_directory(file)) throw InputError(name + ": is a directory, not an image file (.nii or .nii.gz)");
   if (!std::filesystem::is_regular_file(file)) throw InputError(name + ": no such image file");
   if (!std::ifstream(file)) throw InputError(name + ": cannot open the image file for reading");
   nifti_set_debug_level(0);  // libnifti prints to stderr; the error below says what went wrong

@@ -111,6 +111,9 @@ void add_mesh_command(CLI::App& app, Action& action) {
       ->capture_default_str();
   cmd->callback([&action, opts, cmd] {
     action = [opts, cmd] {
+      if (std::filesystem::is_directory(opts->out))
+        throw InputError("--out " + opts->out + ": is a directory; give the mesh file to write (e.g. " +
+                         (std::filesystem::path(opts->out) / "brain.msh").string() + ")");
       const bool from_image = opts->colin27 || !opts->image.empty();
       for (const char* image_only : {"--threshold", "--cut-mm", "--atlas", "--region", "--opening", "--no-tissues", "--seed"})
         if (!from_image && cmd->count(image_only) > 0)

@@ -125,6 +125,7 @@ TetMesh extract_tet_mesh(const std::string& source, double length_unit) {
 TetMesh read_mesh(const std::filesystem::path& file, double length_unit) {
   const std::string source = file.string();
   // Gmsh 4.8 only warns about a missing file; check first so the error is ours and clear.
+  if (std::filesystem::is_directory(file)) throw InputError(source + ": is a directory, not a mesh file (.msh)");
   if (!std::filesystem::is_regular_file(file)) throw InputError(source + ": no such mesh file");
   if (!std::ifstream(file)) throw InputError(source + ": cannot open the mesh file for reading");
   if (std::filesystem::file_size(file) == 0) throw InputError(source + ": the mesh file is empty");

@@ -82,16 +82,19 @@ std::vector<Tool> attach_tools(const mesh::TetMesh& mesh, const fem::Constraints
   for (std::size_t a = 0; a < tools.size(); ++a) {
     const SetTool& t = tools[a];
     Tool tool{.name = t.name, .nodes = tool_nodes(mesh, t), .path = t.path};
+    // Where the scenario says it (file:line of its [[tool]] table), else the mesh.
+    const std::string at = t.where.empty() ? mesh.source : t.where;
+    const std::string of_mesh = t.where.empty() ? "" : " of " + mesh.source;
     if (tool.nodes.empty())
-      throw InputError(mesh.source + ": " + t.describe() + " holds no node" +
+      throw InputError(at + ": " + t.describe() + " holds no node" + of_mesh +
                        (t.set.empty() ? " (no boundary node within its radius: widen it or move its centre)" : ""));
     for (const int n : tool.nodes) {
       if (fixed.is_constrained(3 * n) || fixed.is_constrained(3 * n + 1) || fixed.is_constrained(3 * n + 2))
-        throw InputError(mesh.source + ": " + t.describe() + " holds node " + std::to_string(n) +
+        throw InputError(at + ": " + t.describe() + " holds node " + std::to_string(n) + of_mesh +
                          ", which [boundary] fixes: a tool moves free nodes only");
       if (const auto [it, fresh] = holder.emplace(n, a); !fresh)
-        throw InputError(mesh.source + ": " + t.describe() + " and " + tools[it->second].describe() + " both hold node " +
-                         std::to_string(n) + ": tools must not overlap");
+        throw InputError(at + ": " + t.describe() + " and " + tools[it->second].describe() + " both hold node " +
+                         std::to_string(n) + of_mesh + ": tools must not overlap");
     }
     warn_of_a_tool_below_the_mesh(mesh, t, tool, warnings);
     attached.push_back(std::move(tool));

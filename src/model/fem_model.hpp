@@ -34,6 +34,7 @@ struct SetTool {
   Vec3 center = Vec3::Zero();  ///< m, footprint: boundary nodes within `radius` of it
   double radius = 0;           ///< m
   ToolPath path;
+  std::string where;             ///< "file:line" of its [[tool]] table in the scenario, for messages (empty: none)
   std::string describe() const;  ///< "tool 'left' (set 'opening_left')"
 };
 

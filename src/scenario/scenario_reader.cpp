@@ -314,11 +314,26 @@ model::Ramp read_ramp(StrictTable& t, const toml::node& node) {
 
 std::string ramp_toml(const model::Ramp& ramp);
 
+/// A tool's name names its group of results.h5 (/tools/NAME): a word, not a path, and not the
+/// name of a dataset beside the tools' groups.
+void check_tool_name(const std::string& name, const std::string& where) {
+  const bool word = !name.empty() && name.front() != '.' &&
+                    std::all_of(name.begin(), name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'; });
+  if (!word)
+    throw InputError(where + ": key 'tool.name' = '" + name +
+                     "' is not a name: letters, digits, '_', '-' and '.' (not first) only, since it names the tool's group "
+                     "/tools/NAME of results.h5");
+  if (name == "position_drift_mm")
+    throw InputError(where + ": key 'tool.name' = '" + name + "' is taken by results.h5's dataset /tools/position_drift_mm");
+}
+
 /// A [[tool]]: a name, where it holds (set, or center_mm and radius_mm) and its path.
 model::SetTool read_tool(StrictTable t, const toml::node& node, const std::vector<model::SetTool>& earlier,
                          const std::filesystem::path& directory) {
   model::SetTool tool;
+  tool.where = t.table_where();
   tool.name = t.string("name").value_or("tool" + std::to_string(earlier.size() + 1));
+  if (const toml::node* name = t.find("name")) check_tool_name(tool.name, t.where(*name));
   for (const auto& other : earlier)
     if (other.name == tool.name) throw InputError(t.where(node) + ": two [[tool]] tables are named '" + tool.name + "'");
   const auto set = t.string("set");
@@ -340,7 +355,11 @@ model::SetTool read_tool(StrictTable t, const toml::node& node, const std::vecto
   if (const auto file = t.string("trajectory")) {
     if (displacement || t.number("ramp_s") || t.string("ramp_shape"))
       throw InputError(t.where(node) + ": a [[tool]] follows a trajectory or displacement_mm over a ramp, not both");
-    tool.path = read_trajectory(std::filesystem::path(*file).is_absolute() ? std::filesystem::path(*file) : directory / *file);
+    try {
+      tool.path = read_trajectory(std::filesystem::path(*file).is_absolute() ? std::filesystem::path(*file) : directory / *file);
+    } catch (const InputError& e) {  // the file's own line where it has one, after the scenario's
+      throw InputError(t.where(*t.find("trajectory")) + ": key 'tool.trajectory': " + e.what());
+    }
   } else {
     if (!displacement) t.missing("displacement_mm", " (or trajectory)");
     tool.path.displacement = *displacement * mm;
@@ -451,6 +470,7 @@ Scenario scenario_from_table(const toml::table& root, const std::string& source,
   if (const toml::table* t = top.subtable("time")) {
     StrictTable time(*t, source, "time");
     s.integrator = time.string("integrator").value_or(s.integrator);
+    if (const toml::node* integrator = time.find("integrator")) s.integrator_where = time.where(*integrator);
     s.dt = time.number("dt_s", s.dt);
     s.steps = time.integer("steps").value_or(s.steps);
     s.rtol = time.number("rtol");
@@ -462,6 +482,10 @@ Scenario scenario_from_table(const toml::table& root, const std::string& source,
       throw InputError(source + ": key 'time.atol' must be positive (got " + number_text(*s.atol) + ")");
     if (s.atol && !s.rtol) throw InputError(source + ": key 'time.atol' needs key 'time.rtol' (error-controlled steps)");
     if (!(s.dt > 0)) throw InputError(source + ": key 'time.dt_s' must be positive (got " + number_text(s.dt) + ")");
+    if (s.dt < scenario::Scenario::smallest_dt)
+      throw InputError(source + ": key 'time.dt_s' = " + number_text(s.dt) + " s is below " +
+                       number_text(scenario::Scenario::smallest_dt) +
+                       " s, where 4/dt^2 M swamps K in the effective stiffness and the steps mean nothing");
     if (s.steps <= 0) throw InputError(source + ": key 'time.steps' must be positive (got " + std::to_string(s.steps) + ")");
   }
   s.reduction = s.reduction.trained_on(s.dt, s.steps);  // a POD basis learns from the run's own step and length

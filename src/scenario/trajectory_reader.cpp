@@ -42,6 +42,8 @@ std::array<double, 4> sample(const std::string& line, const std::string& where) 
 }  // namespace
 
 model::ToolPath read_trajectory(const std::filesystem::path& file) {
+  if (std::filesystem::is_directory(file))
+    throw InputError(file.string() + ": is a directory, not a trajectory file (CSV: t_s,x_mm,y_mm,z_mm)");
   std::ifstream in(file);
   if (!in) throw InputError(file.string() + ": cannot open trajectory file");
   std::string line;

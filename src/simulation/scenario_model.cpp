@@ -92,9 +92,13 @@ std::unique_ptr<ScenarioModel> build_scenario_model(const scenario::Scenario& sc
 }
 
 std::unique_ptr<integrators::Integrator> scenario_integrator(const scenario::Scenario& sc) {
-  return integrators::make_integrator(
-      sc.integrator,
-      {.dt = sc.dt, .adaptive = sc.rtol.has_value(), .rtol = sc.rtol.value_or(1e-6), .atol = sc.absolute_tolerance()});
+  try {
+    return integrators::make_integrator(
+        sc.integrator,
+        {.dt = sc.dt, .adaptive = sc.rtol.has_value(), .rtol = sc.rtol.value_or(1e-6), .atol = sc.absolute_tolerance()});
+  } catch (const InputError& e) {  // an unknown name, tolerances for a fixed step: where the scenario says it
+    throw InputError((sc.integrator_where.empty() ? sc.file.string() : sc.integrator_where) + ": " + e.what());
+  }
 }
 
 roi::NodeDofs ScenarioModel::node_positions() const {

@@ -23,4 +23,5 @@ blocks, count = struct.unpack_from("<QQ", data, at)
 struct.pack_into("<QQ", data, at, blocks, 10**15)
 open(sys.argv[2], "wb").write(data)
 PY
+mkdir -p "$out/box-dir"  # a directory where a mesh file is expected
 echo "fixtures in $out: $(ls "$out" | tr '\n' ' ')"
