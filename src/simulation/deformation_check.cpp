@@ -15,6 +15,7 @@ void PeakDisplacement::observe(long step, const model::State& s) {
       if (i >= 0) squared += s.u[i] * s.u[i];
     largest = std::max(largest, squared);
   }
+  for (const auto& tool : tools_->tools()) largest = std::max(largest, tool.path.at(s.t).squaredNorm());
   if (std::sqrt(largest) > peak_) {
     peak_ = std::sqrt(largest);
     step_ = step;
@@ -44,7 +45,7 @@ DeformationReport check_deformation(ScenarioModel& model, const PeakDisplacement
   if (peak.state().u.size() == 0) return r;
   const model::State& s = peak.state();
   const Vector u_free = model.condensation ? model.condensation->expand(s.u, s.t) : s.u;
-  const Vector u = model.full.dofs->expand(u_free);  // 3 per node, prescribed values included
+  const Vector u = model.full.displacement(u_free, s.t);  // 3 per node, the tools' nodes on their paths
   for (int n = 0; n < mesh.num_nodes(); ++n) {
     const double d = u.segment<3>(3 * static_cast<Index>(n)).norm();
     if (d > r.peak_m) {

@@ -13,9 +13,10 @@
 
 namespace roifem::simulation {
 
+/// The peak covers every node the run moves: the integrated system's and the tools' (on their paths).
 class PeakDisplacement {
  public:
-  explicit PeakDisplacement(const ScenarioModel& model) : nodes_(model.node_positions()) {}
+  explicit PeakDisplacement(const ScenarioModel& model) : nodes_(model.node_positions()), tools_(&model.full.tools) {}
   /// A run-loop observer (run_loop.hpp).
   void observe(long step, const model::State& state);
   double peak_m() const { return peak_; }
@@ -25,6 +26,7 @@ class PeakDisplacement {
 
  private:
   roi::NodeDofs nodes_;
+  const model::ToolSet* tools_;
   double peak_ = 0;
   long step_ = 0;
   model::State state_;

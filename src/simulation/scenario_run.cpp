@@ -92,7 +92,8 @@ void print_deformation(const DeformationReport& r, const PeakDisplacement& peak,
     return;
   }
   log << format(
-      "peak displacement %.4g mm at node %d (step %ld, t = %g s); mesh's smallest extent %.4g mm, mean element edge "
+      "peak displacement %.4g mm at node %d (step %ld, t = %g s; over every node: the tools', the static part's); mesh's "
+      "smallest extent %.4g mm, mean element edge "
       "%.3g mm\n",
       r.peak_m / mm, r.peak_node, peak.step(), static_cast<double>(peak.step()) * dt, r.smallest_extent_m / mm,
       r.mean_edge_m / mm);
