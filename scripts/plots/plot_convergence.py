@@ -12,17 +12,22 @@ import os
 import sys
 from collections import defaultdict
 
+from matplotlib.ticker import FixedFormatter, FixedLocator, NullFormatter
+
 from plotting import plt, save
 
 
-def main(directory):
+def read_series(directory):
+    """Per quantity, its (h_mm, rel_error_pct, nodes) on each mesh."""
     series = defaultdict(list)
     with open(os.path.join(directory, "convergence.csv")) as f:
         for row in csv.DictReader(f):
             series[row["quantity"]].append((float(row["h_mm"]), float(row["rel_error_pct"]), int(row["nodes"])))
-    history_path = os.path.join(directory, "probe_history.csv")
-    fig, axes = plt.subplots(1, 2 if os.path.exists(history_path) else 1, figsize=(12, 4.8), squeeze=False)
-    ax = axes[0][0]
+    return series
+
+
+def draw_errors(ax, series):
+    """Each quantity's error over h (log-log, slopes 1 and 2), a tick per mesh with its node count."""
     h_all = []
     for name, points in series.items():
         points = [p for p in points if p[1] > 0]
@@ -37,11 +42,23 @@ def main(directory):
         for order, y in ((1, 30.0), (2, 10.0)):
             ax.loglog([h0, h1], [y * (h0 / h1) ** order, y], "k--", lw=0.8, alpha=0.5)
             ax.text(h0, y * (h0 / h1) ** order, f"slope {order}", fontsize=8, alpha=0.7)
-    ax.set_xlabel("mesh size h (mm)")
+    # One tick per mesh, labelled by its size and node count: log ticks within one decade read 1.1x10^1.
+    meshes = sorted({(p[0], p[2]) for points in series.values() for p in points})
+    ax.xaxis.set_major_locator(FixedLocator([h for h, _ in meshes]))
+    ax.xaxis.set_major_formatter(FixedFormatter([f"{h:.3g}\n{n} nodes" for h, n in meshes]))
+    ax.xaxis.set_minor_formatter(NullFormatter())
+    ax.set_xlabel("mesh size h (mm), and the mesh's node count")
     ax.set_ylabel("error against the extrapolated value (%)")
     ax.set_title("Spatial convergence")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
+
+
+def main(directory):
+    series = read_series(directory)
+    history_path = os.path.join(directory, "probe_history.csv")
+    fig, axes = plt.subplots(1, 2 if os.path.exists(history_path) else 1, figsize=(12, 4.8), squeeze=False)
+    draw_errors(axes[0][0], series)
     if os.path.exists(history_path):
         ax = axes[0][1]
         with open(history_path) as f:

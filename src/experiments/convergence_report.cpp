@@ -1,5 +1,6 @@
 // The convergence study's table and CSV files (experiments/convergence_study.hpp).
 #include <ostream>
+#include <string>
 
 #include "experiments/convergence_study.hpp"
 #include "io/csv.hpp"
@@ -7,6 +8,33 @@
 namespace roifem::experiments {
 
 using io::format;
+
+namespace {
+
+/// Why a quantity's meshes are not (shown to be) in the asymptotic range, or "" when they are.
+std::string why_not_asymptotic(const QuantityConvergence& q, std::size_t meshes) {
+  if (q.asymptotic) return "";
+  if (meshes < 3) return "two meshes show no order";
+  if (q.observed_order) return format("observed order %.2f, the element's %g", *q.observed_order, formal_order);
+  const std::size_t n = q.values.size();
+  const double d12 = q.values[n - 3] - q.values[n - 2], d23 = q.values[n - 2] - q.values[n - 1];
+  if ((d12 > 0) != (d23 > 0) || d12 == 0 || d23 == 0) return "the values are not monotone";
+  return format("no order within [0.3, 4], the element's %g", formal_order);
+}
+
+/// A word on each quantity whose extrapolation is a guess, not an estimate.
+void print_asymptotic_range(const ConvergenceResults& r, std::ostream& log) {
+  std::string list;
+  for (const auto& q : r.quantities)
+    if (const std::string why = why_not_asymptotic(q, r.meshes.size()); !why.empty())
+      list += (list.empty() ? "" : "; ") + q.name + " (" + why + ")";
+  if (list.empty()) return;
+  log << "warning: not in the asymptotic range: " << list
+      << ". Their extrapolated values and errors are distances to a guess, not error estimates: finer or more meshes "
+         "(--nodes), or --adapt.\n";
+}
+
+}  // namespace
 
 void print_convergence_table(const ConvergenceResults& r, std::ostream& log) {
   log << format("\nConvergence (element %s, material '%s'); extrapolated by Richardson from the finest meshes\n",
@@ -26,12 +54,14 @@ void print_convergence_table(const ConvergenceResults& r, std::ostream& log) {
   log << "order: observed from the three finest meshes; in brackets, the order used where none was observed: the\n"
          "formal order 2 where the meshes are not yet in the asymptotic range, and for the dynamic peak the probe's, with\n"
          "which its history is extrapolated step by step (its error: the largest distance over the run from that history).\n";
+  print_asymptotic_range(r, log);
   const auto& opening = r.quantities.front();
   log << format(
-      "The %lld-node model's spatial error on the opening: %.3f mm of %.3f mm (%.1f%%); at %lld nodes %.3f mm (%.1f%%)\n",
+      "The %lld-node model's spatial error on the opening: %.3f mm of %.3f mm (%.1f%%); at %lld nodes %.3f mm (%.1f%%)%s\n",
       static_cast<long long>(r.meshes.front().nodes), opening.errors.front(), opening.extrapolated,
       100 * opening.errors.front() / std::abs(opening.extrapolated), static_cast<long long>(r.meshes.back().nodes),
-      opening.errors.back(), 100 * opening.errors.back() / std::abs(opening.extrapolated));
+      opening.errors.back(), 100 * opening.errors.back() / std::abs(opening.extrapolated),
+      opening.asymptotic ? "" : "; not an error estimate: these meshes are not shown to be in the asymptotic range (above)");
 }
 
 void write_convergence_csv(const ConvergenceResults& r, const std::filesystem::path& out) {

@@ -60,11 +60,18 @@ struct MeshQuantities {
   double seconds = 0;                    ///< meshing, solving and running
 };
 
+/// The order the extrapolation assumes where none is observed, and the one the observed order is
+/// held to: 2, a linear tetrahedron's for displacements and frequencies.
+constexpr double formal_order = 2.0;
+
 struct QuantityConvergence {
   std::string name, unit;
   std::vector<double> values;            ///< per mesh, coarse to fine
   std::optional<double> observed_order;  ///< of the three finest
   double order_used = 0;
+  /// The three finest meshes show an order within half of the formal one (formal_order): only then
+  /// are the extrapolation and the errors estimates, not just distances to a guess.
+  bool asymptotic = false;
   double extrapolated = 0;
   std::vector<double> errors;  ///< |value - extrapolated| per mesh (dynamic: the largest over the run)
 };
