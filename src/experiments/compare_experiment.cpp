@@ -116,7 +116,22 @@ struct Sweep {
   double t_end = 0, peak = 0;
   CompareResults results;
   std::ostream& log;
+  std::size_t integrators = 0;  ///< in the sweep
+  Stopwatch clock;              ///< since the sweep began
 };
+
+/// The exact modal solution compare measures against; InputError naming what it cannot solve and
+/// what runs without it.
+model::ModalReference modal_reference_of(const scenario::Scenario& sc, const model::SecondOrderSystem& system) {
+  try {
+    return model::ModalReference(system, model::State::at_rest(system.size()));
+  } catch (const InputError& e) {
+    throw InputError("compare: " + sc.file.string() + ": " + e.what() +
+                     ". compare measures every run against that exact solution; give the scenario linear ramps "
+                     "(ramp_shape = \"linear\", displacement_mm over ramp_s for a tool), or run one method without a "
+                     "reference: roifem run " + sc.file.string() + " --out DIR (its energy balance and the tools' forces)");
+  }
+}
 
 Reference exact_reference(const model::SecondOrderSystem& system, const model::ModalReference& modal,
                           const simulation::ScenarioModel& built, double interval, long outputs, double t_end, double& peak) {
@@ -138,6 +153,23 @@ Reference exact_reference(const model::SecondOrderSystem& system, const model::M
   const model::State exact_end{t_end, ref.u.back(), modal.velocity(t_end)};
   ref.final_energy = kinetic_energy(system, exact_end) + strain_energy(system, exact_end);
   return ref;
+}
+
+void write_compare_files(const CompareOptions& o, const CompareResults& results);
+
+/// After each run: the files hold every run so far (a compare stopped or killed keeps them).
+void after_run(Sweep& w) { write_compare_files(w.o, w.results); }
+
+/// After each integrator's sweep: the time so far, and what the rest may take at that pace.
+void report_pace(const Sweep& w, const std::string& name, std::size_t done, double integrator_s) {
+  const double elapsed = w.clock.seconds();
+  const std::size_t left = w.integrators - done;
+  w.log << format("  (%s: %.1f s; %.0f s since the start%s)\n", name.c_str(), integrator_s, elapsed,
+                  left == 0 ? ""
+                            : format("; %zu integrator%s left, about %.0f s more at the pace so far", left, left == 1 ? "" : "s",
+                                     elapsed / static_cast<double>(done) * static_cast<double>(left))
+                                  .c_str())
+        << std::flush;
 }
 
 /// Runs one integrator against the reference and keeps its row; false when the run went over the
@@ -167,6 +199,7 @@ bool record_run(Sweep& w, const std::string& name, const std::string& mode, doub
     row.status = format("stopped at t = %.3g s after %.0f s (--max-run-seconds)", stop.t, row.wall_s);
     w.log << format("  %-20s %-8s %9.3g  %s; no error figures\n", name.c_str(), mode.c_str(), dt_or_tol, row.status.c_str());
     w.results.rows.push_back(row);
+    after_run(w);
     return false;
   }
   row.wall_s = run_clock.seconds();
@@ -178,12 +211,15 @@ bool record_run(Sweep& w, const std::string& name, const std::string& mode, doub
   row.lin_solves = st.lin_solves;
   const std::string tool_figures =
       !w.ref.tool_forces.empty() && row.stable
-          ? format("; tool force error %.1e, drift %.1e mm", row.tools.force_error_rel, row.tools.position_drift_mm)
+          ? format("; tool force error %.3g mN (%.1e of the exact peak, %.4g mN), drift %.1e mm",
+                   row.tools.force_error_rel * w.ref.tool_force_peak * 1e3, row.tools.force_error_rel, w.ref.tool_force_peak * 1e3,
+                   row.tools.position_drift_mm)
           : "";
   w.log << format("  %-20s %-8s %9.3g  %8ld steps  %9.3f s  max error %s mm%s\n", name.c_str(), mode.c_str(), dt_or_tol,
                   row.steps, row.wall_s, row.stable ? format("%.3e", row.err_max_mm).c_str() : "(diverged)", tool_figures.c_str())
         << std::flush;  // a sweep runs for minutes: show each run as it ends
   w.results.rows.push_back(row);
+  after_run(w);
   return true;
 }
 
@@ -301,18 +337,20 @@ void print_summary(const CompareResults& results, double dt, std::ostream& log) 
     log << format("\ncheapest run within 0.1 mm max error: %s (%s %g): %.4f s, %ld steps, max error %.4f mm\n",
                   cheapest->integrator.c_str(), cheapest->mode.c_str(), cheapest->dt_or_tol, cheapest->wall_s, cheapest->steps,
                   cheapest->err_max_mm);
-  double trapezoid_step = 0;
+  const CompareRow* trapezoid = nullptr;
   for (const auto& r : results.rows)
-    if (r.integrator == "trapezoid" && r.mode == "fixed" && std::abs(r.dt_or_tol - dt) < 1e-12 * dt && r.steps > 0)
-      trapezoid_step = r.wall_s / static_cast<double>(r.steps);
-  if (trapezoid_step <= 0) return;
-  log << "cost per step relative to the trapezoidal rule: wall time per step (the run's setup included), at dt = " << dt
-      << " s for fixed steps and at rtol 1e-6 for adaptive ones, from the same compare run:\n";
+    if (r.integrator == "trapezoid" && r.mode == "fixed" && std::abs(r.dt_or_tol - dt) < 1e-12 * dt && r.steps > 0) trapezoid = &r;
+  if (!trapezoid) return;
+  const double trapezoid_step = trapezoid->wall_s / static_cast<double>(trapezoid->steps);
+  log << "cost relative to the trapezoidal rule at dt = " << dt
+      << " s: per step (wall time per step, the run's setup included) and in all (the run's wall time), for fixed steps at "
+         "dt and adaptive ones at rtol 1e-6, from the same compare run:\n";
+  log << format("  %-20s %-8s %10s %12s %8s\n", "integrator", "mode", "per step", "in all", "steps");
   for (const auto& r : results.rows)
     if (r.stable && r.steps > 0 &&
         ((r.mode == "fixed" && std::abs(r.dt_or_tol - dt) < 1e-12 * dt) || (r.mode == "adaptive" && r.dt_or_tol == 1e-6)))
-      log << format("  %-20s %-8s %8.2fx\n", r.integrator.c_str(), r.mode.c_str(),
-                    r.wall_s / static_cast<double>(r.steps) / trapezoid_step);
+      log << format("  %-20s %-8s %9.2fx %11.3gx %8ld\n", r.integrator.c_str(), r.mode.c_str(),
+                    r.wall_s / static_cast<double>(r.steps) / trapezoid_step, r.wall_s / trapezoid->wall_s, r.steps);
 }
 
 }  // namespace
@@ -347,8 +385,9 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
   }
 
   const Stopwatch clock;
-  const model::ModalReference modal(system, model::State::at_rest(system.size()));
-  Sweep w{.sc = sc, .o = o, .system = system, .ref = {}, .t_end = t_end, .peak = 0, .results = {}, .log = log};
+  const model::ModalReference modal = modal_reference_of(sc, system);
+  Sweep w{.sc = sc, .o = o, .system = system, .ref = {}, .t_end = t_end, .peak = 0, .results = {}, .log = log,
+          .integrators = names.size()};
   w.ref = exact_reference(system, modal, *built, sc.dt, outputs, t_end, w.peak);
   w.results.omega_max = model::highest_frequency(system);  // Lanczos: the same figure at any size
   log << format("compare: %s, %lld dofs, t_end = %g s on an output grid of %g s; exact modal reference in %.1f s\n",
@@ -356,12 +395,18 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
   log << format("  lowest w = %.3f rad/s, highest w = %.1f rad/s, alpha = %g 1/s\n", modal.frequencies()[0], w.results.omega_max,
                 modal.alpha());
 
-  for (const auto& name : names) {
-    const integrators::IntegratorInfo& info = row_of(o, name);
+  const std::size_t runs = names.size() * (static_cast<std::size_t>(o.fixed_levels) + o.tolerances.size());
+  log << format("  %zu integrators, up to %zu runs, each stopped after --max-run-seconds %g s (at most %.0f min in all); "
+                "compare.csv grows as each run ends\n",
+                names.size(), runs, o.max_run_s, static_cast<double>(runs) * o.max_run_s / 60);
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const Stopwatch integrator_clock;
+    const integrators::IntegratorInfo& info = row_of(o, names[i]);
     const double limit = integrators::predicted_stability_limit(info, modal.frequencies(), modal.alpha());
     if (info.fixed_step) sweep_fixed_steps(w, info, limit);
     if (info.adaptive) sweep_tolerances(w, info, limit);
     if (std::isfinite(limit)) search_stability_limit(w, info, limit);
+    report_pace(w, info.name, i + 1, integrator_clock.seconds());
   }
 
   write_compare_files(o, w.results);
