@@ -31,14 +31,23 @@ void bind_mesh(py::module_& m) {
           "nodes", [](const Mesh& self) { return owned_view(self.mesh->nodes.data(), self.mesh->num_nodes(), 3, self.mesh); },
           "N x 3 node coordinates (m), a read-only view")
       .def_property_readonly(
+          "nodes_mm",
+          [](const Mesh& self) {
+            const Eigen::Matrix3Xd in_mm = self.mesh->nodes / mm;  // 3 x N: row-major N x 3
+            return copied_array(in_mm.data(), in_mm.size(), 3);
+          },
+          "N x 3 node coordinates (mm, as in the .msh file and results.h5), a copy")
+      .def_property_readonly(
           "tets",
           [](const Mesh& self) {
             const int* data = self.mesh->tets.empty() ? nullptr : self.mesh->tets.front().data();
             return owned_view(data, self.mesh->num_tets(), 4, self.mesh);
           },
           "E x 4 node indices (0-based, int32), a read-only view")
-      .def_property_readonly("num_nodes", [](const Mesh& self) { return self.mesh->num_nodes(); })
-      .def_property_readonly("num_tets", [](const Mesh& self) { return self.mesh->num_tets(); })
+      .def_property_readonly(
+          "num_nodes", [](const Mesh& self) { return self.mesh->num_nodes(); }, "N, the number of nodes")
+      .def_property_readonly(
+          "num_tets", [](const Mesh& self) { return self.mesh->num_tets(); }, "E, the number of tetrahedra")
       .def_property_readonly(
           "source", [](const Mesh& self) { return self.mesh->source; }, "the file it came from")
       .def_property_readonly(

@@ -132,58 +132,32 @@ void bind_scenario(py::module_& m) {
       .def(
           "to_toml", [](const ScenarioHandle& h) { return h.scenario.resolved_toml(); },
           "The scenario resolved (defaults filled in), as TOML text: what results.h5 stores")
-      .def_property_readonly("file",
-                             [](const ScenarioHandle& h) {
-                               const auto& s = h.scenario;
-                               return s.file.string();
-                             })
-      .def_property_readonly("mesh",
-                             [](const ScenarioHandle& h) {
-                               const auto& s = h.scenario;
-                               return s.mesh.string();
-                             })
-      .def_property_readonly("material",
-                             [](const ScenarioHandle& h) {
-                               const auto& s = h.scenario;
-                               return s.material_name;
-                             })
-      .def_property_readonly("integrator",
-                             [](const ScenarioHandle& h) {
-                               const auto& s = h.scenario;
-                               return s.integrator;
-                             })
       .def_property_readonly(
-          "dt",
-          [](const ScenarioHandle& h) {
-            const auto& s = h.scenario;
-            return s.dt;
-          },
-          "s")
-      .def_property_readonly("steps",
-                             [](const ScenarioHandle& h) {
-                               const auto& s = h.scenario;
-                               return s.steps;
-                             })
-      .def_property_readonly("rtol",
-                             [](const ScenarioHandle& h) {
-                               const auto& s = h.scenario;
-                               return s.rtol;
-                             })
-      .def_property_readonly("has_roi",
-                             [](const ScenarioHandle& h) {
-                               const auto& s = h.scenario;
-                               return s.roi.has_value();
-                             })
-      .def_property_readonly("roi",
-                             [](const ScenarioHandle& h) {
-                               const auto& s = h.scenario;
-                               return s.roi ? s.roi->describe() : std::string("none");
-                             })
-      .def_property_readonly("reduction",
-                             [](const ScenarioHandle& h) {
-                               const auto& s = h.scenario;
-                               return s.reduction.label();
-                             })
+          "file", [](const ScenarioHandle& h) { return h.scenario.file.string(); }, "the scenario file it was read from")
+      .def_property_readonly(
+          "mesh", [](const ScenarioHandle& h) { return h.scenario.mesh.string(); }, "the mesh file (resolved)")
+      .def_property_readonly(
+          "material", [](const ScenarioHandle& h) { return h.scenario.material_name; },
+          "the [material] preset's name, or 'custom'")
+      .def_property_readonly(
+          "integrator", [](const ScenarioHandle& h) { return h.scenario.integrator; }, "[time] integrator")
+      .def_property_readonly(
+          "dt", [](const ScenarioHandle& h) { return h.scenario.dt; },
+          "[time] dt_s (s): the step, or with rtol the output interval")
+      .def_property_readonly(
+          "steps", [](const ScenarioHandle& h) { return h.scenario.steps; }, "[time] steps")
+      .def_property_readonly(
+          "rtol", [](const ScenarioHandle& h) { return h.scenario.rtol; },
+          "[time] rtol (relative), or None: a fixed step")
+      .def_property_readonly(
+          "has_roi", [](const ScenarioHandle& h) { return h.scenario.roi.has_value(); },
+          "whether it has an [roi] (else the full dynamic model)")
+      .def_property_readonly(
+          "roi", [](const ScenarioHandle& h) { return h.scenario.roi ? h.scenario.roi->describe() : std::string("none"); },
+          "the [roi] in words ('306 nodes nearest (0, 0, 40) mm'), or 'none'")
+      .def_property_readonly(
+          "reduction", [](const ScenarioHandle& h) { return h.scenario.reduction.label(); },
+          "the static part's reduction ('static', 'guyan', 'craig-bampton-10', 'pod-40')")
       .def("__repr__", [](const ScenarioHandle& h) {
         const scenario::Scenario& s = h.scenario;
         return "<roifem.Scenario " + s.file.string() + ": " + (s.roi ? s.roi->describe() : std::string("full model")) + ", " +

@@ -149,15 +149,20 @@ void bind_simulation(py::module_& m) {
       .def("close", &Simulation::close, "Frees the model; arrays taken before stay valid, later access is a ValueError")
       .def("__enter__", [](py::object self) { return self; })
       .def("__exit__", [](Simulation& self, const py::args&) { self.close(); })
-      .def_property_readonly("closed", [](const Simulation& self) { return !self.is_open(); })
       .def_property_readonly(
-          "t", [](const Simulation& self) { return self.live().state().t; }, "s")
+          "closed", [](const Simulation& self) { return !self.is_open(); }, "whether close() freed the model")
+      .def_property_readonly(
+          "t", [](const Simulation& self) { return self.live().state().t; }, "the time now (s): t_k = k dt after k steps")
       .def_property_readonly(
           "step_index", [](const Simulation& self) { return self.live().steps_taken(); }, "k: steps taken")
       .def_property_readonly(
-          "dofs", [](const Simulation& self) { return self.live().model().system().size(); }, "unknowns of the integrated system")
-      .def_property_readonly("integrator", [](const Simulation& self) { return self.live().scenario().integrator; })
-      .def_property_readonly("scenario", [](const Simulation& self) { return self.scenario(); })
+          "dofs", [](const Simulation& self) { return self.live().model().system().size(); },
+          "the number of unknowns of the integrated system (the length of u and v)")
+      .def_property_readonly(
+          "integrator", [](const Simulation& self) { return self.live().scenario().integrator; },
+          "the integrator's name (roifem.integrators() lists them)")
+      .def_property_readonly(
+          "scenario", [](const Simulation& self) { return self.scenario(); }, "the roifem.Scenario it was made from")
       .def_property_readonly(
           "mesh",
           [](const Simulation& self) {
@@ -181,13 +186,16 @@ void bind_simulation(py::module_& m) {
           "velocity (m/s), a read-only view like u")
       .def_property_readonly(
           "roi_nodes", [](const Simulation& self) { return copied_array(self.live().model().roi_nodes); },
-          "the ROI's mesh nodes (empty for the full model)")
+          "the ROI's mesh nodes (#ROI, 0-based indices into mesh.nodes; empty for the full model)")
       .def_property_readonly(
           "roi_displacement_mm", [](const Simulation& self) { return copied_array(self.live().roi_displacement_mm(), 3); },
           "the ROI nodes' displacement (#ROI x 3, mm), as results.h5 records it")
       .def(
           "displacement", [](Simulation& self) { return vector_copy(self.live().displacement(), 3); },
           "every node's displacement (N x 3, m): the static part recovered, tools on their paths")
+      .def(
+          "displacement_mm", [](Simulation& self) { return vector_copy(self.live().displacement() / mm, 3); },
+          "every node's displacement (N x 3, mm, as results.h5's fields): displacement() in millimetres")
       .def_property_readonly(
           "energy",
           [](const Simulation& self) -> py::object {

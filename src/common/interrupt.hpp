@@ -1,8 +1,9 @@
 #pragma once
 /// SIGINT and SIGTERM as a request the time loop honours between two steps, so that a run stops
 /// with its results file closed, valid and marked incomplete instead of dying mid-write.
-/// Signals belong to the process: the flag the handler sets (a std::sig_atomic_t) is the one piece
-/// of process-wide state in roifem, written only by the handler and read only through this class.
+/// Signals belong to the process: the flag the handler sets (a std::sig_atomic_t) and the count of
+/// guards alive are the one piece of process-wide state in roifem, kept by this class alone. A
+/// signal counts only while a guard is alive: a request heard under one is gone with the last.
 #include <csignal>
 
 namespace roifem {

@@ -5,6 +5,7 @@ import os
 import subprocess
 import time
 
+import numpy as np
 import pytest
 
 import roifem
@@ -72,3 +73,24 @@ def test_the_time_keywords_take_the_scenario_files_names(scenarios):
     b = roifem.Simulation(scenarios / "paper-setup2.toml", dt=0.01, steps=3)
     assert a.run() == 3 and b.run() == 3
     assert a.t == pytest.approx(0.03) and a.t == b.t
+
+
+@pytest.mark.parametrize("cls", [roifem.Simulation, roifem.Mesh, roifem.Scenario])
+def test_help_explains_every_public_attribute(cls):
+    # help(roifem.Simulation) listed closed, integrator, scenario and others without a word.
+    undocumented = [name for name in dir(cls) if not name.startswith("_")
+                    and not (getattr(cls, name).__doc__ or "").strip()]
+    assert undocumented == [], f"{cls.__name__}: {undocumented}"
+
+
+def test_every_array_names_its_unit_and_mm_variants_agree(scenarios, source_dir):
+    units = {"u": "(m", "v": "(m/s", "roi_displacement_mm": "mm", "displacement": "m)", "displacement_mm": "mm",
+             "t": "(s)"}
+    for name, unit in units.items():
+        assert unit in roifem.Simulation.__dict__[name].__doc__, name
+    assert "(m)" in roifem.Mesh.nodes.__doc__ and "(mm" in roifem.Mesh.nodes_mm.__doc__
+    sim = roifem.Simulation(scenarios / "paper-setup2.toml")
+    sim.run(20)
+    np.testing.assert_allclose(sim.displacement_mm(), sim.displacement() * 1e3, rtol=1e-15, atol=0)
+    mesh = roifem.read_mesh(source_dir / "meshes/brain-800.msh")
+    np.testing.assert_allclose(mesh.nodes_mm, mesh.nodes * 1e3, rtol=1e-15, atol=0)
