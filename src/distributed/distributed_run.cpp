@@ -19,6 +19,7 @@
 #include "io/xdmf.hpp"
 #include "common/interrupt.hpp"
 #include "simulation/progress.hpp"
+#include "simulation/results_recorder.hpp"
 
 namespace roifem::distributed {
 
@@ -136,11 +137,13 @@ class RootRecorder {
     }
     if (k % 50 == 0) h5_.flush();
   }
-  void finish() {
+  void finish(std::ostream& log) {
     h5_.attribute("status", "complete");
     h5_.close();
     file_.commit();
     if (!xdmf_.times.empty()) io::write_xdmf(out_ / "results.xdmf", xdmf_);
+    for (const auto& stale : simulation::remove_stale_incomplete(out_))
+      log << "removed " << stale.string() << ", an earlier run's that was stopped\n";
   }
   void abandon(const std::string& why) {
     h5_.attribute("status", "incomplete: " + why);
@@ -231,7 +234,7 @@ DistributedRunSummary run_distributed(const scenario::Scenario& sc, const std::f
     }
     throw;
   }
-  on_root(comm, [&] { recorder->finish(); });
+  on_root(comm, [&] { recorder->finish(log); });
   std::nth_element(step_s.begin(), step_s.begin() + static_cast<long>(step_s.size() / 2), step_s.end());
   summary.steps = sc.steps;
   summary.step_s_median = step_s.empty() ? 0 : step_s[step_s.size() / 2];

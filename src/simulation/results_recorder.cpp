@@ -109,7 +109,7 @@ void ResultsRecorder::record_constraints(const integrators::ConstraintReport& re
   }
 }
 
-void ResultsRecorder::finish(const integrators::Stats& st) {
+std::vector<std::filesystem::path> ResultsRecorder::finish(const integrators::Stats& st) {
   h5_.attribute(
       "counters",
       io::format("steps=%ld rhs_evals=%ld jac_evals=%ld lin_setups=%ld lin_solves=%ld lin_iterations=%ld failed_steps=%ld",
@@ -118,6 +118,16 @@ void ResultsRecorder::finish(const integrators::Stats& st) {
   h5_.close();
   file_.commit();
   if (has_fields()) io::write_xdmf(out_ / "results.xdmf", xdmf_);
+  return remove_stale_incomplete(out_);
+}
+
+std::vector<std::filesystem::path> remove_stale_incomplete(const std::filesystem::path& out) {
+  std::vector<std::filesystem::path> removed;
+  for (const char* name : {"results.incomplete.h5", "results.incomplete.xdmf"}) {
+    std::error_code ec;
+    if (std::filesystem::remove(out / name, ec)) removed.push_back(out / name);
+  }
+  return removed;
 }
 
 void ResultsRecorder::abandon(const std::string& why) {

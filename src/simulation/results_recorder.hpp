@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "common/atomic_file.hpp"
 #include "integrators/integrator.hpp"
@@ -33,7 +34,8 @@ class ResultsRecorder {
   /// max over the steps of |F_multipliers - F_residual| / max |F_residual| (0 without a DAE form).
   double multiplier_disagreement() const { return force_peak_ > 0 ? force_gap_ / force_peak_ : 0.0; }
   /// Writes the counters, marks the file complete and moves it into place (with results.xdmf).
-  void finish(const integrators::Stats& stats);
+  /// Returns the stale results.incomplete.{h5,xdmf} of an earlier, stopped run that it removed.
+  std::vector<std::filesystem::path> finish(const integrators::Stats& stats);
   /// Keeps every recorded step as results.incomplete.h5 (status: `why`) beside any good results.h5.
   void abandon(const std::string& why);
   const model::EnergyLedger& ledger() const { return ledger_; }
@@ -60,5 +62,9 @@ class ResultsRecorder {
   io::XdmfSeries xdmf_;
   model::EnergyLedger ledger_;
 };
+
+/// Removes out/results.incomplete.{h5,xdmf}, left by an earlier run that was stopped, once a run
+/// has written its complete results.h5 beside them; returns what it removed.
+std::vector<std::filesystem::path> remove_stale_incomplete(const std::filesystem::path& out);
 
 }  // namespace roifem::simulation

@@ -161,7 +161,8 @@ ScenarioRunSummary run_scenario(const scenario::Scenario& sc, const std::filesys
   ResultsRecorder recorder(sc, *built, state, out);
   PeakDisplacement peak(*built);
   const RunSummary run_summary = integrate(sc, *integrator, state, recorder, peak, out, log);
-  recorder.finish(run_summary.stats);
+  for (const auto& stale : recorder.finish(run_summary.stats))
+    log << "removed " << stale.string() << ", an earlier run's that was stopped\n";
 
   const model::EnergyLedger& ledger = recorder.ledger();
   summary.steps = run_summary.steps;
