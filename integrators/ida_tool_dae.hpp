@@ -91,9 +91,9 @@ class IdaToolDae {
   std::unique_ptr<sundials::KluSolver> solver_;
   sundials::IdaMemory memory_;
   double t_ = 0;
-  std::vector<double> kinks_;   ///< after the reset's t0 (kinks_after), computed once: a sampled path has one per sample
-  std::size_t next_kink_ = 0;   ///< the first of kinks_ not yet passed
-  Stats restarted_;  ///< counters of the runs before the last restart
+  std::vector<double> kinks_;  ///< after the reset's t0 (kinks_after), computed once: a sampled path has one per sample
+  std::size_t next_kink_ = 0;  ///< the first of kinks_ not yet passed
+  Stats restarted_;            ///< counters of the runs before the last restart
   std::exception_ptr pending_;
   sundials::LastError last_error_;
 };

@@ -26,12 +26,15 @@ void Integrator::check_bounded(const model::State& state) {
   const bool finite = std::isfinite(norm) && state.u.allFinite();
   if (finite && norm <= divergence_factor * bound) return;
   const std::string why =
-      finite ? io::format("its kinetic energy, %.3g J, is %.2g times the most the loads can have given the exact solution by then, %.3g J",
-                          0.5 * norm * norm, norm * norm / (bound * bound), 0.5 * bound * bound)
-             : std::string("non-finite values");
-  throw SolverError(std::string(name()) + ": the solution diverged (" + why + ") by t = " + number_text(state.t) + " s, step " +
-                    std::to_string(stats().steps) +
-                    "; an explicit method's step beyond its stability limit does this: a smaller time.dt_s, or an implicit method");
+      finite
+          ? io::format(
+                "its kinetic energy, %.3g J, is %.2g times the most the loads can have given the exact solution by then, %.3g J",
+                0.5 * norm * norm, norm * norm / (bound * bound), 0.5 * bound * bound)
+          : std::string("non-finite values");
+  throw SolverError(
+      std::string(name()) + ": the solution diverged (" + why + ") by t = " + number_text(state.t) + " s, step " +
+      std::to_string(stats().steps) +
+      "; an explicit method's step beyond its stability limit does this: a smaller time.dt_s, or an implicit method");
 }
 
 }  // namespace roifem::integrators

@@ -7,11 +7,11 @@
 
 #include "bindings.hpp"
 #include "common/errors.hpp"
+#include "common/interrupt.hpp"
 #include "experiments/compare_experiment.hpp"
 #include "experiments/paper_experiment.hpp"
 #include "experiments/roi_size.hpp"
 #include "scenario_handle.hpp"
-#include "common/interrupt.hpp"
 
 namespace roifem::python {
 

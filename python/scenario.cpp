@@ -147,8 +147,7 @@ void bind_scenario(py::module_& m) {
       .def_property_readonly(
           "steps", [](const ScenarioHandle& h) { return h.scenario.steps; }, "[time] steps")
       .def_property_readonly(
-          "rtol", [](const ScenarioHandle& h) { return h.scenario.rtol; },
-          "[time] rtol (relative), or None: a fixed step")
+          "rtol", [](const ScenarioHandle& h) { return h.scenario.rtol; }, "[time] rtol (relative), or None: a fixed step")
       .def_property_readonly(
           "has_roi", [](const ScenarioHandle& h) { return h.scenario.roi.has_value(); },
           "whether it has an [roi] (else the full dynamic model)")

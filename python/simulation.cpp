@@ -91,13 +91,14 @@ py::array_t<double> vector_copy(const Vector& v, py::ssize_t cols) { return copi
 }  // namespace
 
 void bind_simulation(py::module_& m) {
-  py::class_<Simulation>(m, "Simulation",
-                         "A scenario's model (full, or the ROI with the static part condensed or reduced) and its integrator, "
-                         "stepped from Python on the grid t_k = k dt: the states equal `roifem run`'s bit for bit.\n\n"
-                         "Simulation(scenario, energy=True, **overrides): `scenario` a Scenario or a file; overrides as in "
-                         "Scenario.replace, plus the [time] table's integrator=, dt_s= (or dt=), steps=, rtol=, atol=. energy=False drops "
-                         "the energy ledger (one product with K and M per step).\n"
-                         "u and v are read-only views of the state (valid as long as they live, even after close()).")
+  py::class_<Simulation>(
+      m, "Simulation",
+      "A scenario's model (full, or the ROI with the static part condensed or reduced) and its integrator, "
+      "stepped from Python on the grid t_k = k dt: the states equal `roifem run`'s bit for bit.\n\n"
+      "Simulation(scenario, energy=True, **overrides): `scenario` a Scenario or a file; overrides as in "
+      "Scenario.replace, plus the [time] table's integrator=, dt_s= (or dt=), steps=, rtol=, atol=. energy=False drops "
+      "the energy ledger (one product with K and M per step).\n"
+      "u and v are read-only views of the state (valid as long as they live, even after close()).")
       .def(py::init([](const py::object& scenario, bool energy, const py::kwargs& kwargs) {
              py::dict overrides, time;
              for (const auto& [key, value] : kwargs) {

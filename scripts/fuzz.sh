@@ -23,18 +23,21 @@ flags=(-std=c++20 -O1 -g -DNDEBUG -fsanitize=fuzzer,address,undefined -fno-sanit
 declare -A sources=(
   [scenario_reader]="src/scenario/scenario_reader.cpp src/scenario/toml_text_guard.cpp src/fem/material.cpp src/condensation/reduction.cpp"
   [mesh_checks]="src/mesh/mesh_checks.cpp src/mesh/tet_mesh.cpp"
+  [trajectory_reader]="src/scenario/trajectory_reader.cpp src/model/load_history.cpp"
+  [nifti_header]="src/anatomy/image_volume.cpp"
 )
+declare -A libraries=([nifti_header]="-I /usr/include/nifti -lnifti2 -lznz -lz")
 core=build/release/src
 [ -e "$core/libroifem_core.so" ] || { cmake --preset release >/dev/null && cmake --build --preset release --target roifem_core; }
-for name in scenario_reader mesh_checks; do
+for name in scenario_reader mesh_checks trajectory_reader nifti_header; do
   # shellcheck disable=SC2086
   clang++ "${flags[@]}" "fuzz/${name}_fuzzer.cpp" ${sources[$name]} -L"$core" -lroifem_core -Wl,-rpath,"$PWD/$core" \
-    -o "$out/${name}_fuzzer"
+    ${libraries[$name]:-} -o "$out/${name}_fuzzer"
   work="$out/corpus-$name"
   rm -rf "$work"
   cp -r "fuzz/corpus/$name" "$work"  # new inputs go to the copy; the committed corpus stays as it is
   if [ ${#mode[@]} -eq 0 ]; then
-    declare -A runs=([scenario_reader]=150000 [mesh_checks]=600000)
+    declare -A runs=([scenario_reader]=150000 [mesh_checks]=600000 [trajectory_reader]=400000 [nifti_header]=60000)
     limits=(-seed=1 -runs="${runs[$name]}")
   else
     limits=("${mode[@]}")

@@ -360,9 +360,9 @@ void check_mask_holds_the_nodes(const BrainImageOptions& o, const ImageVolume& i
   const double voxel = image.spacing_mm().minCoeff();
   const double needed_mm3 = static_cast<double>(o.target_nodes) * std::pow(2 * voxel, 3) / 1.5;
   if (volume_mm3 >= needed_mm3) return;
-  const std::string after = o.cut_height_mm > 0 || o.opening
-                                ? io::format(" after the bottom cut (--cut-mm %g)%s", o.cut_height_mm, o.opening ? " and the opening" : "")
-                                : "";
+  const std::string after = o.cut_height_mm > 0 || o.opening ? io::format(" after the bottom cut (--cut-mm %g)%s",
+                                                                          o.cut_height_mm, o.opening ? " and the opening" : "")
+                                                             : "";
   throw InputError(io::format(
       "%s: the mask holds %.4g mm^3 (%.0f voxels of %.3g mm^3)%s, and --nodes %lld needs at least %.4g mm^3 (elements of two "
       "voxels, %.3g mm, or larger): fewer --nodes%s",

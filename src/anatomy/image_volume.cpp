@@ -3,12 +3,13 @@
 #include <nifti2_io.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <cstdint>
+#include <cstdlib>
 #include <fstream>
 #include <memory>
 
 #include "common/errors.hpp"
+#include "common/number_text.hpp"
 
 namespace roifem::anatomy {
 
@@ -32,6 +33,22 @@ Eigen::Matrix4d affine(const nifti_dmat44& m) {
   return a;
 }
 
+/// InputError when the voxel data the header claims (nvox x nbyper bytes) cannot be in the file:
+/// beyond its end, or for a .gz beyond deflate's largest ratio (1032:1). libnifti allocates the
+/// claim before it reads: a corrupt header would ask for terabytes.
+void check_data_fits_the_file(const std::string& name, const nifti_image& header) {
+  const auto file_bytes = static_cast<double>(std::filesystem::file_size(name));
+  const bool compressed = nifti_is_gzfile(name.c_str()) != 0;
+  const double claimed = static_cast<double>(header.nvox) * static_cast<double>(header.nbyper);
+  const double room = compressed ? 1032.0 * file_bytes : file_bytes - static_cast<double>(header.iname_offset);
+  if (header.nvox >= 0 && header.nbyper > 0 && claimed <= room) return;
+  throw InputError(name + ": the header claims " + std::to_string(header.nvox) + " voxels of " + std::to_string(header.nbyper) +
+                   " bytes (" + number_text(claimed) + " bytes), and the file, of " + number_text(file_bytes) + " bytes" +
+                   (compressed ? " compressed, cannot hold them (a truncated file, or a corrupt header)"
+                               : " with the data at byte " + std::to_string(header.iname_offset) +
+                                     ", does not hold them (a truncated file, or a corrupt header)"));
+}
+
 /// InputError unless the header's own voxel sizes pixdim[1..3] are positive and finite.
 void check_voxel_sizes(const std::string& name) {
   int version = 0;
@@ -43,8 +60,8 @@ void check_voxel_sizes(const std::string& name) {
     for (int i = 0; i < 3; ++i) pixdim[i] = static_cast<const nifti_2_header*>(header.get())->pixdim[i + 1];
   for (int i = 0; i < 3; ++i)
     if (!(pixdim[i] > 0 && std::isfinite(pixdim[i])))
-      throw InputError(name + ": header field pixdim[" + std::to_string(i + 1) + "] (the voxel size along " + "xyz"[i] +
-                       ") is " + std::to_string(pixdim[i]) +
+      throw InputError(name + ": header field pixdim[" + std::to_string(i + 1) + "] (the voxel size along " + "xyz"[i] + ") is " +
+                       std::to_string(pixdim[i]) +
                        ", and neither sform_code nor qform_code gives a voxel-to-millimetre transform: the image has no size");
 }
 
@@ -63,14 +80,13 @@ ImageVolume read_nifti(const std::filesystem::path& file) {
   if (!std::filesystem::is_regular_file(file)) throw InputError(name + ": no such image file");
   if (!std::ifstream(file)) throw InputError(name + ": cannot open the image file for reading");
   nifti_set_debug_level(0);  // libnifti prints to stderr; the error below says what went wrong
-  NiftiHandle image(nifti_image_read(name.c_str(), 1));
-  if (!image) {
+  {
     const NiftiHandle header(nifti_image_read(name.c_str(), 0));
-    if (header)
-      throw InputError(name + ": the header reads but the voxel data does not (a truncated file? " +
-                       std::to_string(header->nvox) + " voxels expected)");
-    throw InputError(name + ": not a readable NIfTI-1 or NIfTI-2 image (.nii or .nii.gz)");
+    if (!header) throw InputError(name + ": not a readable NIfTI-1 or NIfTI-2 image (.nii or .nii.gz)");
+    check_data_fits_the_file(name, *header);  // before libnifti allocates what the header claims
   }
+  NiftiHandle image(nifti_image_read(name.c_str(), 1));
+  if (!image) throw InputError(name + ": the header reads but the voxel data does not (a truncated file?)");
   if (!image->data)
     throw InputError(name + ": the header reads but the voxel data does not (a truncated file? " + std::to_string(image->nvox) +
                      " voxels expected)");

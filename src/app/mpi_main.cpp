@@ -181,8 +181,8 @@ int run_cli(int argc, char** argv) {
       }
     } catch (const std::exception& e) {
       if (dynamic_cast<const distributed::AgreedByEveryRank*>(&e) != nullptr) {  // every rank is here: say it once
-        if (session.rank() == 0) std::cerr << "roifem-mpi: " << (dynamic_cast<const roifem::Interrupted*>(&e) ? "" : "error: ")
-                                           << e.what() << '\n';
+        if (session.rank() == 0)
+          std::cerr << "roifem-mpi: " << (dynamic_cast<const roifem::Interrupted*>(&e) ? "" : "error: ") << e.what() << '\n';
         const auto* interrupted = dynamic_cast<const roifem::Interrupted*>(&e);
         return interrupted != nullptr ? 128 + interrupted->signal : 1;
       }

@@ -10,6 +10,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "common/interrupt.hpp"
 #include "common/timer.hpp"
 #include "distributed/distributed_trapezoid.hpp"
 #include "distributed/root_work.hpp"
@@ -17,7 +18,6 @@
 #include "io/csv.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/xdmf.hpp"
-#include "common/interrupt.hpp"
 #include "simulation/progress.hpp"
 #include "simulation/results_recorder.hpp"
 

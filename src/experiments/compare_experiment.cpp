@@ -129,7 +129,8 @@ model::ModalReference modal_reference_of(const scenario::Scenario& sc, const mod
     throw InputError("compare: " + sc.file.string() + ": " + e.what() +
                      ". compare measures every run against that exact solution; give the scenario linear ramps "
                      "(ramp_shape = \"linear\", displacement_mm over ramp_s for a tool), or run one method without a "
-                     "reference: roifem run " + sc.file.string() + " --out DIR (its energy balance and the tools' forces)");
+                     "reference: roifem run " +
+                     sc.file.string() + " --out DIR (its energy balance and the tools' forces)");
   }
 }
 
@@ -212,8 +213,8 @@ bool record_run(Sweep& w, const std::string& name, const std::string& mode, doub
   const std::string tool_figures =
       !w.ref.tool_forces.empty() && row.stable
           ? format("; tool force error %.3g mN (%.1e of the exact peak, %.4g mN), drift %.1e mm",
-                   row.tools.force_error_rel * w.ref.tool_force_peak * 1e3, row.tools.force_error_rel, w.ref.tool_force_peak * 1e3,
-                   row.tools.position_drift_mm)
+                   row.tools.force_error_rel * w.ref.tool_force_peak * 1e3, row.tools.force_error_rel,
+                   w.ref.tool_force_peak * 1e3, row.tools.position_drift_mm)
           : "";
   w.log << format("  %-20s %-8s %9.3g  %8ld steps  %9.3f s  max error %s mm%s\n", name.c_str(), mode.c_str(), dt_or_tol,
                   row.steps, row.wall_s, row.stable ? format("%.3e", row.err_max_mm).c_str() : "(diverged)", tool_figures.c_str())
@@ -339,7 +340,8 @@ void print_summary(const CompareResults& results, double dt, std::ostream& log) 
                   cheapest->err_max_mm);
   const CompareRow* trapezoid = nullptr;
   for (const auto& r : results.rows)
-    if (r.integrator == "trapezoid" && r.mode == "fixed" && std::abs(r.dt_or_tol - dt) < 1e-12 * dt && r.steps > 0) trapezoid = &r;
+    if (r.integrator == "trapezoid" && r.mode == "fixed" && std::abs(r.dt_or_tol - dt) < 1e-12 * dt && r.steps > 0)
+      trapezoid = &r;
   if (!trapezoid) return;
   const double trapezoid_step = trapezoid->wall_s / static_cast<double>(trapezoid->steps);
   log << "cost relative to the trapezoidal rule at dt = " << dt
@@ -386,7 +388,14 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
 
   const Stopwatch clock;
   const model::ModalReference modal = modal_reference_of(sc, system);
-  Sweep w{.sc = sc, .o = o, .system = system, .ref = {}, .t_end = t_end, .peak = 0, .results = {}, .log = log,
+  Sweep w{.sc = sc,
+          .o = o,
+          .system = system,
+          .ref = {},
+          .t_end = t_end,
+          .peak = 0,
+          .results = {},
+          .log = log,
           .integrators = names.size()};
   w.ref = exact_reference(system, modal, *built, sc.dt, outputs, t_end, w.peak);
   w.results.omega_max = model::highest_frequency(system);  // Lanczos: the same figure at any size
@@ -396,9 +405,10 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
                 modal.alpha());
 
   const std::size_t runs = names.size() * (static_cast<std::size_t>(o.fixed_levels) + o.tolerances.size());
-  log << format("  %zu integrators, up to %zu runs, each stopped after --max-run-seconds %g s (at most %.0f min in all); "
-                "compare.csv grows as each run ends\n",
-                names.size(), runs, o.max_run_s, static_cast<double>(runs) * o.max_run_s / 60);
+  log << format(
+      "  %zu integrators, up to %zu runs, each stopped after --max-run-seconds %g s (at most %.0f min in all); "
+      "compare.csv grows as each run ends\n",
+      names.size(), runs, o.max_run_s, static_cast<double>(runs) * o.max_run_s / 60);
   for (std::size_t i = 0; i < names.size(); ++i) {
     const Stopwatch integrator_clock;
     const integrators::IntegratorInfo& info = row_of(o, names[i]);

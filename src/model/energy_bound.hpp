@@ -25,8 +25,8 @@ class EnergyBound {
  private:
   const SecondOrderSystem* system_;
   double t0_ = 0;
-  double initial_ = 0;  ///< sqrt(2 E(t_0))
-  double rate_ = 0;     ///< sum_k ||p_k||_{M^-1} max |r_k|
+  double initial_ = 0;    ///< sqrt(2 E(t_0))
+  double rate_ = 0;       ///< sum_k ||p_k||_{M^-1} max |r_k|
   Vector mass_diagonal_;  ///< M's diagonal where M is diagonal (else empty: products with M)
   Vector work_;
 };

@@ -29,8 +29,8 @@ struct Scenario {
   std::optional<roi::RoiSpec> roi;    ///< none: the full dynamic model
   condensation::Reduction reduction;  ///< of the static part, with an ROI
   std::string integrator = "trapezoid";
-  std::string integrator_where;  ///< "file:line:column" of [time] integrator, for messages (empty: the default)
-  double dt = 0.05;  ///< s: the step, or with rtol the output interval (and first step)
+  std::string integrator_where;                ///< "file:line:column" of [time] integrator, for messages (empty: the default)
+  double dt = 0.05;                            ///< s: the step, or with rtol the output interval (and first step)
   static constexpr double smallest_dt = 1e-9;  ///< s: below, a step is round-off (1e-300 gave "reciprocal condition nan")
   long steps = 200;
   std::optional<double> rtol;  ///< set: error-controlled steps (adaptive integrators), relative tolerance

@@ -317,8 +317,9 @@ std::string ramp_toml(const model::Ramp& ramp);
 /// A tool's name names its group of results.h5 (/tools/NAME): a word, not a path, and not the
 /// name of a dataset beside the tools' groups.
 void check_tool_name(const std::string& name, const std::string& where) {
-  const bool word = !name.empty() && name.front() != '.' &&
-                    std::all_of(name.begin(), name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'; });
+  const bool word = !name.empty() && name.front() != '.' && std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+  });
   if (!word)
     throw InputError(where + ": key 'tool.name' = '" + name +
                      "' is not a name: letters, digits, '_', '-' and '.' (not first) only, since it names the tool's group "

@@ -46,11 +46,18 @@ model::ToolPath read_trajectory(const std::filesystem::path& file) {
     throw InputError(file.string() + ": is a directory, not a trajectory file (CSV: t_s,x_mm,y_mm,z_mm)");
   std::ifstream in(file);
   if (!in) throw InputError(file.string() + ": cannot open trajectory file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_trajectory(text.str(), file.string());
+}
+
+model::ToolPath parse_trajectory(std::string_view text, const std::string& source) {
+  std::istringstream in{std::string(text)};
   std::string line;
   long number = 0;
-  auto where = [&] { return file.string() + ":" + std::to_string(number); };
+  auto where = [&] { return source + ":" + std::to_string(number); };
   if (!std::getline(in, line) || (++number, line.substr(0, line.find_last_not_of(" \t\r") + 1) != header))
-    throw InputError(file.string() + ":1: a trajectory starts with the header '" + std::string(header) + "'");
+    throw InputError(source + ":1: a trajectory starts with the header '" + std::string(header) + "'");
   auto samples = std::array<std::shared_ptr<model::Ramp::Samples>, 3>{};
   for (auto& s : samples) s = std::make_shared<model::Ramp::Samples>();
   while (std::getline(in, line)) {
@@ -68,13 +75,13 @@ model::ToolPath read_trajectory(const std::filesystem::path& file) {
       samples[c]->value.push_back(x[c + 1] * mm);
     }
   }
-  if (samples[0]->t.size() < 2) throw InputError(file.string() + ": a trajectory needs two or more samples");
+  if (samples[0]->t.size() < 2) throw InputError(source + ": a trajectory needs two or more samples");
   model::ToolPath path;
   path.trajectory.emplace();
   for (std::size_t c = 0; c < 3; ++c) (*path.trajectory)[c] = model::Ramp::sampled(samples[c]);
   path.displacement = path.at(samples[0]->t.back());
   path.ramp.duration = samples[0]->t.back();
-  path.trajectory_file = file.string();
+  path.trajectory_file = source;
   return path;
 }
 

@@ -3,6 +3,8 @@
 /// times strictly increasing from 0, the first sample (0, 0, 0, 0) (a tool starts where its nodes
 /// are); the path runs piecewise linear through the samples and holds the last one.
 #include <filesystem>
+#include <string>
+#include <string_view>
 
 #include "model/tools.hpp"
 
@@ -12,5 +14,7 @@ namespace roifem::scenario {
 /// non-finite number, a time not after the previous one, a first sample other than zero, or fewer
 /// than two samples.
 model::ToolPath read_trajectory(const std::filesystem::path& file);
+/// The same from the file's text (`source` names it in messages).
+model::ToolPath parse_trajectory(std::string_view text, const std::string& source);
 
 }  // namespace roifem::scenario

@@ -5,9 +5,9 @@
 #include <memory>
 
 #include "common/errors.hpp"
+#include "common/interrupt.hpp"
 #include "common/number_text.hpp"
 #include "common/timer.hpp"
-#include "common/interrupt.hpp"
 #include "simulation/progress.hpp"
 
 namespace roifem::simulation {

@@ -33,8 +33,8 @@ void ScenarioStepper::step() {
 long ScenarioStepper::steps_to(double t) const {
   if (!std::isfinite(t)) throw InputError(io::format("step_to: t = %g s is not a time to step to", t));
   if (t <= state_.t)
-    throw InputError(io::format("step_to: t = %.9g s is not ahead of the simulation, which is at t = %.9g s (step %ld)", t,
-                                state_.t, k_));
+    throw InputError(
+        io::format("step_to: t = %.9g s is not ahead of the simulation, which is at t = %.9g s (step %ld)", t, state_.t, k_));
   // The last grid point t_k <= t (to within 1e-9 dt), counted without stepping there.
   const double k = std::floor((t - t0_) / scenario_.dt + 1e-9);
   if (k > 1e15) throw InputError(io::format("step_to: t = %g s is %.3g steps of dt = %g s away", t, k - k_, scenario_.dt));

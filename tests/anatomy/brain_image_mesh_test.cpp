@@ -150,23 +150,24 @@ TEST_F(BallImage, RefusesBadRegionsAndAnEmptyImage) {
 
 TEST_F(BallImage, RefusesAMaskTooSmallForTheNodesBeforeMeshing) {
   // Each used to loop for ever inside CGAL's make_mesh_3 (Random_points_on_sphere_3).
-  test::write_nifti(*dir_ / "speck.nii", {9, 9, 9}, 1.0, {0, 0, 0}, [](int i, int j, int k) {
-    return i == 4 && j == 4 && k == 4 ? 100.0f : 0.0f;
-  });
+  test::write_nifti(*dir_ / "speck.nii", {9, 9, 9}, 1.0, {0, 0, 0},
+                    [](int i, int j, int k) { return i == 4 && j == 4 && k == 4 ? 100.0f : 0.0f; });
   BrainImageOptions o = options();
   o.image = *dir_ / "speck.nii";
   o.target_nodes = 200;
   const auto out = *dir_ / "speck.msh";
   std::string message = meshing_error_of([&] { mesh_brain_image(o, out); });
-  EXPECT_TRUE(std::regex_search(message, std::regex("speck.nii: the mask holds 1 mm\\^3 \\(1 voxels of 1 mm\\^3\\), and --nodes 200 "
-                                                    "needs at least 1067 mm\\^3 \\(elements of two voxels, 2 mm, or larger\\)")))
+  EXPECT_TRUE(
+      std::regex_search(message, std::regex("speck.nii: the mask holds 1 mm\\^3 \\(1 voxels of 1 mm\\^3\\), and --nodes 200 "
+                                            "needs at least 1067 mm\\^3 \\(elements of two voxels, 2 mm, or larger\\)")))
       << message;
   EXPECT_FALSE(std::filesystem::exists(out));
   o = options();
   o.cut_height_mm = 60;  // the ball is 50 mm high
   message = meshing_error_of([&] { mesh_brain_image(o, out); });
-  EXPECT_TRUE(std::regex_search(message, std::regex("ball.nii: the mask holds 0 mm\\^3 .* after the bottom cut \\(--cut-mm 60\\), "
-                                                    "and --nodes 1000 needs .*a smaller --cut-mm")))
+  EXPECT_TRUE(
+      std::regex_search(message, std::regex("ball.nii: the mask holds 0 mm\\^3 .* after the bottom cut \\(--cut-mm 60\\), "
+                                            "and --nodes 1000 needs .*a smaller --cut-mm")))
       << message;
   EXPECT_FALSE(std::filesystem::exists(out));
 }

@@ -53,7 +53,9 @@ TEST(NiftiReader, NamesAMissingATruncatedAndA2dImage) {
   const auto truncated = scratch("truncated.nii");
   test::write_nifti(
       truncated, {8, 8, 8}, 1.0, {0, 0, 0}, [](int, int, int) { return 1.0f; }, 352 + 100);
-  EXPECT_INPUT_ERROR(read_nifti(truncated), "truncated.nii: the header reads but the voxel data does not");
+  EXPECT_INPUT_ERROR(read_nifti(truncated),
+                     "truncated.nii: the header claims 512 voxels of 4 bytes \\(2048 bytes\\), and the file, of 452 bytes "
+                     "with the data at byte 352, does not hold them \\(a truncated file");
   const auto flat = scratch("slice.nii");
   test::write_nifti(flat, {8, 8, 1}, 1.0, {0, 0, 0}, [](int, int, int) { return 1.0f; });
   EXPECT_INPUT_ERROR(read_nifti(flat), "slice.nii: a 8 x 8 x 1 image; .*a 2D slice");

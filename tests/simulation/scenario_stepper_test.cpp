@@ -57,8 +57,7 @@ TEST(ScenarioStepper, StepsToATimeAlongTheGridAndReportsTheField) {
   EXPECT_EQ(stepper.step_to(0.55), 1);
   EXPECT_EQ(stepper.steps_taken(), 11);
   // A time that is not finite or not ahead is refused; it used to return 0 (nan) or loop for ever (inf).
-  for (const double t : {std::nan(""), HUGE_VAL, 0.55, 0.3})
-    EXPECT_THROW(stepper.step_to(t), InputError) << t;
+  for (const double t : {std::nan(""), HUGE_VAL, 0.55, 0.3}) EXPECT_THROW(stepper.step_to(t), InputError) << t;
   EXPECT_EQ(stepper.steps_taken(), 11);
   const Vector field = stepper.displacement();
   EXPECT_EQ(field.size(), 3 * stepper.model().mesh.num_nodes());
