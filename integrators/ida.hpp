@@ -4,13 +4,12 @@
 /// with the Newton matrix dF/dy + c_j dF/dy' = [[c_j I, -I], [K, c_j M + C]] assembled as a sparse
 /// matrix and factored by KLU (AMD ordering). BDF orders 1-5 (`max_order` 5), or capped at 2,
 /// the highest A-stable BDF. IDA has no fixed-step mode: it is always error-controlled.
-#include <exception>
 #include <memory>
+#include <string>
 
 #include "integrators/integrator.hpp"
 #include "integrators/step_control.hpp"
-#include "integrators/sundials/handles.hpp"
-#include "integrators/sundials/klu_solver.hpp"
+#include "integrators/sundials/ida_solver.hpp"
 
 namespace roifem::integrators {
 
@@ -22,27 +21,21 @@ class Ida final : public Integrator {
  public:
   Ida(std::string name, int max_order, StepControl control);
   std::string_view name() const override { return name_; }
-  Stats stats() const override;
+  Stats stats() const override { return ida_ ? ida_->stats() : Stats{}; }
 
  private:
   void prepare(const model::SecondOrderSystem& system, const model::State& initial) override;
   void advance(double t_out, model::State& state) override;
-  static int residual(double t, N_Vector y, N_Vector yp, N_Vector r, void* self);
-  static int jacobian(double t, double c_j, N_Vector, N_Vector, N_Vector, SUNMatrix J, void* self, N_Vector, N_Vector, N_Vector);
+  /// F = [u' - v; M v' + C v + K u - f(t)].
+  void residual(double t, const Eigen::Ref<const Vector>& y, const Eigen::Ref<const Vector>& yp, Eigen::Ref<Vector> r);
 
   std::string name_;
   int max_order_;
   StepControl control_;
-  sundials::Context context_;  // first: destroyed last
-  sundials::Vector y_, yp_;
-  sundials::Matrix J_;
-  std::unique_ptr<sundials::KluSolver> solver_;
-  sundials::IdaMemory memory_;
   const model::SecondOrderSystem* system_ = nullptr;
   SparseMatrix dF_dy_, dF_dyp_;  ///< same pattern (union), so J = dF_dy + c_j dF_dyp keeps it
   Vector force_;
-  std::exception_ptr pending_;
-  sundials::LastError last_error_;
+  std::unique_ptr<sundials::IdaSolver> ida_;  ///< after the matrices it refers to
 };
 
 }  // namespace roifem::integrators

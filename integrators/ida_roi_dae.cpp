@@ -1,19 +1,14 @@
 #include "integrators/ida_roi_dae.hpp"
 
-#include <ida/ida.h>
-
 #include <utility>
 
 #include "common/errors.hpp"
-#include "common/number_text.hpp"
 #include "integrators/block_matrix.hpp"
-#include "integrators/callback_guard.hpp"
-#include "integrators/sundials/ida_support.hpp"
 
 namespace roifem::integrators {
 
 IdaRoiDae::IdaRoiDae(const model::SecondOrderSystem& full, const roi::Partition& partition, StepControl control, int max_order)
-    : full_(full), partition_(partition), control_(control), max_order_(max_order), context_(sundials::make_context()) {
+    : full_(full), partition_(partition), control_(control), max_order_(max_order) {
   const auto& d = partition_.d;
   const auto& s = partition_.s;
   if (d.empty()) throw ModelError("IDA ROI DAE: the ROI has no free dof");
@@ -38,87 +33,50 @@ IdaRoiDae::IdaRoiDae(const model::SecondOrderSystem& full, const roi::Partition&
   f_s_.resize(ns);
 }
 
-int IdaRoiDae::residual(double t, N_Vector y, N_Vector yp, N_Vector r, void* self) {
-  auto* me = static_cast<IdaRoiDae*>(self);
-  return guarded_callback(me->pending_, -1, [&] {
-    const Index nd = me->K_dd_.rows(), ns = me->K_ss_.rows();
-    const auto Y = sundials::view(y), YP = sundials::view(yp);
-    auto R = sundials::view(r);
-    me->load_d_.evaluate(t, me->f_d_);
-    me->load_s_.evaluate(t, me->f_s_);
-    const auto u_d = Y.head(nd), v_d = Y.segment(nd, nd), u_s = Y.tail(ns);
-    R.head(nd) = YP.head(nd) - v_d;
-    R.segment(nd, nd).noalias() = me->M_dd_ * YP.segment(nd, nd) + me->C_dd_ * v_d + me->K_dd_ * u_d + me->K_ds_ * u_s;
-    R.segment(nd, nd) -= me->f_d_;
-    R.tail(ns).noalias() = me->K_sd_ * u_d + me->K_ss_ * u_s;
-    R.tail(ns) -= me->f_s_;
-  });
-}
-
-int IdaRoiDae::jacobian(double, double c_j, N_Vector, N_Vector, N_Vector, SUNMatrix J, void* self, N_Vector, N_Vector, N_Vector) {
-  auto* me = static_cast<IdaRoiDae*>(self);
-  return guarded_callback(me->pending_, -1, [&] { sundials::write_newton_matrix(me->dF_dy_, me->dF_dyp_, c_j, J); });
+void IdaRoiDae::residual(double t, const Eigen::Ref<const Vector>& y, const Eigen::Ref<const Vector>& yp, Eigen::Ref<Vector> r) {
+  const Index nd = K_dd_.rows(), ns = K_ss_.rows();
+  load_d_.evaluate(t, f_d_);
+  load_s_.evaluate(t, f_s_);
+  const auto u_d = y.head(nd), v_d = y.segment(nd, nd), u_s = y.tail(ns);
+  r.head(nd) = yp.head(nd) - v_d;
+  r.segment(nd, nd).noalias() = M_dd_ * yp.segment(nd, nd) + C_dd_ * v_d + K_dd_ * u_d + K_ds_ * u_s;
+  r.segment(nd, nd) -= f_d_;
+  r.tail(ns).noalias() = K_sd_ * u_d + K_ss_ * u_s;
+  r.tail(ns) -= f_s_;
 }
 
 void IdaRoiDae::reset(double t0) {
-  const Index nd = K_dd_.rows(), ns = K_ss_.rows(), n = 2 * nd + ns;
-  memory_.reset();  // before the solver and vectors it refers to
-  solver_.reset();
-  J_.reset();
-  pending_ = nullptr;
+  const Index nd = K_dd_.rows(), ns = K_ss_.rows();
   t_ = t0;
-  y_ = sundials::make_vector(n, context_.get());
-  yp_ = sundials::make_vector(n, context_.get());
-  id_ = sundials::make_vector(n, context_.get());
-  sundials::view(y_.get()).setZero();
-  sundials::view(yp_.get()).setZero();
-  auto id = sundials::view(id_.get());
-  id.head(2 * nd).setOnes();  // differential: u_d, v_d
-  id.tail(ns).setZero();      // algebraic: u_s
-  auto check = [&](int flag, const char* call) {
-    if (flag < 0)
-      throw SolverError(std::string("IDA ROI DAE: ") + call + " failed: " + sundials::flag_name(IDAGetReturnFlagName(flag)));
-  };
-  memory_.reset(IDACreate(context_.get()));
-  if (!memory_) throw SolverError("IDA ROI DAE: IDACreate failed");
-  check(IDAInit(memory_.get(), residual, t0, y_.get(), yp_.get()), "IDAInit");
-  check(IDASetUserData(memory_.get(), this), "IDASetUserData");
-  check(IDASetErrHandlerFn(memory_.get(), sundials::LastError::handler, &last_error_), "IDASetErrHandlerFn");
-  check(IDASStolerances(memory_.get(), control_.rtol, control_.atol), "IDASStolerances");
-  check(IDASetMaxOrd(memory_.get(), max_order_), "IDASetMaxOrd");
-  check(IDASetMaxNumSteps(memory_.get(), 1000000), "IDASetMaxNumSteps");
-  check(IDASetId(memory_.get(), id_.get()), "IDASetId");
-  J_ = sundials::make_sparse(dF_dy_, context_.get());
-  solver_ = std::make_unique<sundials::KluSolver>(y_.get(), J_.get(), context_.get());
-  check(IDASetLinearSolver(memory_.get(), solver_->get(), J_.get()), "IDASetLinearSolver");
-  check(IDASetJacFn(memory_.get(), jacobian), "IDASetJacFn");
-  check(IDACalcIC(memory_.get(), IDA_YA_YDP_INIT, t0 + control_.dt), "IDACalcIC");
-  if (pending_) std::rethrow_exception(std::exchange(pending_, nullptr));
+  Vector differential(2 * nd + ns);
+  differential.head(2 * nd).setOnes();  // differential: u_d, v_d
+  differential.tail(ns).setZero();      // algebraic: u_s
+  ida_.reset();
+  ida_ = std::make_unique<sundials::IdaSolver>(
+      sundials::IdaSolver::Settings{.name = "IDA ROI DAE",
+                                    .rtol = control_.rtol,
+                                    .atol = control_.atol,
+                                    .max_order = max_order_,
+                                    .differential = std::move(differential)},
+      [this](double t, const auto& y, const auto& yp, auto r) { residual(t, y, yp, r); }, dF_dy_, dF_dyp_);
+  ida_->start(t0);  // at rest: y = y' = 0
+  ida_->make_consistent(t0 + control_.dt);
 }
 
 void IdaRoiDae::advance_to(double t_out, Vector& u_d, Vector& u_s) {
-  if (!memory_) throw Error("internal: IDA ROI DAE: advance_to before reset");
-  IDASetStopTime(memory_.get(), t_out);
-  const int flag = IDASolve(memory_.get(), t_out, &t_, y_.get(), yp_.get(), IDA_NORMAL);
-  if (pending_) std::rethrow_exception(std::exchange(pending_, nullptr));
-  if (flag < 0)
-    throw SolverError("IDA ROI DAE: failed at t = " + number_text(t_) + " s: " + sundials::flag_name(IDAGetReturnFlagName(flag)) +
-                      last_error_.detail());
+  if (!ida_) throw Error("internal: IDA ROI DAE: advance_to before reset");
+  t_ = ida_->advance_to(t_out);
   const Index nd = K_dd_.rows(), ns = K_ss_.rows();
-  const auto y = sundials::view(y_.get());
+  const auto y = ida_->y();
   u_d = y.head(nd);
   u_s = y.tail(ns);
 }
 
 Vector IdaRoiDae::velocity_d() const {
   const Index nd = K_dd_.rows();
-  return sundials::view(y_.get()).segment(nd, nd);
+  return ida_->y().segment(nd, nd);
 }
 
-Stats IdaRoiDae::stats() const {
-  Stats s = sundials::ida_stats(memory_.get());
-  if (solver_) s.factorization_s = solver_->setup_seconds();
-  return s;
-}
+Stats IdaRoiDae::stats() const { return ida_ ? ida_->stats() : Stats{}; }
 
 }  // namespace roifem::integrators

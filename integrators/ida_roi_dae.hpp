@@ -7,13 +7,11 @@
 /// Consistent initial values come from IDACalcIC (IDA_YA_YDP_INIT). Its ROI trajectory is the
 /// condensed model's, to the integrator's tolerance: the condensation eliminates exactly u_s.
 /// Newton matrix dF/dy + c_j dF/dy' assembled sparse, factored by KLU (AMD ordering).
-#include <exception>
 #include <memory>
 
 #include "integrators/integrator.hpp"
 #include "integrators/step_control.hpp"
-#include "integrators/sundials/handles.hpp"
-#include "integrators/sundials/klu_solver.hpp"
+#include "integrators/sundials/ida_solver.hpp"
 #include "roi/roi.hpp"
 
 namespace roifem::integrators {
@@ -35,8 +33,7 @@ class IdaRoiDae {
   Stats stats() const;
 
  private:
-  static int residual(double t, N_Vector y, N_Vector yp, N_Vector r, void* self);
-  static int jacobian(double t, double c_j, N_Vector, N_Vector, N_Vector, SUNMatrix J, void* self, N_Vector, N_Vector, N_Vector);
+  void residual(double t, const Eigen::Ref<const Vector>& y, const Eigen::Ref<const Vector>& yp, Eigen::Ref<Vector> r);
 
   const model::SecondOrderSystem& full_;
   roi::Partition partition_;
@@ -46,14 +43,8 @@ class IdaRoiDae {
   model::LoadHistory load_d_, load_s_;
   SparseMatrix dF_dy_, dF_dyp_;
   Vector f_d_, f_s_;
-  sundials::Context context_;
-  sundials::Vector y_, yp_, id_;
-  sundials::Matrix J_;
-  std::unique_ptr<sundials::KluSolver> solver_;
-  sundials::IdaMemory memory_;
+  std::unique_ptr<sundials::IdaSolver> ida_;  ///< after the matrices it refers to
   double t_ = 0;
-  std::exception_ptr pending_;
-  sundials::LastError last_error_;
 };
 
 }  // namespace roifem::integrators

@@ -1,7 +1,5 @@
 #include "integrators/ida_tool_dae.hpp"
 
-#include <ida/ida.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -11,8 +9,6 @@
 #include "common/errors.hpp"
 #include "common/number_text.hpp"
 #include "integrators/block_matrix.hpp"
-#include "integrators/callback_guard.hpp"
-#include "integrators/sundials/ida_support.hpp"
 #include "model/mass_inverse.hpp"
 
 namespace roifem::integrators {
@@ -46,7 +42,7 @@ ToolFormulation parse_formulation(std::string_view name) {
 
 IdaToolDae::IdaToolDae(const model::SecondOrderSystem& all, const std::vector<model::ToolDofs>& tools,
                        ToolFormulation formulation, StepControl control, double baumgarte_rate)
-    : all_(all), formulation_(formulation), control_(control), a_(baumgarte_rate), context_(sundials::make_context()) {
+    : all_(all), formulation_(formulation), control_(control), a_(baumgarte_rate) {
   std::vector<Eigen::Triplet<double>> sums;
   for (std::size_t a = 0; a < tools.size(); ++a) {
     tools_.push_back(tools[a].tool);
@@ -104,38 +100,26 @@ Vector IdaToolDae::path(double t, int derivative) const {
   return G;
 }
 
-int IdaToolDae::residual(double t, N_Vector y, N_Vector yp, N_Vector r, void* self) {
-  auto* me = static_cast<IdaToolDae*>(self);
-  return guarded_callback(me->pending_, -1, [&] {
-    const Index n = me->n(), p = me->p();
-    const auto Y = sundials::view(y), YP = sundials::view(yp);
-    auto R = sundials::view(r);
-    me->all_.load.evaluate(t, me->f_);
-    const auto u = Y.head(n), v = Y.segment(n, n), lambda = Y.segment(2 * n, p);
-    R.head(n) = YP.head(n) - v;
-    R.segment(n, n).noalias() = me->all_.M * YP.segment(n, n) + me->all_.C * v + me->all_.K * u - me->Ht_ * lambda;
-    R.segment(n, n) -= me->f_;
-    switch (me->formulation_) {
-      case ToolFormulation::index3:
-        R.segment(2 * n, p) = me->H_ * u - me->path(t, 0);
-        break;
-      case ToolFormulation::ggl:
-        R.head(n) -= me->Ht_ * Y.segment(2 * n + p, p);
-        R.segment(2 * n, p) = me->H_ * u - me->path(t, 0);
-        R.segment(2 * n + p, p) = me->H_ * v - me->path(t, 1);
-        break;
-      case ToolFormulation::index1:
-        R.segment(2 * n, p) = me->H_ * YP.segment(n, n) - me->path(t, 2) + 2 * me->a_ * (me->H_ * v - me->path(t, 1)) +
-                              me->a_ * me->a_ * (me->H_ * u - me->path(t, 0));
-        break;
-    }
-  });
-}
-
-int IdaToolDae::jacobian(double, double c_j, N_Vector, N_Vector, N_Vector, SUNMatrix J, void* self, N_Vector, N_Vector,
-                         N_Vector) {
-  auto* me = static_cast<IdaToolDae*>(self);
-  return guarded_callback(me->pending_, -1, [&] { sundials::write_newton_matrix(me->dF_dy_, me->dF_dyp_, c_j, J); });
+void IdaToolDae::residual(double t, const Eigen::Ref<const Vector>& y, const Eigen::Ref<const Vector>& yp, Eigen::Ref<Vector> r) {
+  const Index n = this->n(), p = this->p();
+  all_.load.evaluate(t, f_);
+  const auto u = y.head(n), v = y.segment(n, n), lambda = y.segment(2 * n, p);
+  r.head(n) = yp.head(n) - v;
+  r.segment(n, n).noalias() = all_.M * yp.segment(n, n) + all_.C * v + all_.K * u - Ht_ * lambda;
+  r.segment(n, n) -= f_;
+  switch (formulation_) {
+    case ToolFormulation::index3:
+      r.segment(2 * n, p) = H_ * u - path(t, 0);
+      break;
+    case ToolFormulation::ggl:
+      r.head(n) -= Ht_ * y.segment(2 * n + p, p);
+      r.segment(2 * n, p) = H_ * u - path(t, 0);
+      r.segment(2 * n + p, p) = H_ * v - path(t, 1);
+      break;
+    case ToolFormulation::index1:
+      r.segment(2 * n, p) = H_ * yp.segment(n, n) - path(t, 2) + 2 * a_ * (H_ * v - path(t, 1)) + a_ * a_ * (H_ * u - path(t, 0));
+      break;
+  }
 }
 
 void IdaToolDae::make_consistent(double t, const Vector& u_in, const Vector& v_in) {
@@ -152,7 +136,7 @@ void IdaToolDae::make_consistent(double t, const Vector& u_in, const Vector& v_i
   mass_inverse_->apply(rest, a);  // M is block diagonal between the tools' dofs and the rest
   for (Index i = 0; i < p; ++i) a[tool_dofs_[static_cast<std::size_t>(i)]] = ddG[i];
   const Vector lambda = H_ * (all_.M * a - rest);
-  auto y = sundials::view(y_.get()), yp = sundials::view(yp_.get());
+  auto y = ida_->y(), yp = ida_->yp();
   y.setZero();
   yp.setZero();
   y.head(n) = u;
@@ -162,52 +146,26 @@ void IdaToolDae::make_consistent(double t, const Vector& u_in, const Vector& v_i
   yp.segment(n, n) = a;
 }
 
-void IdaToolDae::start(double t0) {
-  auto check = [&](int flag, const char* call) {
-    if (flag < 0)
-      throw SolverError("IDA tool DAE (" + std::string(formulation_name(formulation_)) + "): " + call +
-                        " failed: " + sundials::flag_name(IDAGetReturnFlagName(flag)) + last_error_.detail());
-  };
-  if (memory_) {
-    restarted_ = stats();
-    restarted_.factorization_s = 0;
-    check(IDAReInit(memory_.get(), t0, y_.get(), yp_.get()), "IDAReInit");
-    return;
-  }
-  memory_.reset(IDACreate(context_.get()));
-  if (!memory_) throw SolverError("IDA tool DAE: IDACreate failed");
-  check(IDAInit(memory_.get(), residual, t0, y_.get(), yp_.get()), "IDAInit");
-  check(IDASetUserData(memory_.get(), this), "IDASetUserData");
-  check(IDASetErrHandlerFn(memory_.get(), sundials::LastError::handler, &last_error_), "IDASetErrHandlerFn");
-  check(IDASStolerances(memory_.get(), control_.rtol, control_.atol), "IDASStolerances");
-  check(IDASetMaxNumSteps(memory_.get(), max_steps_per_output), "IDASetMaxNumSteps");
-  check(IDASetId(memory_.get(), id_.get()), "IDASetId");
-  check(IDASetSuppressAlg(memory_.get(), SUNTRUE), "IDASetSuppressAlg");
-  J_ = sundials::make_sparse(dF_dy_, context_.get());
-  solver_ = std::make_unique<sundials::KluSolver>(y_.get(), J_.get(), context_.get());
-  check(IDASetLinearSolver(memory_.get(), solver_->get(), J_.get()), "IDASetLinearSolver");
-  check(IDASetJacFn(memory_.get(), jacobian), "IDASetJacFn");
-}
-
 void IdaToolDae::reset(double t0) {
   const Index size = 2 * n() + (formulation_ == ToolFormulation::ggl ? 2 : 1) * p();
-  memory_.reset();  // before the solver and vectors it refers to
-  solver_.reset();
-  J_.reset();
-  pending_ = nullptr;
-  restarted_ = {};
   t_ = t0;
-  y_ = sundials::make_vector(size, context_.get());
-  yp_ = sundials::make_vector(size, context_.get());
-  id_ = sundials::make_vector(size, context_.get());
-  auto id = sundials::view(id_.get());
-  id.setZero();
-  id.head(2 * n()).setOnes();  // u, v differential; the multipliers algebraic
+  Vector differential = Vector::Zero(size);
+  differential.head(2 * n()).setOnes();  // u, v differential; the multipliers algebraic
   // Index 3: the tools' velocities are index-2 variables, kept out of the error test too.
   if (formulation_ == ToolFormulation::index3)
-    for (const Index i : tool_dofs_) id[n() + i] = 0;
+    for (const Index i : tool_dofs_) differential[n() + i] = 0;
+  ida_.reset();
+  ida_ = std::make_unique<sundials::IdaSolver>(
+      sundials::IdaSolver::Settings{.name = "IDA tool DAE (" + std::string(formulation_name(formulation_)) + ")",
+                                    .rtol = control_.rtol,
+                                    .atol = control_.atol,
+                                    .max_order = 5,
+                                    .max_steps = max_steps_per_output,
+                                    .differential = std::move(differential),
+                                    .suppress_algebraic = true},
+      [this](double t, const auto& y, const auto& yp, auto r) { residual(t, y, yp, r); }, dF_dy_, dF_dyp_);
   make_consistent(t0, Vector::Zero(n()), Vector::Zero(n()));
-  start(t0);
+  ida_->start(t0);
   kinks_ = kinks_after(t0);
   next_kink_ = 0;
 }
@@ -223,28 +181,23 @@ std::vector<double> IdaToolDae::kinks_after(double t) const {
 }
 
 void IdaToolDae::advance_to(double t_out) {
-  if (!memory_) throw Error("internal: IDA tool DAE: advance_to before reset");
+  if (!ida_) throw Error("internal: IDA tool DAE: advance_to before reset");
   while (t_ < t_out) {
     while (next_kink_ < kinks_.size() && kinks_[next_kink_] <= t_) ++next_kink_;
     const bool to_kink = next_kink_ < kinks_.size() && kinks_[next_kink_] <= t_out;
     const double target = to_kink ? kinks_[next_kink_] : t_out;
-    IDASetStopTime(memory_.get(), target);
-    const int flag = IDASolve(memory_.get(), target, &t_, y_.get(), yp_.get(), IDA_NORMAL);
-    if (pending_) std::rethrow_exception(std::exchange(pending_, nullptr));
-    if (flag < 0)
-      throw SolverError("IDA tool DAE (" + std::string(formulation_name(formulation_)) + "): failed at t = " + number_text(t_) +
-                        " s: " + sundials::flag_name(IDAGetReturnFlagName(flag)) + last_error_.detail());
+    t_ = ida_->advance_to(target);
     if (to_kink) {  // the path's velocity jumps: restart from consistent values past the kink
       t_ = target;
       make_consistent(t_, displacement(), velocity());
-      start(t_);
+      ida_->start(t_);
     }
   }
 }
 
-Vector IdaToolDae::displacement() const { return sundials::view(y_.get()).head(n()); }
-Vector IdaToolDae::velocity() const { return sundials::view(y_.get()).segment(n(), n()); }
-Vector IdaToolDae::multipliers() const { return sundials::view(y_.get()).segment(2 * n(), p()); }
+Vector IdaToolDae::displacement() const { return ida_->y().head(n()); }
+Vector IdaToolDae::velocity() const { return ida_->y().segment(n(), n()); }
+Vector IdaToolDae::multipliers() const { return ida_->y().segment(2 * n(), p()); }
 
 Vector IdaToolDae::tool_forces() const {
   const Vector own = H_ * (all_.M * (Ht_ * path(t_, 2)) + all_.C * (Ht_ * path(t_, 1)));  // the nodes' inertia
@@ -254,16 +207,6 @@ Vector IdaToolDae::tool_forces() const {
 double IdaToolDae::position_drift() const { return (H_ * displacement() - path(t_, 0)).cwiseAbs().maxCoeff(); }
 double IdaToolDae::velocity_drift() const { return (H_ * velocity() - path(t_, 1)).cwiseAbs().maxCoeff(); }
 
-Stats IdaToolDae::stats() const {
-  Stats s = sundials::ida_stats(memory_.get());
-  s.steps += restarted_.steps;
-  s.rhs_evals += restarted_.rhs_evals;
-  s.jac_evals += restarted_.jac_evals;
-  s.lin_setups += restarted_.lin_setups;
-  s.lin_solves += restarted_.lin_solves;
-  s.failed_steps += restarted_.failed_steps;
-  if (solver_) s.factorization_s = solver_->setup_seconds();
-  return s;
-}
+Stats IdaToolDae::stats() const { return ida_ ? ida_->stats() : Stats{}; }
 
 }  // namespace roifem::integrators

@@ -20,8 +20,7 @@
 
 #include "integrators/integrator.hpp"
 #include "integrators/step_control.hpp"
-#include "integrators/sundials/handles.hpp"
-#include "integrators/sundials/klu_solver.hpp"
+#include "integrators/sundials/ida_solver.hpp"
 #include "model/mass_inverse.hpp"
 #include "model/prescribed_motion.hpp"
 
@@ -61,15 +60,13 @@ class IdaToolDae {
   Stats stats() const;
 
  private:
-  static int residual(double t, N_Vector y, N_Vector yp, N_Vector r, void* self);
-  static int jacobian(double t, double c_j, N_Vector, N_Vector, N_Vector, SUNMatrix J, void* self, N_Vector, N_Vector, N_Vector);
+  void residual(double t, const Eigen::Ref<const Vector>& y, const Eigen::Ref<const Vector>& yp, Eigen::Ref<Vector> r);
   Index n() const { return all_.size(); }
   Index p() const { return H_.rows(); }
   /// G(t), G'(t), G''(t) over the tools' dofs.
   Vector path(double t, int derivative) const;
-  /// Consistent y, y' at t from u_f, v_f (the dofs off the tools).
+  /// Consistent y, y' at t from u_f, v_f (the dofs off the tools), into the solver's y and y'.
   void make_consistent(double t, const Vector& u, const Vector& v);
-  void start(double t0);  ///< IDAInit or IDAReInit from y_, yp_
   /// Where the paths' and loads' rates jump after t, ascending, each once.
   std::vector<double> kinks_after(double t) const;
 
@@ -85,17 +82,10 @@ class IdaToolDae {
   std::unique_ptr<model::MassInverse> mass_inverse_;  ///< for consistent accelerations
   SparseMatrix dF_dy_, dF_dyp_;
   Vector f_;
-  sundials::Context context_;
-  sundials::Vector y_, yp_, id_;
-  sundials::Matrix J_;
-  std::unique_ptr<sundials::KluSolver> solver_;
-  sundials::IdaMemory memory_;
+  std::unique_ptr<sundials::IdaSolver> ida_;  ///< after the matrices it refers to
   double t_ = 0;
   std::vector<double> kinks_;  ///< after the reset's t0 (kinks_after), computed once: a sampled path has one per sample
   std::size_t next_kink_ = 0;  ///< the first of kinks_ not yet passed
-  Stats restarted_;            ///< counters of the runs before the last restart
-  std::exception_ptr pending_;
-  sundials::LastError last_error_;
 };
 
 }  // namespace roifem::integrators
