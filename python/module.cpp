@@ -1,5 +1,6 @@
 // roifem._roifem: the compiled part of the Python package `roifem` (roifem/__init__.py).
 #include "bindings.hpp"
+#include "common/version.hpp"
 
 namespace roifem::python {
 
@@ -15,6 +16,7 @@ py::object structured_array(const std::vector<std::string>& names, const std::ve
 
 PYBIND11_MODULE(_roifem, m) {
   m.doc() = "roifem's compiled core: meshes, scenarios, simulations and experiments (see the package `roifem`)";
+  m.attr("__version__") = std::string(roifem::version());
   roifem::python::bind_errors(m);
   roifem::python::bind_mesh(m);
   roifem::python::bind_scenario(m);

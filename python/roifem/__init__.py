@@ -23,6 +23,7 @@ results.h5; forces are newtons. Arrays that show roifem's own storage (Mesh.node
 Simulation.u and .v) are read-only views that keep their owner alive.
 """
 from ._roifem import (  # noqa: F401
+    __version__,
     Error,
     InputError,
     Mesh,
@@ -39,6 +40,7 @@ from ._roifem import (  # noqa: F401
 )
 
 __all__ = [
+    "__version__",
     "Error", "InputError", "ModelError", "SolverError",
     "Mesh", "read_mesh", "generate_brain_mesh",
     "Scenario", "Simulation", "integrators",

@@ -14,13 +14,13 @@ import os
 import sys
 from collections import defaultdict
 
-from plotting import plt, save
+from plotting import plt, save, uncommented
 
 
 def read(directory):
     finished, left_out, theory = defaultdict(list), defaultdict(list), {}
     with open(os.path.join(directory, "compare.csv")) as f:
-        for row in csv.DictReader(f):
+        for row in csv.DictReader(uncommented(f)):
             key = (row["integrator"], row["mode"])
             theory[row["integrator"]] = int(row["theoretical_order"])
             if row["status"] == "ok" and row["stable"] == "1" and row["err_max_mm"] and float(row["err_max_mm"]) > 0:

@@ -14,14 +14,14 @@ from collections import defaultdict
 
 from matplotlib.ticker import FixedFormatter, FixedLocator, NullFormatter
 
-from plotting import plt, save
+from plotting import plt, save, uncommented
 
 
 def read_series(directory):
     """Per quantity, its (h_mm, rel_error_pct, nodes) on each mesh."""
     series = defaultdict(list)
     with open(os.path.join(directory, "convergence.csv")) as f:
-        for row in csv.DictReader(f):
+        for row in csv.DictReader(uncommented(f)):
             series[row["quantity"]].append((float(row["h_mm"]), float(row["rel_error_pct"]), int(row["nodes"])))
     return series
 
@@ -62,7 +62,7 @@ def main(directory):
     if os.path.exists(history_path):
         ax = axes[0][1]
         with open(history_path) as f:
-            rows = list(csv.DictReader(f))
+            rows = list(csv.DictReader(uncommented(f)))
         t = [float(r["t_s"]) for r in rows]
         for key in rows[0]:
             if key == "t_s":

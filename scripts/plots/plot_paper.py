@@ -14,7 +14,7 @@ import os
 import sys
 from collections import defaultdict
 
-from plotting import plt, save
+from plotting import plt, save, uncommented
 
 PAPER_STEP_S = {"full": 0.440, "setup1": 0.071, "setup2": 0.037}
 
@@ -25,7 +25,7 @@ def main(directory):
     every = defaultdict(lambda: ([], [], []))  # (setup, reduction, ramp) -> steps, mean, max
     reductions = []
     with open(os.path.join(directory, "errors.csv")) as f:
-        for row in csv.DictReader(f):
+        for row in csv.DictReader(uncommented(f)):
             steps, mean, worst = every[(row["setup"], row["reduction"], float(row["ramp_s"]))]
             steps.append(int(row["step"]))
             mean.append(float(row["mean_mm"]))
@@ -66,7 +66,7 @@ def main(directory):
 
     models, ours = [], []
     with open(os.path.join(directory, "timing.csv")) as f:
-        for row in csv.DictReader(f):
+        for row in csv.DictReader(uncommented(f)):
             models.append(row["model"])
             ours.append(float(row["step_s_median"]))
     fig, ax = plt.subplots(figsize=(6, 4))
@@ -91,7 +91,7 @@ def plot_force_errors(path, titles, out):
     """The force the surgeon feels: the spatulas' force error (mN and % of the full model's peak)."""
     every = defaultdict(lambda: ([], [], []))  # (setup, ramp) -> steps, error, full force
     with open(path) as f:
-        for row in csv.DictReader(f):
+        for row in csv.DictReader(uncommented(f)):
             if row["reduction"] != "static":
                 continue
             steps, error, full = every[(row["setup"], float(row["ramp_s"]))]
@@ -118,7 +118,7 @@ def plot_error_budget(directory, path):
     """Space, time, reduction (and model) error per setup (rows) and ramp (columns), log scale."""
     curves = defaultdict(lambda: defaultdict(list))  # (setup, ramp) -> column -> values
     with open(path) as f:
-        for row in csv.DictReader(f):
+        for row in csv.DictReader(uncommented(f)):
             c = curves[(row["setup"], float(row["ramp_s"]))]
             for key, value in row.items():
                 if key not in ("setup", "ramp_s"):

@@ -10,7 +10,7 @@ import os
 import sys
 from collections import defaultdict
 
-from plotting import plt, save
+from plotting import plt, save, uncommented
 
 # Hansen & Larsen (1998), per step on their hardware: the 799-node brain and its two ROI setups.
 PAPER_1998 = [(799, 0.440, "full"), (799, 0.071, "306-node ROI"), (799, 0.037, "228-node ROI")]
@@ -19,7 +19,7 @@ PAPER_1998 = [(799, 0.440, "full"), (799, 0.071, "306-node ROI"), (799, 0.037, "
 def main(directory):
     curves = defaultdict(lambda: ([], []))
     with open(os.path.join(directory, "scale.csv")) as f:
-        for row in csv.DictReader(f):
+        for row in csv.DictReader(uncommented(f)):
             if row["status"] != "ok":
                 continue
             nodes, step = curves[row["model"]]

@@ -13,3 +13,9 @@ def save(fig, path):
     fig.savefig(tmp, dpi=120, bbox_inches="tight")
     plt.close(fig)
     os.replace(tmp, path)
+
+
+def uncommented(lines):
+    """The lines of a roifem CSV file without its comment lines (the first: '# roifem VERSION')."""
+    return (line for line in lines if not line.startswith("#"))
+

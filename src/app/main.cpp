@@ -6,15 +6,21 @@
 #include "app/commands.hpp"
 #include "app/misuse.hpp"
 #include "common/errors.hpp"
+#include "common/version.hpp"
 
 namespace {
 
 int run_cli(int argc, char** argv) {
+  // `roifem --check-args COMMAND ...` parses a command line, checks it and does nothing (the docs
+  // check runs every command line the guide quotes this way); not in --help.
+  const bool check_only = roifem::app::take_check_args(argc, argv);
   CLI::App app{
       "roifem: region-of-interest (ROI) finite element models of the brain for surgery simulation.\n"
       "A linear-elastic tetrahedral brain whose ROI is dynamic and whose rest is condensed statically.\n"
       "Start with:  roifem paper --out results/paper   (the Hansen & Larsen 1998 experiment)\n"
-      "Lengths on the command line and in files are millimetres; inside, everything is SI."};
+      "Lengths on the command line and in files are millimetres; inside, everything is SI.",
+      "roifem"};
+  app.set_version_flag("--version", "roifem " + std::string(roifem::version()), "Print the version and exit");
   app.footer(
       "Exit codes: 0 done; 1 an error in the input, the model or a solver (the message names the file, key,\n"
       "node, element or step); 2 a command-line error; 130 / 143 stopped by Ctrl-C / SIGTERM (every completed\n"
@@ -39,6 +45,7 @@ int run_cli(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;  // --help is a success; every other parse error is misuse
   }
+  if (check_only) return 0;
   try {
     action();
   } catch (const CLI::ValidationError& e) {  // `roifem help NAME` with an unknown NAME

@@ -47,6 +47,13 @@ std::string find_misuse(CLI::App& app, int argc, const char* const* argv) {
   return "";
 }
 
+bool take_check_args(int& argc, char** argv) {
+  if (argc < 2 || std::string_view(argv[1]) != "--check-args") return false;
+  for (int i = 1; i + 1 < argc; ++i) argv[i] = argv[i + 1];
+  argv[--argc] = nullptr;
+  return true;
+}
+
 void add_help_command(CLI::App& app, Action& action) {
   auto command = std::make_shared<std::string>();
   auto* cmd = app.add_subcommand("help", "Print the help of roifem, or of one command: roifem help run");

@@ -4,12 +4,13 @@
 #include <vector>
 
 #include "common/errors.hpp"
+#include "common/version.hpp"
 
 namespace roifem::io {
 
 CsvWriter::CsvWriter(const std::filesystem::path& path, const std::string& header) : file_(path), out_(file_.temporary_path()) {
   if (!out_) throw InputError(path.string() + ": cannot create file");
-  out_ << header << '\n';
+  out_ << "# roifem " << version() << '\n' << header << '\n';
 }
 
 void CsvWriter::row(const std::string& line) { out_ << line << '\n'; }

@@ -10,6 +10,7 @@ namespace roifem::io {
 
 class CsvWriter {
  public:
+  /// Its first line is "# roifem VERSION" (readers skip lines that start with #), then `header`.
   CsvWriter(const std::filesystem::path& path, const std::string& header);
   /// Appends one line (no newline needed).
   void row(const std::string& line);

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "common/errors.hpp"
+#include "common/version.hpp"
 
 namespace roifem::io {
 
@@ -15,6 +16,7 @@ Hdf5Writer::Hdf5Writer(const std::filesystem::path& path) : path_(path.string())
   silence_hdf5();
   file_ = Handle(H5Fcreate(path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
   if (file_.get() < 0) throw InputError(path_ + ": cannot create HDF5 file");
+  attribute("roifem_version", std::string(version()));
 }
 
 void Hdf5Writer::write_raw(const std::string& name, hid_t type, const void* data, const std::vector<hsize_t>& dims) {

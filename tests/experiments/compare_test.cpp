@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "common/version.hpp"
 #include "test_support.hpp"
 
 namespace roifem::experiments {
@@ -16,6 +17,8 @@ namespace {
 std::vector<std::vector<std::string>> read_rows(const std::filesystem::path& file) {
   std::ifstream csv(file);
   std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "# roifem " + std::string(version()));
   std::getline(csv, line);
   EXPECT_EQ(line,
             "integrator,mode,dt_or_tol,theoretical_order,steps,rhs_evals,jac_evals,lin_setups,lin_solves,wall_s,err_max_mm,"

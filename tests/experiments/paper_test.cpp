@@ -113,11 +113,14 @@ TEST_F(PaperExperiment, WritesCompleteCsvAndReadableHdf5) {
   std::ifstream errors(dir->path() / "errors.csv");
   std::string header;
   std::getline(errors, header);
+  EXPECT_EQ(header.rfind("# roifem ", 0), 0u) << header;
+  std::getline(errors, header);
   EXPECT_EQ(header, "setup,reduction,ramp_s,step,time_s,mean_mm,max_mm");
   int rows = 0;
   for (std::string line; std::getline(errors, line);) ++rows;
   EXPECT_EQ(rows, 7 * 6 * 200);  // 7 reductions x 2 setups x 3 ramps
   std::ifstream timing(dir->path() / "timing.csv");
+  std::getline(timing, header);  // "# roifem VERSION"
   std::getline(timing, header);
   EXPECT_EQ(header, "model,nodes,dofs,step_s_median,frame_rate_hz");
 

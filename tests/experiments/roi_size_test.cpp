@@ -121,7 +121,7 @@ TEST(RoiSize, EveryRoiTriedFromTheAnswerUpHoldsAndTheOneBelowMisses) {
   std::string line;
   std::size_t lines = 0;
   while (std::getline(runs, line)) ++lines;
-  EXPECT_EQ(lines, row.probes.size() + 1);
+  EXPECT_EQ(lines, row.probes.size() + 2);  // the version line, the header, a line per run
 }
 
 TEST(RoiSize, GeometricSizesGrowByTheRatioAndEndAtTheLast) {

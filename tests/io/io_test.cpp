@@ -5,9 +5,11 @@
 
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 
 #include "common/errors.hpp"
+#include "common/version.hpp"
 #include "fem/dof_map.hpp"
 #include "io/csv.hpp"
 #include "io/displacement_field.hpp"
@@ -112,7 +114,9 @@ TEST(CsvWriter, TheTableAppearsOnlyWhenClosed) {
     EXPECT_FALSE(fs::exists(path));  // still under its temporary name
     csv.close();
   }
-  EXPECT_EQ(read_text(path), "a,b\n1,0.500\n");
+  // The first line gives roifem's version (CMake's project(VERSION), as --version prints it).
+  EXPECT_EQ(read_text(path), "# roifem " + std::string(version()) + "\na,b\n1,0.500\n");
+  EXPECT_TRUE(std::regex_match(std::string(version()), std::regex("[0-9]+\\.[0-9]+\\.[0-9]+")));
   const fs::path abandoned = scratch("abandoned.csv");
   {
     CsvWriter csv(abandoned, "a");

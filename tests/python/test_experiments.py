@@ -10,7 +10,7 @@ import roifem
 
 def read_csv(path):
     with open(path) as f:
-        return list(csv.DictReader(f))
+        return list(csv.DictReader(line for line in f if not line.startswith("#")))
 
 
 def test_paper_returns_its_tables_as_the_csv_has_them(source_dir, tmp_path):

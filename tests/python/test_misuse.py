@@ -94,3 +94,15 @@ def test_every_array_names_its_unit_and_mm_variants_agree(scenarios, source_dir)
     np.testing.assert_allclose(sim.displacement_mm(), sim.displacement() * 1e3, rtol=1e-15, atol=0)
     mesh = roifem.read_mesh(source_dir / "meshes/brain-800.msh")
     np.testing.assert_allclose(mesh.nodes_mm, mesh.nodes * 1e3, rtol=1e-15, atol=0)
+
+
+def test_the_version_is_the_clis_and_every_results_file_carries_it(cli, scenarios, tmp_path):
+    import subprocess
+
+    import h5py
+    printed = subprocess.run([cli, "--version"], capture_output=True, text=True, check=True).stdout.strip()
+    assert printed == f"roifem {roifem.__version__}"
+    subprocess.run([cli, "run", str(scenarios / "paper-setup2.toml"), "--out", str(tmp_path)], check=True, capture_output=True)
+    with h5py.File(tmp_path / "results.h5", "r") as f:
+        stored = f.attrs["roifem_version"]
+        assert (stored.decode() if isinstance(stored, bytes) else stored) == roifem.__version__

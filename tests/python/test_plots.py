@@ -15,6 +15,7 @@ def plot_convergence(source_dir):
 def test_the_convergence_plot_labels_each_mesh_by_its_node_count(plot_convergence, tmp_path):
     # Sizes within one decade: matplotlib's log ticks read "1.1x10^1" there (issue 35).
     (tmp_path / "convergence.csv").write_text(
+        "# roifem 0.9.0\n"
         "quantity,unit,nodes,dofs,h_mm,value,error,rel_error_pct,order,observed,extrapolated\n"
         "opening,mm,297,800,21.8,2.5,6.2,71.2,2,0,8.8\n"
         "opening,mm,503,1400,17.7,2.7,6.1,69.9,2,0,8.8\n"
