@@ -5,9 +5,8 @@ usage: /usr/bin/python3 plot_paper.py DIR
 reads DIR/errors.csv and DIR/timing.csv; writes DIR/mean_error.png, DIR/max_error.png (the
 paper's static condensation), DIR/step_time.png and DIR/reductions.png (static condensation, Guyan
 and Craig-Bampton at the fastest ramp) and, driven by spatulas (DIR/force_errors.csv),
-DIR/force_error.png, and with an error budget (DIR/error_budget.csv) DIR/error_budget.png (the
-largest error over the ROI from space, time and reduction per setup and ramp, log scale, the model
-error as a level), each written to a temporary name, then renamed.
+DIR/force_error.png, each written to a temporary name, then renamed (the error budget's plot:
+plot_error_budget.py).
 """
 import csv
 import os
@@ -20,8 +19,6 @@ PAPER_STEP_S = {"full": 0.440, "setup1": 0.071, "setup2": 0.037}
 
 
 def main(directory):
-    if os.path.exists(os.path.join(directory, "error_budget.csv")):
-        plot_error_budget(directory, os.path.join(directory, "error_budget.csv"))
     every = defaultdict(lambda: ([], [], []))  # (setup, reduction, ramp) -> steps, mean, max
     reductions = []
     with open(os.path.join(directory, "errors.csv")) as f:
@@ -112,38 +109,6 @@ def plot_force_errors(path, titles, out):
     axes[0][0].set_ylabel("spatula force error (mN)")
     fig.suptitle("The force the surgeon feels: condensed ROI model vs full model, larger of the two spatulas")
     save(fig, out)
-
-
-def plot_error_budget(directory, path):
-    """Space, time, reduction (and model) error per setup (rows) and ramp (columns), log scale."""
-    curves = defaultdict(lambda: defaultdict(list))  # (setup, ramp) -> column -> values
-    with open(path) as f:
-        for row in csv.DictReader(uncommented(f)):
-            c = curves[(row["setup"], float(row["ramp_s"]))]
-            for key, value in row.items():
-                if key not in ("setup", "ramp_s"):
-                    c[key].append(float(value) if value else float("nan"))
-    setups = sorted({s for s, _ in curves})
-    ramps = sorted({r for _, r in curves})
-    fig, axes = plt.subplots(len(setups), len(ramps), figsize=(4.5 * len(ramps), 3.4 * len(setups)), sharey=True,
-                             squeeze=False)
-    for i, setup in enumerate(setups):
-        for j, ramp in enumerate(ramps):
-            ax, c = axes[i][j], curves[(setup, ramp)]
-            for key, label in (("space_max_mm", "space"), ("time_max_mm", "time"), ("reduction_max_mm", "reduction")):
-                if any(v == v and v > 0 for v in c[key]):
-                    ax.semilogy(c["t_s"], c[key], label=label)
-            model = [v for v in c["model_max_mm"] if v == v]
-            if model:
-                ax.axhline(model[0], color="k", ls="--", lw=1, label="model (static, full load)")
-            ax.set_title(f"{setup}, ramp {ramp:g} s", fontsize=10)
-            ax.grid(alpha=0.3, which="both")
-            if i == len(setups) - 1:
-                ax.set_xlabel("t (s)")
-        axes[i][0].set_ylabel("largest error over the ROI (mm)")
-    axes[0][0].legend(fontsize=8)
-    fig.suptitle("Error budget: where the error on the ROI nodes comes from")
-    save(fig, os.path.join(directory, "error_budget.png"))
 
 
 if __name__ == "__main__":

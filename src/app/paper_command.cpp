@@ -4,6 +4,7 @@
 
 #include "app/commands.hpp"
 #include "experiments/paper_experiment.hpp"
+#include "io/result_cache.hpp"
 
 namespace roifem::app {
 
@@ -64,6 +65,14 @@ void add_paper_command(CLI::App& app, Action& action) {
   cmd->add_option("--budget-element", *budget_element, "The reference's element: nodal-pressure, tet10 or tet4")
       ->capture_default_str();
   cmd->add_flag("!--no-model-error", o->budget.model_error, "Leave CalculiX's nonlinear model error out of the budget");
+  o->budget.cache = io::default_cache_directory();
+  auto* cache = cmd->add_option("--cache", o->budget.cache,
+                                "Where the budget keeps its reference and CalculiX's answer between runs: a second run with "
+                                "the same inputs reads them, bit for bit, in seconds (default: $XDG_CACHE_HOME/roifem, "
+                                "else ~/.cache/roifem)");
+  cmd->add_flag_callback(
+         "--no-cache", [o] { o->budget.cache.clear(); }, "Compute the budget's reference afresh and keep nothing")
+      ->excludes(cache);
   cmd->callback([&action, o, reductions, drive, budget_element, target] {
     action = [o, reductions, drive, budget_element, target] {
       o->roi_target_mm = Vec3((*target)[0], (*target)[1], (*target)[2]);

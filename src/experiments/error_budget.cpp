@@ -5,6 +5,7 @@
 #include <functional>
 #include <numeric>
 #include <ostream>
+#include <sstream>
 
 #include "common/errors.hpp"
 #include "common/timer.hpp"
@@ -14,10 +15,12 @@
 #include "fem/static_solve.hpp"
 #include "integrators/trapezoid.hpp"
 #include "io/csv.hpp"
+#include "io/result_cache.hpp"
 #include "mesh/brain_mesh.hpp"
 #include "mesh/mesh_checks.hpp"
 #include "mesh/point_locator.hpp"
 #include "model/modal_reference.hpp"
+#include "simulation/progress.hpp"
 
 namespace roifem::experiments {
 
@@ -82,13 +85,165 @@ double static_opening_mm(const model::FemModel& full) {
   return opening_widening(*full.mesh, u) / mm;
 }
 
-void model_error_into(const BudgetInput& in, const std::filesystem::path& out, ErrorBudget& budget, std::ostream& log) {
-  if (!calculix_available()) {
+/// What the budget needs of the reference: its vertex count, its static opening, and its
+/// unit-slope run read at the probed nodes' positions (steps 0..steps, 3 per node).
+struct SpaceReference {
+  Index nodes = 0;
+  double opening_mm = 0;
+  std::vector<Vector> slope;
+};
+
+/// Everything the reference's figures depend on, for the cache.
+std::string space_reference_key(const BudgetInput& in, const ErrorBudgetOptions& o, const std::vector<int>& probed) {
+  const fem::Material& m = in.full->material;
+  std::string key = "error budget: space reference\nnodes " + std::to_string(o.reference_nodes) + "\nelement " +
+                    std::string(fem::element_name(o.reference_element)) + "\nmaterial " + io::exact(m.lambda) + " " +
+                    io::exact(m.mu) + " " + io::exact(m.rho) + " " + io::exact(m.alpha) + "\nforce " + io::exact(in.force_N) +
+                    "\ndt " + io::exact(in.dt) + "\nsteps " + std::to_string(in.steps) + "\nfixed";
+  for (const auto& set : in.fixed_sets) key += " " + set;
+  key += "\nprobed at";
+  for (const int n : probed) {
+    const Vec3 x = in.full->mesh->node(n);
+    key += " " + io::exact(x.x()) + "," + io::exact(x.y()) + "," + io::exact(x.z());
+  }
+  return key;
+}
+
+SpaceReference space_reference(const BudgetInput& in, const ErrorBudgetOptions& o, const std::vector<int>& probed,
+                               const std::filesystem::path& out, std::ostream& log) {
+  const io::ResultCache cache(o.cache);
+  const std::string key = space_reference_key(in, o, probed);
+  const auto width = static_cast<std::size_t>(3 * probed.size());
+  if (const auto kept = cache.load(key); kept && kept->size() == 2 + static_cast<std::size_t>(in.steps + 1) * width) {
+    SpaceReference r{.nodes = static_cast<Index>((*kept)[0]), .opening_mm = (*kept)[1], .slope = {}};
+    for (long k = 0; k <= in.steps; ++k)
+      r.slope.emplace_back(
+          Eigen::Map<const Vector>(kept->data() + 2 + static_cast<std::size_t>(k) * width, static_cast<Index>(width)));
+    log << format("  space reference: the brain at %lld nodes (%s), read from the cache (%s)\n", static_cast<long long>(r.nodes),
+                  std::string(fem::element_name(o.reference_element)).c_str(), cache.file_of(key).c_str());
+    return r;
+  }
+  const std::unique_ptr<FinerReference> reference = build_reference(in, o, out, log);
+  const mesh::PointLocator locator(reference->mesh);
+  std::vector<mesh::PointLocation> located;
+  for (const int n : probed) located.push_back(locator.locate(in.full->mesh->node(n)));
+  SpaceReference r{.nodes = reference->mesh.num_vertices(), .opening_mm = static_opening_mm(reference->full), .slope = {}};
+  r.slope = unit_slope_run(
+      reference->full, in.dt, in.steps,
+      [&](const Vector& u) {
+        Vector at(static_cast<Index>(width));
+        for (std::size_t i = 0; i < probed.size(); ++i)
+          at.segment<3>(3 * static_cast<Index>(i)) = mesh::PointLocator::interpolate(located[i], u);
+        return at;
+      },
+      "reference", log);
+  std::vector<double> kept{static_cast<double>(r.nodes), r.opening_mm};
+  for (const Vector& w : r.slope) kept.insert(kept.end(), w.data(), w.data() + w.size());
+  if (const std::string why = cache.store(key, kept); !why.empty())
+    log << "  warning: the reference is not cached (" << why << ")\n";
+  else if (cache.enabled())
+    log << "  the reference is cached for the next run: " << cache.file_of(key).string() << '\n';
+  return r;
+}
+
+/// What the paper mesh's model is, for the cache's keys: the material, the force, the supports and
+/// the mesh (every node, tetrahedron and named set).
+std::string paper_model_key(const BudgetInput& in) {
+  const mesh::TetMesh& mesh = *in.full->mesh;
+  const fem::Material& m = in.full->material;
+  std::string key = "material " + io::exact(m.lambda) + " " + io::exact(m.mu) + " " + io::exact(m.rho) + " " +
+                    io::exact(m.alpha) + "\nforce " + io::exact(in.force_N) + "\nfixed";
+  for (const auto& set : in.fixed_sets) key += " " + set;
+  key += "\nnodes";
+  for (int n = 0; n < mesh.num_nodes(); ++n)
+    for (int c = 0; c < 3; ++c) key += " " + io::exact(mesh.node(n)[c]);
+  key += "\ntets";
+  for (const auto& t : mesh.tets)
+    for (int a = 0; a < 4; ++a) key += " " + std::to_string(t[a]);
+  for (const auto& [name, set] : mesh.sets) {
+    key += "\nset " + name;
+    for (const int n : set.nodes) key += " " + std::to_string(n);
+  }
+  return key;
+}
+
+std::string model_error_key(const BudgetInput& in) {
+  return "error budget: CalculiX NLGEOM at the full load\n" + paper_model_key(in);
+}
+
+/// The exact modal solution of the paper mesh's model at the probed nodes (3 per node), per ramp
+/// and step 1..steps: from the cache, or by the dense eigensolution (then cached).
+std::vector<std::vector<Vector>> exact_at_probed(const BudgetInput& in, const std::vector<int>& probed,
+                                                 const io::ResultCache& cache, std::ostream& log) {
+  std::string key = "error budget: the exact modal solution\n" + paper_model_key(in) + "\ndt " + io::exact(in.dt) + "\nsteps " +
+                    std::to_string(in.steps) + "\nramps";
+  for (const double ramp : in.ramps_s) key += " " + io::exact(ramp);
+  key += "\nprobed";
+  for (const int n : probed) key += " " + std::to_string(n);
+  const auto width = static_cast<Index>(3 * probed.size());
+  const std::size_t per_ramp = static_cast<std::size_t>(in.steps) * static_cast<std::size_t>(width);
+  std::vector<std::vector<Vector>> exact(in.ramps_s.size());
+  if (const auto kept = cache.load(key); kept && kept->size() == in.ramps_s.size() * per_ramp) {
+    for (std::size_t r = 0; r < exact.size(); ++r)
+      for (long k = 0; k < in.steps; ++k)
+        exact[r].emplace_back(Eigen::Map<const Vector>(kept->data() + r * per_ramp + static_cast<std::size_t>(k * width), width));
+    log << "  time: the exact modal solution read from the cache (" << cache.file_of(key).string() << ")\n";
+    return exact;
+  }
+  const Stopwatch clock;
+  const model::ModalReference modal(in.full->system, model::State::at_rest(in.full->system.size()));
+  std::vector<double> kept;
+  kept.reserve(in.ramps_s.size() * per_ramp);
+  for (std::size_t r = 0; r < exact.size(); ++r) {
+    const model::ModalReference ramped = modal.with_ramp(in.ramps_s[r]);
+    for (long k = 1; k <= in.steps; ++k) {
+      const double t = in.dt * static_cast<double>(k);
+      const Vector u = in.full->displacement(ramped.displacement(t), t);
+      Vector at(width);
+      for (std::size_t i = 0; i < probed.size(); ++i) at.segment<3>(3 * static_cast<Index>(i)) = u.segment<3>(3 * probed[i]);
+      kept.insert(kept.end(), at.data(), at.data() + at.size());
+      exact[r].push_back(std::move(at));
+    }
+  }
+  log << format("  time: the exact modal solution of the paper mesh's model in %.1f s\n", clock.seconds());
+  if (const std::string why = cache.store(key, kept); !why.empty())
+    log << "  warning: the exact modal solution is not cached (" << why << ")\n";
+  return exact;
+}
+
+/// CalculiX's answer at the full load, linear and NLGEOM: from the cache, or computed (then cached).
+ModelErrorStudy model_error_study(const BudgetInput& in, const std::filesystem::path& out, const io::ResultCache& cache,
+                                  std::ostream& log) {
+  const std::string key = model_error_key(in);
+  const auto n = static_cast<std::size_t>(3 * in.full->mesh->num_nodes());
+  if (const auto kept = cache.load(key); kept && kept->size() == 1 + 2 * n) {
+    ModelErrorStudy study;
+    study.full_load_reached = (*kept)[0] != 0;
+    study.u_linear = Eigen::Map<const Vector>(kept->data() + 1, static_cast<Index>(n));
+    study.u_nonlinear = Eigen::Map<const Vector>(kept->data() + 1 + n, static_cast<Index>(n));
+    log << "  model: CalculiX's answer read from the cache (" << cache.file_of(key).string() << ")\n";
+    return study;
+  }
+  if (!calculix_available()) return {};
+  ModelErrorStudy study = measure_model_error(*in.full->mesh, in.full->material, in.fixed_sets, opening_loads(in.force_N), {1.0},
+                                              out / "calculix", log);
+  std::vector<double> kept{study.full_load_reached ? 1.0 : 0.0};
+  if (study.full_load_reached) {
+    kept.insert(kept.end(), study.u_linear.data(), study.u_linear.data() + study.u_linear.size());
+    kept.insert(kept.end(), study.u_nonlinear.data(), study.u_nonlinear.data() + study.u_nonlinear.size());
+    if (const std::string why = cache.store(key, kept); !why.empty())
+      log << "  warning: CalculiX's answer is not cached (" << why << ")\n";
+  }
+  return study;
+}
+
+void model_error_into(const BudgetInput& in, const std::filesystem::path& out, const io::ResultCache& cache, ErrorBudget& budget,
+                      std::ostream& log) {
+  const ModelErrorStudy study = model_error_study(in, out, cache, log);
+  if (!study.full_load_reached && !calculix_available()) {
     budget.model_note = "not measured: CalculiX (ccx) is not installed (scripts/setup.sh installs calculix-ccx)";
     return;
   }
-  const auto study = measure_model_error(*in.full->mesh, in.full->material, in.fixed_sets, opening_loads(in.force_N), {1.0},
-                                         out / "calculix", log);
   if (!study.full_load_reached) {
     budget.model_note = "not measured: CalculiX's nonlinear solution stopped before the full load";
     return;
@@ -118,16 +273,34 @@ void rank(BudgetEntry& e) {
 
 std::vector<Vector> unit_slope_run(const model::FemModel& full, double dt, long steps,
                                    const std::function<Vector(const Vector&)>& read) {
+  std::ostringstream quiet;
+  return unit_slope_run(full, dt, steps, read, "", quiet);
+}
+
+std::vector<Vector> unit_slope_run(const model::FemModel& full, double dt, long steps,
+                                   const std::function<Vector(const Vector&)>& read, const std::string& label,
+                                   std::ostream& log) {
+  const Stopwatch clock;
   const double t_end = dt * static_cast<double>(steps);
   model::SecondOrderSystem system = full.system;
   system.load = full.system.load.with_ramp(model::Ramp{t_end});  // f t / t_end up to t_end
   integrators::Trapezoid trapezoid(dt);
   model::State state = model::State::at_rest(system.size());
   trapezoid.reset(system, state);
+  const double factorization_s = clock.seconds();
   std::vector<Vector> w{Vector(t_end * read(full.displacement(state.u, 0.0)))};
-  for (long k = 0; k < steps; ++k) {
+  simulation::ProgressReporter progress(label, steps);
+  const long tenth = steps >= 50 ? steps / 10 : 0;
+  for (long k = 1; k <= steps; ++k) {
     trapezoid.step(state);
     w.emplace_back(t_end * read(full.displacement(state.u, state.t)));
+    if (!label.empty()) progress.update(k);
+    if (!label.empty() && k == tenth) {
+      const double stepping_s = clock.seconds() - factorization_s;
+      log << format("  %s: factored in %.1f s, %ld of %ld steps in %.1f s; about %.0f s to go\n", label.c_str(), factorization_s,
+                    k, steps, stepping_s, stepping_s / static_cast<double>(k) * static_cast<double>(steps - k))
+          << std::flush;
+    }
   }
   return w;
 }
@@ -148,57 +321,42 @@ ErrorBudget measure_error_budget(const BudgetInput& in, const ErrorBudgetOptions
   log << "\nerror budget: space, time, reduction and model error on the ROI nodes\n";
   ErrorBudget budget;
   const mesh::TetMesh& mesh = *in.full->mesh;
-  std::unique_ptr<FinerReference> reference;
-  std::vector<int> probed;  // every ROI node, and where each lies in the reference
-  std::vector<mesh::PointLocation> located;
+  std::vector<int> probed;  // every ROI node once
   std::vector<Index> slot(static_cast<std::size_t>(mesh.num_nodes()), -1);
+  for (const auto& [name, nodes] : in.setups)
+    for (int n : nodes)
+      if (slot[static_cast<std::size_t>(n)] < 0) {
+        slot[static_cast<std::size_t>(n)] = static_cast<Index>(probed.size());
+        probed.push_back(n);
+      }
+  // The reference read at the ROI nodes' positions, 3 per node in `probed` order, at each step of its
+  // unit-slope run: from the cache, or computed (then cached).
+  std::vector<Vector> fine_slope;
   if (o.reference_nodes > 0) {
-    reference = build_reference(in, o, out, log);
-    budget.reference_nodes = reference->mesh.num_vertices();
+    const SpaceReference space = space_reference(in, o, probed, out, log);
+    fine_slope = space.slope;
+    budget.reference_nodes = space.nodes;
     budget.reference_element = fem::element_name(o.reference_element);
-    const mesh::PointLocator locator(reference->mesh);
-    for (const auto& [name, nodes] : in.setups)
-      for (int n : nodes)
-        if (slot[static_cast<std::size_t>(n)] < 0) {
-          slot[static_cast<std::size_t>(n)] = static_cast<Index>(probed.size());
-          probed.push_back(n);
-          located.push_back(locator.locate(mesh.node(n)));
-        }
-    const double coarse = static_opening_mm(*in.full), fine = static_opening_mm(reference->full);
-    budget.reference_opening_error_pct = 100 * (coarse - fine) / fine;
-    log << format("  static opening: %.3f mm on the paper mesh, %.3f mm on the reference (%+.1f%%)\n", coarse, fine,
+    const double coarse = static_opening_mm(*in.full);
+    budget.reference_opening_error_pct = 100 * (coarse - space.opening_mm) / space.opening_mm;
+    log << format("  static opening: %.3f mm on the paper mesh, %.3f mm on the reference (%+.1f%%)\n", coarse, space.opening_mm,
                   budget.reference_opening_error_pct);
   }
   // One unit-slope run of each model serves every ramp (ramp_response); one eigensolution too.
-  const Stopwatch clock;
   const auto whole = [](const Vector& u) -> Vector { return u; };
   const std::vector<Vector> coarse_slope = unit_slope_run(*in.full, in.dt, in.steps, whole);
-  std::vector<Vector> fine_slope;  // the reference at the ROI nodes' positions, 3 per node in `probed` order
-  if (reference)
-    fine_slope = unit_slope_run(reference->full, in.dt, in.steps, [&](const Vector& u) {
-      Vector at(3 * static_cast<Index>(probed.size()));
-      for (std::size_t i = 0; i < probed.size(); ++i)
-        at.segment<3>(3 * static_cast<Index>(i)) = mesh::PointLocator::interpolate(located[i], u);
-      return at;
-    });
-  const model::ModalReference modal(in.full->system, model::State::at_rest(in.full->system.size()));
-  log << format("  full model%s, unit-slope runs, and the exact modal solution in %.1f s\n", reference ? " and reference" : "",
-                clock.seconds());
+  const std::vector<std::vector<Vector>> exact = exact_at_probed(in, probed, io::ResultCache(o.cache), log);
   for (std::size_t r = 0; r < in.ramps_s.size(); ++r) {
     const double ramp = in.ramps_s[r];
     const std::vector<Vector> coarse = ramp_response(coarse_slope, ramp, in.dt);
-    const model::ModalReference exact = modal.with_ramp(ramp);
-    std::vector<Vector> exact_u;
-    for (long k = 1; k <= in.steps; ++k) {
-      const double t = in.dt * static_cast<double>(k);
-      exact_u.push_back(in.full->displacement(exact.displacement(t), t));
-    }
-    const std::vector<Vector> fine = reference ? ramp_response(fine_slope, ramp, in.dt) : std::vector<Vector>{};
+    const std::vector<Vector> fine = fine_slope.empty() ? std::vector<Vector>{} : ramp_response(fine_slope, ramp, in.dt);
     for (std::size_t s = 0; s < in.setups.size(); ++s) {
       BudgetEntry e{.setup = in.setups[s].first, .ramp_s = ramp};
       const auto& nodes = in.setups[s].second;
-      e.time = distances(nodes, coarse, [&](std::size_t k, int n) -> Vec3 { return exact_u[k].segment<3>(3 * n); });
-      if (reference)
+      e.time = distances(nodes, coarse, [&](std::size_t k, int n) -> Vec3 {
+        return exact[r][k].segment<3>(3 * slot[static_cast<std::size_t>(n)]);
+      });
+      if (!fine_slope.empty())
         e.space = distances(nodes, coarse, [&](std::size_t k, int n) -> Vec3 {
           return fine[k].segment<3>(3 * slot[static_cast<std::size_t>(n)]);
         });
@@ -207,7 +365,7 @@ ErrorBudget measure_error_budget(const BudgetInput& in, const ErrorBudgetOptions
     }
   }
   if (o.model_error)
-    model_error_into(in, out, budget, log);
+    model_error_into(in, out, io::ResultCache(o.cache), budget, log);
   else
     budget.model_note = "not measured (switched off)";
   for (auto& e : budget.entries) rank(e);

@@ -30,6 +30,9 @@ struct ErrorBudgetOptions {
   Index reference_nodes = 20000;  ///< 0: no space error
   fem::Element reference_element = fem::Element::nodal_pressure;
   bool model_error = true;  ///< CalculiX, when installed
+  /// Where the reference's response and CalculiX's answer are kept between runs (io/result_cache.hpp;
+  /// empty: nowhere): a second run with the same inputs reads them, bit for bit, in seconds.
+  std::filesystem::path cache;
 };
 
 struct ErrorCurve {  ///< per step 1..steps, mm
@@ -72,6 +75,10 @@ struct BudgetInput {
 /// `read` gives of every node's displacement (3N, m) at each step 0..steps.
 std::vector<Vector> unit_slope_run(const model::FemModel& full, double dt, long steps,
                                    const std::function<Vector(const Vector&)>& read);
+/// The same with a progress line on a terminal (`label`) and, after the first tenth of the steps,
+/// a line on `log` with the time it has taken and an estimate of the rest.
+std::vector<Vector> unit_slope_run(const model::FemModel& full, double dt, long steps,
+                                   const std::function<Vector(const Vector&)>& read, const std::string& label, std::ostream& log);
 /// The response at steps 1..steps to the loads ramped over T, from the unit-slope one: the
 /// trapezoidal rule's recurrence is linear and time-invariant and starts from rest, so with
 /// min(t / T, 1) = (t - max(t - T, 0)) / T it superposes exactly, u_k = (w_k - w_{k-m}) / T for

@@ -120,46 +120,6 @@ void add_spatulas(const PaperOptions& o, PaperModel& m, PaperResults& results) {
   const Vector forces = m.full.tools.forces(K.solve(m.full.system.load.at(1.0)), 1.0);
   results.force_N = std::max(forces.segment<3>(0).norm(), forces.segment<3>(3).norm());
 }
-
-std::unique_ptr<PaperModel> build_paper_model(const PaperOptions& o, PaperResults& results, std::ostream& log) {
-  auto m = std::make_unique<PaperModel>();
-  m->mesh = mesh::read_mesh(o.mesh);
-  mesh::check_mesh(m->mesh);
-  if (o.drive == PaperDrive::forces && o.error_budget && o.budget.reference_nodes > 0) {
-    // The budget's space error regenerates the ellipsoid brain finer: refuse another shape now,
-    // not after the whole run.
-    const mesh::BrainShape shape;
-    const Vec3 hi = m->mesh.nodes.rowwise().maxCoeff() / mm, lo = m->mesh.nodes.rowwise().minCoeff() / mm;
-    const Vec3 expected(shape.semi_axis_x, shape.semi_axis_y, shape.semi_axis_z);
-    if (((hi - expected).cwiseAbs().array() > 0.05 * expected.array()).any() ||
-        ((lo + expected).cwiseAbs().array() > 0.05 * expected.array()).any())
-      throw InputError(
-          format("%s spans [%.1f, %.1f] x [%.1f, %.1f] x [%.1f, %.1f] mm, not the generated ellipsoid brain that "
-                 "the error budget's space error refines; add --no-error-budget (or --budget-nodes 0)",
-                 o.mesh.c_str(), lo.x(), hi.x(), lo.y(), hi.y(), lo.z(), hi.z()));
-  }
-  results.drive = o.drive;
-  results.opening_mm = o.opening_mm;
-  if (o.drive == PaperDrive::forces)
-    add_opening_forces(o, *m, results);
-  else
-    add_spatulas(o, *m, results);
-  const fem::DofMap& dofs = *m->full.dofs;
-  log << format("paper experiment: %s, %lld nodes (%lld free dofs), material '%s'\n", o.mesh.c_str(),
-                static_cast<long long>(m->mesh.num_nodes()), static_cast<long long>(dofs.num_free()), o.material.c_str());
-  if (o.drive == PaperDrive::forces)
-    log << format("  force %.4g mN on each wall of the opening (x: -left, +right) widens it statically by %.1f mm\n",
-                  results.force_N * 1e3, o.opening_mm);
-  else
-    log << format(
-        "  two spatulas hold the walls' nodes (%zu and %zu) and move them %.2f mm apart each (x: -left, +right): "
-        "%.1f mm in all, held at rest by %.4g mN\n",
-        m->full.tools.tools()[0].nodes.size(), m->full.tools.tools()[1].nodes.size(), o.opening_mm / 2, o.opening_mm,
-        results.force_N * 1e3);
-  for (const auto& warning : m->full.warnings) log << "  warning: " << warning << '\n';
-  return m;
-}
-
 /// The setup's ROI: the same nodes whichever the drive, chosen among the nodes the base leaves free
 /// (the walls' included); those a spatula holds then leave the unknowns and move with it.
 std::vector<int> select_setup_nodes(const PaperModel& m, const roi::RoiSpec& spec) {
@@ -168,47 +128,6 @@ std::vector<int> select_setup_nodes(const PaperModel& m, const roi::RoiSpec& spe
   const std::vector<int> free = roi::free_nodes(m.mesh, *m.full.dofs);
   std::erase_if(nodes, [&](int n) { return !std::binary_search(free.begin(), free.end(), n); });
   return nodes;
-}
-
-/// Every setup reduced by every reduction, setup-major (setup1 with each reduction, then setup2 ...).
-std::vector<Setup> build_setups(const PaperOptions& o, const PaperModel& m, PaperResults& results, std::ostream& log) {
-  const fem::DofMap& dofs = *m.full.dofs;
-  std::vector<Setup> setups;
-  for (std::size_t k = 0; k < o.setup_nodes.size(); ++k) {
-    const roi::RoiSpec spec{
-        .kind = roi::RoiSpec::Kind::nearest, .center = o.roi_target_mm * mm, .radius = 0, .count = o.setup_nodes[k], .set = {}};
-    const auto partition = roi::partition_dofs(m.full.system.K, dofs, select_setup_nodes(m, spec));
-    std::set<int> interface_nodes;
-    for (Index i : partition.interface)
-      interface_nodes.insert(static_cast<int>(dofs.full_dof(partition.d[static_cast<std::size_t>(i)]) / 3));
-    results.interface_nodes.push_back(static_cast<Index>(interface_nodes.size()));
-    log << format("  setup%zu: ROI = %s: %zu dofs, %zu interface nodes, %zu static dofs", k + 1, spec.describe().c_str(),
-                  partition.d.size(), interface_nodes.size(), partition.s.size());
-    if (const Index held = spec.count - static_cast<Index>(partition.roi_nodes.size()); held > 0)
-      log << format(" (%lld of its nodes held by the spatulas)", static_cast<long long>(held));
-    log << "\n";
-    for (const auto& reduction : o.reductions) {
-      Setup s;
-      s.name = "setup" + std::to_string(k + 1);
-      s.reduction = reduction;
-      s.label = reduction.label();
-      Stopwatch clock;
-      // A POD basis learns from the paper's own step and length.
-      s.condensation =
-          std::make_unique<condensation::ReducedModel>(m.full.system, partition, dofs, reduction.trained_on(o.dt, o.steps));
-      s.setup_s = clock.seconds();
-      s.node_dofs = roi_node_dofs(partition, dofs);
-      if (!m.full.tools.empty()) s.tools = simulation::tools_in_reduced(m.full, partition, s.condensation->system().size());
-      log << format("    %-18s %4lld dofs, reduced in %.3f s", s.label.c_str(),
-                    static_cast<long long>(s.condensation->system().size()), s.setup_s);
-      if (s.condensation->num_modes() > 0)
-        log << format(" (fixed-interface modes %.2f to %.2f rad/s)", s.condensation->mode_frequencies()[0],
-                      s.condensation->mode_frequencies()[s.condensation->num_modes() - 1]);
-      log << "\n";
-      setups.push_back(std::move(s));
-    }
-  }
-  return setups;
 }
 
 /// Displacement fields for results.h5 and the XDMF series that play them (full, and setup 1 with
@@ -244,8 +163,162 @@ struct Reference {
   std::vector<Vector> u, forces;
 };
 
-/// The full model's trapezoidal run under one ramp: the reference per step.
-Reference run_reference(const PaperOptions& o, const PaperModel& m, double ramp, FieldRecord& record) {
+/// `roifem paper` as a list of phases (run()), each a member that reads and fills the
+/// experiment's state: the model, the setups, the field record, the results.
+class PaperExperiment {
+ public:
+  PaperExperiment(const PaperOptions& options, std::ostream& log) : o_(options), log_(log) {}
+  PaperResults run();
+
+ private:
+  void check_options() const;
+  void build_model();       ///< the mesh and the full model under the drive (forces scaled to the opening, or spatulas)
+  void build_setups();      ///< every setup reduced by every reduction, setup-major
+  void measure_accuracy();  ///< each ramp: the full model against each setup
+  Reference run_reference(double ramp);
+  PaperCurve run_setup(const Setup& setup, double ramp, const Reference& reference, bool record_fields);
+  void measure_speed();  ///< Table 2 and the reductions' step costs, the models taking turns
+  void write_results() const;
+  void write_results_h5() const;
+  /// Runs a plot script on the output directory and names what it drew.
+  void plot(const char* script, const std::vector<std::string>& pngs) const;
+  void measure_error_budget();  ///< space, time, reduction and model error (forces drive)
+
+  const PaperOptions& o_;
+  std::ostream& log_;
+  PaperResults results_;
+  std::unique_ptr<PaperModel> model_;
+  std::vector<Setup> setups_;
+  FieldRecord record_;
+};
+
+PaperResults PaperExperiment::run() {
+  check_options();
+  build_model();
+  build_setups();
+  measure_accuracy();
+  measure_speed();
+  write_results();
+  print_paper_report(o_, results_, log_);  // the findings, Table 2, the reductions (and the spatulas' forces)
+  log_ << std::flush;
+  std::vector<std::string> pngs{"mean_error.png", "max_error.png", "step_time.png", "reductions.png"};
+  if (o_.drive == PaperDrive::spatulas) pngs.emplace_back("force_error.png");
+  plot("plot_paper.py", pngs);
+  // The budget last: its reference takes most of the run's time (cached for the next run).
+  if (o_.error_budget && o_.drive == PaperDrive::forces) {
+    measure_error_budget();
+    write_error_budget_csv(*results_.budget, o_.dt, o_.out);
+    print_error_budget(*results_.budget, log_);
+    plot("plot_error_budget.py", {"error_budget.png"});
+  }
+  log_ << "results: " << (o_.out / "errors.csv").string() << ", " << (o_.out / "timing.csv").string() << ", "
+       << (o_.out / "reductions.csv").string() << ", "
+       << (o_.drive == PaperDrive::spatulas ? (o_.out / "force_errors.csv").string() + ", " : "")
+       << (results_.budget ? (o_.out / "error_budget.csv").string() + ", " : "") << (o_.out / "results.h5").string()
+       << " (ParaView: results.xdmf, results_setup1.xdmf)\n";
+  return results_;
+}
+
+void PaperExperiment::check_options() const {
+  const PaperOptions& o = o_;
+  if (!(o.dt > 0)) throw InputError("paper: dt = " + number_text(o.dt) + " s must be positive");
+  if (o.steps <= 0) throw InputError("paper: steps must be positive");
+  if (o.timing_steps < 1) throw InputError("paper: timing steps must be positive");
+  if (!(o.opening_mm > 0)) throw InputError("paper: --opening-mm must be positive");
+  if (o.reductions.empty() || !o.reductions.front().is_static_condensation())
+    throw InputError("paper: the first reduction must be static condensation (the paper's)");
+  check_output_directory(o.out);
+}
+
+void PaperExperiment::build_model() {
+  const PaperOptions& o = o_;
+  PaperResults& results = results_;
+  std::ostream& log = log_;
+  auto m = std::make_unique<PaperModel>();
+  m->mesh = mesh::read_mesh(o.mesh);
+  mesh::check_mesh(m->mesh);
+  if (o.drive == PaperDrive::forces && o.error_budget && o.budget.reference_nodes > 0) {
+    // The budget's space error regenerates the ellipsoid brain finer: refuse another shape now,
+    // not after the whole run.
+    const mesh::BrainShape shape;
+    const Vec3 hi = m->mesh.nodes.rowwise().maxCoeff() / mm, lo = m->mesh.nodes.rowwise().minCoeff() / mm;
+    const Vec3 expected(shape.semi_axis_x, shape.semi_axis_y, shape.semi_axis_z);
+    if (((hi - expected).cwiseAbs().array() > 0.05 * expected.array()).any() ||
+        ((lo + expected).cwiseAbs().array() > 0.05 * expected.array()).any())
+      throw InputError(
+          format("%s spans [%.1f, %.1f] x [%.1f, %.1f] x [%.1f, %.1f] mm, not the generated ellipsoid brain that "
+                 "the error budget's space error refines; add --no-error-budget (or --budget-nodes 0)",
+                 o.mesh.c_str(), lo.x(), hi.x(), lo.y(), hi.y(), lo.z(), hi.z()));
+  }
+  results.drive = o.drive;
+  results.opening_mm = o.opening_mm;
+  if (o.drive == PaperDrive::forces)
+    add_opening_forces(o, *m, results);
+  else
+    add_spatulas(o, *m, results);
+  const fem::DofMap& dofs = *m->full.dofs;
+  log << format("paper experiment: %s, %lld nodes (%lld free dofs), material '%s'\n", o.mesh.c_str(),
+                static_cast<long long>(m->mesh.num_nodes()), static_cast<long long>(dofs.num_free()), o.material.c_str());
+  if (o.drive == PaperDrive::forces)
+    log << format("  force %.4g mN on each wall of the opening (x: -left, +right) widens it statically by %.1f mm\n",
+                  results.force_N * 1e3, o.opening_mm);
+  else
+    log << format(
+        "  two spatulas hold the walls' nodes (%zu and %zu) and move them %.2f mm apart each (x: -left, +right): "
+        "%.1f mm in all, held at rest by %.4g mN\n",
+        m->full.tools.tools()[0].nodes.size(), m->full.tools.tools()[1].nodes.size(), o.opening_mm / 2, o.opening_mm,
+        results.force_N * 1e3);
+  for (const auto& warning : m->full.warnings) log << "  warning: " << warning << '\n';
+  model_ = std::move(m);
+}
+
+void PaperExperiment::build_setups() {
+  const PaperOptions& o = o_;
+  const PaperModel& m = *model_;
+  PaperResults& results = results_;
+  std::ostream& log = log_;
+  const fem::DofMap& dofs = *m.full.dofs;
+  std::vector<Setup>& setups = setups_;
+  for (std::size_t k = 0; k < o.setup_nodes.size(); ++k) {
+    const roi::RoiSpec spec{
+        .kind = roi::RoiSpec::Kind::nearest, .center = o.roi_target_mm * mm, .radius = 0, .count = o.setup_nodes[k], .set = {}};
+    const auto partition = roi::partition_dofs(m.full.system.K, dofs, select_setup_nodes(m, spec));
+    std::set<int> interface_nodes;
+    for (Index i : partition.interface)
+      interface_nodes.insert(static_cast<int>(dofs.full_dof(partition.d[static_cast<std::size_t>(i)]) / 3));
+    results.interface_nodes.push_back(static_cast<Index>(interface_nodes.size()));
+    log << format("  setup%zu: ROI = %s: %zu dofs, %zu interface nodes, %zu static dofs", k + 1, spec.describe().c_str(),
+                  partition.d.size(), interface_nodes.size(), partition.s.size());
+    if (const Index held = spec.count - static_cast<Index>(partition.roi_nodes.size()); held > 0)
+      log << format(" (%lld of its nodes held by the spatulas)", static_cast<long long>(held));
+    log << "\n";
+    for (const auto& reduction : o.reductions) {
+      Setup s;
+      s.name = "setup" + std::to_string(k + 1);
+      s.reduction = reduction;
+      s.label = reduction.label();
+      Stopwatch clock;
+      // A POD basis learns from the paper's own step and length.
+      s.condensation =
+          std::make_unique<condensation::ReducedModel>(m.full.system, partition, dofs, reduction.trained_on(o.dt, o.steps));
+      s.setup_s = clock.seconds();
+      s.node_dofs = roi_node_dofs(partition, dofs);
+      if (!m.full.tools.empty()) s.tools = simulation::tools_in_reduced(m.full, partition, s.condensation->system().size());
+      log << format("    %-18s %4lld dofs, reduced in %.3f s", s.label.c_str(),
+                    static_cast<long long>(s.condensation->system().size()), s.setup_s);
+      if (s.condensation->num_modes() > 0)
+        log << format(" (fixed-interface modes %.2f to %.2f rad/s)", s.condensation->mode_frequencies()[0],
+                      s.condensation->mode_frequencies()[s.condensation->num_modes() - 1]);
+      log << "\n";
+      setups.push_back(std::move(s));
+    }
+  }
+}
+
+Reference PaperExperiment::run_reference(double ramp) {
+  const PaperOptions& o = o_;
+  const PaperModel& m = *model_;
+  FieldRecord& record = record_;
   model::SecondOrderSystem system = m.full.system;
   system.load = m.full.system.load.with_ramp(model::Ramp{ramp});
   const model::ToolSet tools = m.full.tools.with_ramp(model::Ramp{ramp});
@@ -264,9 +337,10 @@ Reference run_reference(const PaperOptions& o, const PaperModel& m, double ramp,
   return reference;
 }
 
-/// One reduced setup under one ramp: its error against the reference per step.
-PaperCurve run_setup(const PaperOptions& o, const PaperModel& m, const Setup& setup, double ramp, const Reference& reference,
-                     bool record_fields, FieldRecord& record) {
+PaperCurve PaperExperiment::run_setup(const Setup& setup, double ramp, const Reference& reference, bool record_fields) {
+  const PaperOptions& o = o_;
+  const PaperModel& m = *model_;
+  FieldRecord& record = record_;
   model::SecondOrderSystem reduced = setup.condensation->system();
   reduced.load = reduced.load.with_ramp(model::Ramp{ramp});
   const model::ToolSet tools = setup.tools.with_ramp(model::Ramp{ramp});
@@ -299,14 +373,17 @@ PaperCurve run_setup(const PaperOptions& o, const PaperModel& m, const Setup& se
   return curve;
 }
 
-/// Accuracy: each ramp, the full model against each setup.
-void measure_accuracy(const PaperOptions& o, const PaperModel& m, const std::vector<Setup>& setups, PaperResults& results,
-                      FieldRecord& record) {
+void PaperExperiment::measure_accuracy() {
+  const PaperOptions& o = o_;
+  const std::vector<Setup>& setups = setups_;
+  PaperResults& results = results_;
+  record_.full_series = {.h5_name = "results.h5", .nodes = model_->mesh.num_nodes(), .tets = model_->mesh.num_tets()};
+  record_.roi_series = record_.full_series;
   for (double ramp : o.ramps_s) {
-    const Reference reference = run_reference(o, m, ramp, record);
+    const Reference reference = run_reference(ramp);
     for (std::size_t si = 0; si < setups.size(); ++si) {
       const bool record_fields = si == 0 && ramp == o.ramps_s.front();  // setup1, the paper's reduction
-      PaperCurve curve = run_setup(o, m, setups[si], ramp, reference, record_fields, record);
+      PaperCurve curve = run_setup(setups[si], ramp, reference, record_fields);
       if (curve.static_condensation) results.curves.push_back(curve);
       results.reduction_curves.push_back(std::move(curve));
     }
@@ -317,9 +394,11 @@ void measure_accuracy(const PaperOptions& o, const PaperModel& m, const std::vec
   std::stable_sort(results.reduction_curves.begin(), results.reduction_curves.end(), by_setup);
 }
 
-/// Speed: per-step medians over timing_steps steps of each model, the models taking turns; the
-/// reductions' rows at the first ramp.
-void measure_speed(const PaperOptions& o, const PaperModel& m, const std::vector<Setup>& setups, PaperResults& results) {
+void PaperExperiment::measure_speed() {
+  const PaperOptions& o = o_;
+  const PaperModel& m = *model_;
+  const std::vector<Setup>& setups = setups_;
+  PaperResults& results = results_;
   std::vector<const model::SecondOrderSystem*> timed{&m.full.system};
   for (const auto& setup : setups) timed.push_back(&setup.condensation->system());
   const auto step_seconds = time_steps(timed, o.dt, o.timing_steps);
@@ -351,8 +430,17 @@ void measure_speed(const PaperOptions& o, const PaperModel& m, const std::vector
   }
 }
 
-void write_results_h5(const PaperOptions& o, const PaperModel& m, const std::vector<Setup>& setups, const PaperResults& results,
-                      const FieldRecord& record) {
+void PaperExperiment::write_results() const {
+  write_paper_tables(o_, results_);
+  write_results_h5();
+}
+
+void PaperExperiment::write_results_h5() const {
+  const PaperOptions& o = o_;
+  const PaperModel& m = *model_;
+  const std::vector<Setup>& setups = setups_;
+  const PaperResults& results = results_;
+  const FieldRecord& record = record_;
   AtomicFile file(o.out / "results.h5");
   {
     io::Hdf5Writer h5(file.temporary_path());
@@ -398,10 +486,18 @@ void write_results_h5(const PaperOptions& o, const PaperModel& m, const std::vec
   if (!record.roi_series.fields.empty()) io::write_xdmf(o.out / "results_setup1.xdmf", record.roi_series);
 }
 
-/// The error budget's inputs from the paper's run: the static condensation's ROI nodes and curves.
-ErrorBudget measure_budget(const PaperOptions& o, const PaperModel& m, const std::vector<Setup>& setups,
-                           const PaperResults& results, std::ostream& log) {
-  BudgetInput in{.full = &m.full,
+void PaperExperiment::plot(const char* script, const std::vector<std::string>& pngs) const {
+  if (!o_.plots || !io::run_plot_script(script, o_.out, log_)) return;
+  std::string list;
+  for (const auto& png : pngs) list += (list.empty() ? "" : ", ") + (o_.out / png).string();
+  log_ << "\nplots: " << list << std::endl;
+}
+
+void PaperExperiment::measure_error_budget() {
+  const PaperOptions& o = o_;
+  const std::vector<Setup>& setups = setups_;
+  const PaperResults& results = results_;
+  BudgetInput in{.full = &model_->full,
                  .fixed_sets = {o.fixed_set},
                  .force_N = results.force_N,
                  .dt = o.dt,
@@ -417,49 +513,11 @@ ErrorBudget measure_budget(const PaperOptions& o, const PaperModel& m, const std
       for (const auto& c : results.curves)
         if (c.setup == setup.name && c.ramp_s == ramp) curves.push_back({c.mean_mm, c.max_mm});
   }
-  return measure_error_budget(in, o.budget, o.out, log);
-}
-
-void check_options(const PaperOptions& o) {
-  if (!(o.dt > 0)) throw InputError("paper: dt = " + number_text(o.dt) + " s must be positive");
-  if (o.steps <= 0) throw InputError("paper: steps must be positive");
-  if (o.timing_steps < 1) throw InputError("paper: timing steps must be positive");
-  if (!(o.opening_mm > 0)) throw InputError("paper: --opening-mm must be positive");
-  if (o.reductions.empty() || !o.reductions.front().is_static_condensation())
-    throw InputError("paper: the first reduction must be static condensation (the paper's)");
-  check_output_directory(o.out);
+  results_.budget = experiments::measure_error_budget(in, o.budget, o.out, log_);
 }
 
 }  // namespace
 
-PaperResults run_paper_experiment(const PaperOptions& o, std::ostream& log) {
-  check_options(o);
-  PaperResults results;
-  const auto model = build_paper_model(o, results, log);
-  const std::vector<Setup> setups = build_setups(o, *model, results, log);
-  FieldRecord record;
-  record.full_series = {.h5_name = "results.h5", .nodes = model->mesh.num_nodes(), .tets = model->mesh.num_tets()};
-  record.roi_series = record.full_series;
-  measure_accuracy(o, *model, setups, results, record);
-  if (o.error_budget && o.drive == PaperDrive::forces) results.budget = measure_budget(o, *model, setups, results, log);
-  measure_speed(o, *model, setups, results);
-  write_paper_tables(o, results);
-  if (results.budget) write_error_budget_csv(*results.budget, o.dt, o.out);
-  write_results_h5(o, *model, setups, results, record);
-
-  print_paper_report(o, results, log);
-  if (results.budget) print_error_budget(*results.budget, log);
-  if (o.plots && io::run_plot_script("plot_paper.py", o.out, log))
-    log << "\nplots: " << (o.out / "mean_error.png").string() << ", " << (o.out / "max_error.png").string() << ", "
-        << (o.out / "step_time.png").string() << ", " << (o.out / "reductions.png").string()
-        << (o.drive == PaperDrive::spatulas ? ", " + (o.out / "force_error.png").string() : "")
-        << (results.budget ? ", " + (o.out / "error_budget.png").string() : "") << '\n';
-  log << "results: " << (o.out / "errors.csv").string() << ", " << (o.out / "timing.csv").string() << ", "
-      << (o.out / "reductions.csv").string() << ", "
-      << (o.drive == PaperDrive::spatulas ? (o.out / "force_errors.csv").string() + ", " : "")
-      << (results.budget ? (o.out / "error_budget.csv").string() + ", " : "") << (o.out / "results.h5").string()
-      << " (ParaView: results.xdmf, results_setup1.xdmf)\n";
-  return results;
-}
+PaperResults run_paper_experiment(const PaperOptions& o, std::ostream& log) { return PaperExperiment(o, log).run(); }
 
 }  // namespace roifem::experiments
