@@ -11,108 +11,28 @@
 #include <iostream>
 #include <vector>
 
-#include "common/atomic_file.hpp"
 #include "common/errors.hpp"
-#include "common/timer.hpp"
-#include "distributed/condensed_roi.hpp"
+#include "common/version.hpp"
+#include "distributed/distributed_condense.hpp"
+#include "distributed/distributed_model.hpp"
 #include "distributed/distributed_run.hpp"
+#include "distributed/petsc_handle.hpp"
 #include "distributed/petsc_ts.hpp"
 #include "distributed/root_work.hpp"
 #include "experiments/compare_experiment.hpp"
-#include "fem/element.hpp"
-#include "integrators/trapezoid.hpp"
-#include "io/csv.hpp"
-#include "io/hdf5_file.hpp"
-#include "roi/roi.hpp"
-#include "simulation/scenario_model.hpp"
 
 namespace {
 
-using roifem::Index;
-using roifem::Vector;
 namespace distributed = roifem::distributed;
 
-/// The ROI's peak displacement over a serial trapezoid run of `system` (m).
-double roi_peak(const roifem::model::SecondOrderSystem& system, const roifem::scenario::Scenario& sc) {
-  roifem::integrators::Trapezoid trapezoid(sc.dt);
-  auto state = roifem::model::State::at_rest(system.size());
-  trapezoid.reset(system, state);
-  double peak = 0;
-  for (long k = 0; k < sc.steps; ++k) {
-    trapezoid.step(state);
-    for (Index i = 0; i + 2 < state.u.size(); i += 3) peak = std::max(peak, state.u.segment<3>(i).norm());
-  }
-  return peak;
-}
-
-void condense(const roifem::scenario::Scenario& sc, const std::filesystem::path& out, bool check_serial, MPI_Comm comm) {
-  int rank = 0;
-  MPI_Comm_rank(comm, &rank);
-  if (!sc.roi) throw roifem::InputError("roifem-mpi condense: scenario " + sc.file.string() + " has no [roi] to condense onto");
-  distributed::on_root(comm, [&] { roifem::check_output_directory(out); });
-  const auto built = distributed::scenario_frame(sc);
-  const roifem::mesh::TetMesh& mesh = built->mesh;
-  const roifem::model::FemModel& frame = built->model;
-  const std::vector<int> roi_nodes = roifem::roi::select_roi_nodes(mesh, *frame.dofs, *sc.roi);
-  const std::vector<Index> d = distributed::roi_free_dofs(*frame.dofs, roi_nodes);
-  const roifem::Stopwatch clock;
-  const distributed::DistributedModel model = distributed::distribute_model(frame, comm);
-  const double assembly_s = clock.seconds();
-  const distributed::DistributedCondensation condensed = distributed::condense_with_mumps(model, d);
-  distributed::check_options_used("once MUMPS factored K");
-  int ranks = 1;
-  MPI_Comm_size(comm, &ranks);
-  const distributed::ResidentMemory memory = distributed::peak_resident_megabytes(comm);
-  if (rank != 0) return;
-  std::cout << roifem::io::format(
-      "%s: K~ on %zu ROI dofs (%zu nodes) from %ld dofs on %d ranks: assembly %.2f s, MUMPS analysis + factorization "
-      "with the Schur complement %.2f s, %.3g entries in the factors, MUMPS peak %.0f MB on one rank; process peaks %.0f MB on "
-      "one "
-      "rank, %.0f MB on all\n",
-      sc.file.string().c_str(), d.size(), roi_nodes.size(), static_cast<long>(model.dofs()), ranks, assembly_s,
-      condensed.factor_s, condensed.factor_entries, condensed.peak_megabytes, memory.largest, memory.total);
-  const roifem::model::SecondOrderSystem roi = distributed::condensed_roi_system(model, condensed, d);
-  const double peak = roi_peak(roi, sc);
-  std::cout << roifem::io::format("the condensed ROI model, trapezoid at dt = %g s over %ld steps on one rank: peak %.6g mm\n",
-                                  sc.dt, sc.steps, peak / roifem::mm);
-  {
-    roifem::AtomicFile file(out / "condensation.h5");
-    roifem::io::Hdf5Writer h5(file.temporary_path());
-    const auto s = static_cast<hsize_t>(d.size());
-    h5.write("K_tilde", std::vector<double>(condensed.K_tilde.data(), condensed.K_tilde.data() + condensed.K_tilde.size()),
-             {s, s});
-    std::vector<double> f;
-    for (const Vector& p : condensed.f_tilde) f.insert(f.end(), p.data(), p.data() + p.size());
-    h5.write("f_tilde", f, {condensed.f_tilde.size(), s});
-    h5.write("roi/nodes", roi_nodes, {roi_nodes.size()});
-    std::vector<int> dofs(d.begin(), d.end());
-    h5.write("roi/free_dofs", dofs, {dofs.size()});
-    h5.attribute("scenario", sc.resolved_toml());
-    h5.close();
-    file.commit();
-  }
-  std::cout << "written: " << (out / "condensation.h5").string()
-            << " (K_tilde, f_tilde per load pattern, the ROI's nodes and dofs)\n";
-  if (!check_serial) return;
-  if (!sc.reduction.is_static_condensation())
-    throw roifem::InputError("roifem-mpi condense --check: the scenario's reduction is not static condensation");
-  const auto serial = roifem::simulation::build_scenario_model(sc);
-  const roifem::model::SecondOrderSystem& reference = serial->system();
-  const roifem::DenseMatrix K_ref(reference.K);
-  double f_gap = 0, f_scale = 0;
-  for (std::size_t k = 0; k < condensed.f_tilde.size(); ++k) {
-    f_gap = std::max(f_gap, (condensed.f_tilde[k] - reference.load.terms()[k].pattern).lpNorm<Eigen::Infinity>());
-    f_scale = std::max(f_scale, reference.load.terms()[k].pattern.lpNorm<Eigen::Infinity>());
-  }
-  const double peak_ref = roi_peak(reference, sc);
-  std::cout << roifem::io::format(
-      "serial condensation (one process, CHOLMOD): max |K~_mumps - K~| / max |K~| = %.2e, max |f~_mumps - f~| / max |f~| = %.2e, "
-      "ROI peak %.6g mm (difference %.2e relative)\n",
-      (condensed.K_tilde - K_ref).lpNorm<Eigen::Infinity>() / K_ref.lpNorm<Eigen::Infinity>(),
-      f_scale > 0 ? f_gap / f_scale : 0.0, peak_ref / roifem::mm, std::abs(peak - peak_ref) / peak_ref);
-}
-
 int run_cli(int argc, char** argv) {
+  // `roifem-mpi --check-args COMMAND ...` parses and checks a command line and does nothing (the
+  // docs check), before MPI or PETSc start.
+  const bool check_only = argc > 1 && std::strcmp(argv[1], "--check-args") == 0;
+  if (check_only) {
+    for (int i = 1; i + 1 < argc; ++i) argv[i] = argv[i + 1];
+    argv[--argc] = nullptr;
+  }
   // roifem-mpi's own arguments before --, PETSc's after it.
   const auto separator = std::find_if(argv, argv + argc, [](const char* a) { return std::strcmp(a, "--") == 0; });
   const int own_argc = static_cast<int>(separator - argv);
@@ -126,7 +46,9 @@ int run_cli(int argc, char** argv) {
       "  mpirun -n 2 roifem-mpi run scenarios/paper-full.toml --out results/mpi                  (MUMPS Cholesky)\n"
       "  mpirun -n 2 roifem-mpi run scenarios/paper-full.toml --out results/mpi -- -ksp_type cg -pc_type gamg -ksp_rtol 1e-10\n"
       "  mpirun -n 2 roifem-mpi condense scenarios/paper-setup1.toml --out results/condensed --check\n"
-      "  roifem-mpi compare scenarios/paper-setup1.toml --out results/compare-petsc                 (one rank)"};
+      "  roifem-mpi compare scenarios/paper-setup1.toml --out results/compare-petsc                 (one rank)",
+      "roifem-mpi"};
+  app.set_version_flag("--version", "roifem-mpi " + std::string(roifem::version()), "Print the version and exit");
   app.require_subcommand(1);
   std::filesystem::path scenario_file, out = "results/mpi";
   bool check_serial = false;
@@ -158,6 +80,7 @@ int run_cli(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
+  if (check_only) return 0;
   try {
     const distributed::PetscSession session(static_cast<int>(petsc_argv.size()) - 1, petsc_argv.data());
     try {
@@ -177,7 +100,7 @@ int run_cli(int argc, char** argv) {
         roifem::experiments::run_compare(sc, compare_options, std::cout);
         distributed::check_options_used("by PETSc's integrators over the whole sweep");
       } else {
-        condense(sc, out, check_serial, session.comm());
+        distributed::condense_distributed(sc, out, check_serial, std::cout, session.comm());
       }
     } catch (const std::exception& e) {
       if (dynamic_cast<const distributed::AgreedByEveryRank*>(&e) != nullptr) {  // every rank is here: say it once
