@@ -1,6 +1,6 @@
 // The one table of integrators: every row makes the integrator it names, the traits the factory
 // and compare read agree with what the integrator does, the stability search reads the tableau
-// (checked against RK4's known limit), and the README lists every name.
+// (checked against RK4's known limit), and the guide (docs/integrators.md) lists every name.
 #include "integrators/integrator_table.hpp"
 
 #include <gtest/gtest.h>
@@ -58,9 +58,9 @@ TEST(IntegratorTable, StabilitySearchReadsTheTableauAndMeetsRk4sImaginaryAxisLim
   EXPECT_TRUE(std::isinf(predicted_stability_limit(integrator_info("arkode-esdirk4"), frequencies, 0.0)));
 }
 
-TEST(IntegratorTable, TheReadmeListsEveryIntegrator) {
-  std::ifstream file(std::string(ROIFEM_SOURCE_DIR) + "/README.md");
-  ASSERT_TRUE(file) << "README.md";
+TEST(IntegratorTable, TheGuideListsEveryIntegrator) {
+  std::ifstream file(std::string(ROIFEM_SOURCE_DIR) + "/docs/integrators.md");
+  ASSERT_TRUE(file) << "docs/integrators.md";
   std::stringstream text;
   text << file.rdbuf();
   const std::string readme = text.str();
@@ -74,7 +74,7 @@ TEST(IntegratorTable, TheReadmeListsEveryIntegrator) {
         base.resize(base.size() - std::string(suffix).size());
         break;
       }
-    EXPECT_NE(readme.find("`" + base + "`"), std::string::npos) << "README.md does not list " << info.name;
+    EXPECT_NE(readme.find("`" + base + "`"), std::string::npos) << "docs/integrators.md does not list " << info.name;
   }
 }
 

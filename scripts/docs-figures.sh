@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# Regenerates the pictures docs/ shows, each from the command beside it in the guide:
+#   docs/colin27-20k.png  the Colin27 brain at 20k nodes (roifem mesh --colin27 --nodes 20000), its surface sets
+#   docs/colin27-800.png  the shipped meshes/colin27-800.msh with its opening and base
+# and rewrites docs/commands.md from the CLI's --help (scripts/docs-help.sh).
+# usage: scripts/docs-figures.sh   (after a Release build; the 20k mesh takes about half a minute)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+roifem=build/release/src/app/roifem
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+"$roifem" mesh --colin27 --nodes 20000 --out "$work/colin27-20k.msh"
+/usr/bin/python3 scripts/plots/plot_mesh.py "$work/colin27-20k.msh" docs/colin27-20k.png
+/usr/bin/python3 scripts/plots/plot_mesh.py meshes/colin27-800.msh docs/colin27-800.png opening_left opening_right opening_floor base
+scripts/docs-help.sh
+echo "docs figures: docs/colin27-20k.png, docs/colin27-800.png, docs/commands.md"
