@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Brain meshes for benchmarks: generated once per node count and cached as
 /// $ROIFEM_MESH_CACHE/brain-N.msh (default: ./bench-meshes), never committed.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Foundation benchmarks: mesh read, stiffness assembly (pattern + values; the 10-node tetrahedron's
 // values too, up to 20k nodes), Cholesky factorization
 // of K (base fixed), and the condensation of K onto an ROI two ways, side by side: one partial

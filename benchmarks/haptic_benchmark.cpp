@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Haptic: a surgeon's tool steered at the device's rate (1 kHz) on condensed brains. Per brain and
 // ROI (each in its own child process): the plain condensed step and the haptic tick (the hand's
 // new position in, the step, the tool's force out; integrators/haptic_trapezoid.hpp), 10,000 of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Cost per time step of every fixed-step integrator on the paper's models (full brain, setup 1,
 // setup 2), measured side by side in one run; setup (factorization) is outside the timed loop.
 //   compile with: cmake --build --preset release --target roifem_integrator_benchmark

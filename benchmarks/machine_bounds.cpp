@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Machine bounds: what this machine's hardware allows the scale benchmark's two heaviest parts.
 //   - DGEMM rate (OpenBLAS, all its threads): the ceiling for a supernodal factorization, whose
 //     flops are mostly dense updates (the condensation setup of the 100k-node brain is 1.6e12).

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The Python module's overhead per step: a step called from Python against the same step in a C++ loop.
 
 Run (after building; README.md):

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Scale: the full brain model and condensed ROI models at realistic resolutions, each measured in
 // its own child process (setup split into assembly, factorization and condensation; per-step
 // median and p99; memory peak; frame rate), with ratios to the full model of the same brain taken

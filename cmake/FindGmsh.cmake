@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # FindGmsh: the Gmsh C++ API (Debian's libgmsh-dev ships no CMake config).
 # Defines Gmsh_FOUND, Gmsh_VERSION and the imported target Gmsh::Gmsh.
 find_path(Gmsh_INCLUDE_DIR NAMES gmsh.h)

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # MUMPS' C interface for doubles, MPI build (Debian: libmumps-dev). Defines MUMPS::dmumps.
 find_path(MUMPS_INCLUDE_DIR dmumps_c.h)
 find_library(MUMPS_DMUMPS_LIBRARY NAMES dmumps)

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # NIfTI-1/2 image I/O (Debian's libnifti2-dev). Its own NIFTIConfig.cmake names
 # /usr/lib/libznz.so.3.0.0, a path the package does not install, so it cannot be used; this finds
 # the header and the libraries instead. Defines NIfTI::nifti2.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # FindSuiteSparse: CHOLMOD and KLU from SuiteSparse 5.x (Debian 12 ships no CMake config for them).
 # Defines SuiteSparse_FOUND and the imported targets SuiteSparse::CHOLMOD and SuiteSparse::KLU.
 find_path(SuiteSparse_INCLUDE_DIR NAMES cholmod.h PATH_SUFFIXES suitesparse)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // libFuzzer harness: a small tetrahedral mesh decoded from the bytes (node count, raw double
 // coordinates, NaN and infinity included, raw int32 node indices), then the mesh checks. They may
 // only answer with roifem::Error; a mesh that passes must give finite statistics.

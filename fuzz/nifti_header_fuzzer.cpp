@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // libFuzzer harness: any bytes as a NIfTI-1/2 file (.nii, uncompressed), written to a scratch
 // file and read by roifem's reader, which hands the header to libnifti and checks what it reads
 // (dimensions, voxel type, sizes, the voxel-to-millimetre transform). It may only answer with

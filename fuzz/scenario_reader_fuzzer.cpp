@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // libFuzzer harness: any bytes as a scenario file. The reader may only answer with roifem::Error
 // (an InputError naming file, line and key); anything else (a crash, a sanitizer report, another
 // exception type) is a bug.

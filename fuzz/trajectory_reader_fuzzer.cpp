@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // libFuzzer harness: any bytes as a tool's trajectory CSV. The reader may only answer with
 // roifem::Error (an InputError naming the file and line), or a path whose samples it checked:
 // times increasing from (0, 0, 0, 0), finite, two or more; anything else is a bug.

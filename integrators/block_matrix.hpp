@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Sparse matrices assembled from blocks, as the first-order and DAE forms need them
 /// ([[0, I], [-M^-1 K, -M^-1 C]], IDA's dF/dy and dF/dy', ...).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// C callbacks (SUNDIALS right-hand sides, residuals and Jacobians; GSL's) must not let a C++
 /// exception cross the C library: the body runs here, an exception is stored for the owner to

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The trapezoidal rule's one linear solve per step: x = K_eff^-1 (f + M w), with
 ///   K_eff = K + 2/dt C + 4/dt^2 M     (C = alpha M: K + c M, c = 4/dt^2 + 2 alpha/dt),

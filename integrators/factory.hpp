@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Integrators chosen by name from the one table (integrator_table.hpp; `roifem run --help` and
 /// the README list it). An unknown name is an InputError listing the valid ones.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "integrators/first_order_form.hpp"
 
 #include <cstring>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The first-order form y = [u; v] of M u'' + C u' + K u = f(t) that ARKODE and GSL integrate:
 ///   u' = v,   v' = M^-1 (f(t) - C v - K u)          (or, with M kept as a mass matrix,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The trapezoidal rule for a tool steered live (a surgeon's haptic device): each tick takes the
 /// tool's new position and returns the force it applies to the tissue.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The ROI model without condensation, integrated by IDA as a DAE: ROI dofs are differential,
 /// static dofs algebraic. With y = [u_d; v_d; u_s]:

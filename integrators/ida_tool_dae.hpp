@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// A system with tools (model/tools.hpp) integrated by IDA as a constrained DAE: the tools' dofs
 /// stay unknowns, held on their paths by Lagrange multipliers lambda (the tools' forces on their

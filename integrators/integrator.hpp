@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The integrator seam: every time integrator advances the same second-order system
 ///   M u'' + C u' + K u = f(t)

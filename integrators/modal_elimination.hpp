@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The trapezoidal rule's linear solve for a reduced system with modal coordinates (Craig-Bampton,
 /// POD), with the modal coordinates eliminated in closed form.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Linear stability of explicit Runge-Kutta methods on M u'' + C u' + K u = 0 with C = alpha M.
 /// Every mode w_i gives the eigenvalues lambda = -alpha/2 +- sqrt(alpha^2/4 - w_i^2) of the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// How an integrator chooses its steps: a fixed dt, or error-controlled steps with rtol / atol.
 /// Its own header, so that a client of the factory includes no library's headers.

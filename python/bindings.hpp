@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The Python module `roifem._roifem` (pybind11): one bind_* function per file, each adding its
 /// part of the interface to the module. NumPy arrays handed out are views of roifem's own storage

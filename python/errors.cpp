@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // roifem's errors as Python exceptions of the same names and messages:
 //   Error(RuntimeError) > InputError (also a ValueError), ModelError, SolverError;
 // a run stopped by Ctrl-C (roifem::Interrupted) is a KeyboardInterrupt.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The studies of the CLI from Python: roifem.paper, roifem.compare and roifem.roi_size run the same
 // code as `roifem paper`, `roifem compare` and `roifem roi-size` (writing the same files into
 // `out`) and return their tables as NumPy structured arrays in a dict.

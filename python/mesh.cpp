@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // roifem.Mesh: a tetrahedral mesh read from a Gmsh file, generated, or a simulation's own.
 #include <filesystem>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// roifem.Mesh: a share of a TetMesh (its own, or aliasing a simulation's model, which it keeps alive).
 #include <memory>

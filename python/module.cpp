@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // roifem._roifem: the compiled part of the Python package `roifem` (roifem/__init__.py).
 #include "bindings.hpp"
 #include "common/version.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // roifem.Scenario: a scenario from a TOML file, from a dict with the same keys, or either with
 // keyword overrides, all through the strict reader `roifem run` uses (scenario_from_table), so a
 // dict is checked exactly as a file is and an unknown key is named with the valid ones.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// roifem.Scenario: a scenario with the TOML table it was read from, so that overrides apply to
 /// what the user wrote (exactly: no number goes through text again) and the result is checked anew.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // roifem.Simulation: a scenario's model stepped from Python (simulation::ScenarioStepper), with its
 // state as NumPy views and everything `roifem run` records readable between steps.
 #include <climits>

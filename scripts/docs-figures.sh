@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Regenerates the pictures docs/ shows, each from the command beside it in the guide:
 #   docs/colin27-20k.png  the Colin27 brain at 20k nodes (roifem mesh --colin27 --nodes 20000), its surface sets
 #   docs/colin27-800.png  the shipped meshes/colin27-800.msh with its opening and base

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Writes docs/commands.md: the table of commands, then each command's --help as the CLI prints it
 # (the docs check, tests/docs/check_docs.py, compares every quoted help text with the CLI's).
 # usage: scripts/docs-help.sh [ROIFEM [ROIFEM_MPI]]   (default: the Release build's)

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Builds the libFuzzer harnesses (fuzz/*_fuzzer.cpp, with Debian's clang, ASan and UBSan) and runs
 # each on its committed corpus (fuzz/corpus/NAME).
 #   scripts/fuzz.sh                 what CI runs: a fixed seed and a fixed number of inputs per

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Lint: the formatter check (clang-format 14, .clang-format) on every tracked C++ file, then
 # clang-tidy 14 (.clang-tidy: the checks and why) on every source of src/ and integrators/, zero
 # findings allowed. Needs the release build's compile_commands.json (scripts/run-tests.sh makes it).

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # mpirun with what this project's machines need: Open MPI refuses to run as root unless told (CI
 # and these machines run as root), and a 2-core machine counts fewer slots than ranks asked for.
 # usage: scripts/mpirun.sh -n P PROGRAM ARGS...   (as mpirun; roifem-mpi is looked up in the

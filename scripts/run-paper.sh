@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Sets up (Debian packages), builds (Release) and runs the paper experiment on meshes/brain-800.msh:
 # prints Table 2 and writes results/paper/{errors.csv,timing.csv,results.h5,*.png}.
 set -euo pipefail

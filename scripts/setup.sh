@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Installs every Debian 12 package roifem builds, tests and plots with.
 # Idempotent: when everything is present it only checks and returns (no apt-get update).
 set -euo pipefail

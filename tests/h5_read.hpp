@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Reading a results file's dataset back in the tests, with HDF5's C API directly (independent of
 /// the writer under test).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Models with known structure shared by the tests: the shipped brain as in the paper (base held,
 /// the opening's walls pulled apart) and a small cantilever beam, each with its ROI partition.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Helpers shared by the tests: a temporary directory and small hand-written mesh files.
 #include <filesystem>

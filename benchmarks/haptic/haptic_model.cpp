@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "haptic/haptic_model.hpp"
 
 #include <sys/mman.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// One haptic measurement: a generated brain condensed onto an ROI, a tool holding the ROI's
 /// wall nodes nearest the surgical target, steered along a hand path at the device's rate. Each

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "scale/brain_model.hpp"
 
 #include <sys/resource.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The benchmarks' brain model, built the way `roifem paper` builds its models: paper material,
 /// base fixed, the opening's walls pulled apart over 0.5 s (the force of scenarios/paper-setup1.toml);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Runs a piece of work in a forked child process, so that each measured model starts from a
 /// clean heap and reports its own memory peak, and a model too large for the machine (killed by

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// What this machine's hardware allows the scale benchmark's two heaviest parts, measured:
 ///   - the DGEMM rate (the BLAS CHOLMOD uses, all its threads): the ceiling of a supernodal

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The scale benchmark's haptic question: the largest ROI whose condensed step holds a rate.
 #include <functional>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// One measured model of a generated brain, built the way `roifem paper` builds its models (paper
 /// material, base fixed, the opening's walls pulled apart over 0.5 s, trapezoidal rule at

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Hansen & Larsen's Fig. 5 from Python: the condensed ROI models' mean error against the step.
 
 Run (after building; README.md):

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """A sweep of ROI size against error and step cost, from Python.
 
 Run (after building; README.md):

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """A work-precision diagram of a few integrators, from Python.
 
 Run (after building; README.md):

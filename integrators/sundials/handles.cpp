@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "integrators/sundials/handles.hpp"
 
 #include <arkode/arkode_arkstep.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// RAII over SUNDIALS 6.4 C handles. The Context is declared first in every owner so that it is
 /// destroyed last. Debian's SUNDIALS uses 64-bit sunindextype: CSC index arrays are in that type.

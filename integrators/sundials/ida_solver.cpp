@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "integrators/sundials/ida_solver.hpp"
 
 #include <ida/ida.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// SUNDIALS IDA with KLU on a sparse Newton matrix: the one owner of what the three IDA integrators
 /// share (ida.hpp, ida_roi_dae.hpp, ida_tool_dae.hpp), in the shape of MFEM's SundialsSolver. It

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// What both IDA integrators (the residual form and the ROI DAE) share.
 #include "integrators/integrator.hpp"

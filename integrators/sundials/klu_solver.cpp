@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "integrators/sundials/klu_solver.hpp"
 
 #include <sunlinsol/sunlinsol_klu.h>

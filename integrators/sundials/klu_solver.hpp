@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// SUNLinSol_KLU behind a thin timing shell: the sparse direct solver every SUNDIALS integrator
 /// here uses for its Newton matrix, with a deliberate fill-reducing ordering and the seconds its

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// A custom SUNLinearSolver for ARKODE's Newton matrix on the first-order form of
 /// M u'' + C u' + K u = f. ARKODE asks to solve A x = b with

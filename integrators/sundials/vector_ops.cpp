@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "integrators/sundials/vector_ops.hpp"
 
 #include <nvector/nvector_serial.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Vectorized kernels for NVECTOR_SERIAL. Debian's SUNDIALS 6.4 builds its serial vector loops
 /// without SIMD: a weighted RMS norm of 1,368 entries takes about 9 us (7 ns per entry, one

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """roifem: region-of-interest finite element models of the brain, from Python.
 
 Five lines:

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Plots of `roifem compare`.
 
 usage: /usr/bin/python3 plot_compare.py DIR

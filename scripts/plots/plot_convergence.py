@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Plots of `roifem convergence`.
 
 usage: /usr/bin/python3 plot_convergence.py DIR

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The error budget's plot of `roifem paper` (experiments/error_budget.hpp).
 
 usage: /usr/bin/python3 plot_error_budget.py DIR

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """A picture of a tetrahedral mesh's surface, coloured by its named surface sets.
 
 usage: /usr/bin/python3 plot_mesh.py MESH.msh OUT.png [SET ...]

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Plots of `roifem paper` in the manner of Hansen & Larsen (1998), Figs. 5 and 6.
 
 usage: /usr/bin/python3 plot_paper.py DIR

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Plots a `roifem run` directory: DIR/results.h5 -> DIR/run.png.
 
 Three panels: the displacement over time (the ROI nodes' largest and mean displacement for a

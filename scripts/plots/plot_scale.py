@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Per-step time against brain size, from `roifem_scale_benchmark`.
 
 usage: /usr/bin/python3 plot_scale.py DIR

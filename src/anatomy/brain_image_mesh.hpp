@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// A brain mesh from a 3D image (NIfTI): the Colin27 template of mricron-data, or any
 /// skull-stripped brain image or mask, meshed with CGAL Mesh_3 to a wanted number of nodes.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// CGAL Mesh_3 on a grey image: the tetrahedra of the region where the image (trilinearly
 /// interpolated) exceeds an iso-value, with a manifold boundary, Delaunay refinement to the

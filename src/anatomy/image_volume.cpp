@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "anatomy/image_volume.hpp"
 
 #include <nifti2_io.h>

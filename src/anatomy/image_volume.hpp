@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// A 3D image on a regular grid, as read from a NIfTI file or derived from one (a mask, a blurred
 /// mask, a resampled grid).

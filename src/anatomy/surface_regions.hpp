@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Named surface regions of an anatomical mesh, chosen by a point and radius in the image's
 /// millimetres (MNI for the Colin27 template) or by atlas labels (AAL's region names or numbers).

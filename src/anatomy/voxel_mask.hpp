@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// A brain mask from an image, cleaned for meshing, and the grey image the mesher reads:
 ///   threshold -> largest 6-connected piece (drops loose specks) -> interior holes filled

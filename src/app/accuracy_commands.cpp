@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // roifem convergence (the scenario's brain at several mesh sizes, experiments/convergence_study.hpp) and
 // roifem model-error (linear against geometrically nonlinear, experiments/model_error.hpp).
 #include <iostream>

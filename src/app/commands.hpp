@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Sub-commands of the roifem CLI. Each registers its options on the app and returns the action
 /// that runs it; main() holds the single catch.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // roifem: region-of-interest finite element models of the brain for surgery simulation.
 // CLI only: every sub-command lives in a *_commands.cpp file and calls the libraries.
 #include <cstdlib>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Command-line misuse that CLI11 reports too vaguely: an unknown command (it says "A subcommand is
 /// required") and an unknown long option (it reports a missing positional first, so

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // roifem-mpi: the full dynamic model and the ROI's condensation on P ranks (PETSc, MPI, MUMPS).
 // CLI only: the work is src/distributed's. Run under MPI:
 //   mpirun -n 2 roifem-mpi run scenarios/paper-full.toml --out results/mpi

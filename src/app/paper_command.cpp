@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // roifem paper: the Hansen & Larsen (1998) experiment.
 #include <filesystem>
 #include <iostream>

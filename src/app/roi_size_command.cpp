@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // roifem roi-size SCENARIO.toml --max-error-mm E
 #include <iostream>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Write-then-rename: a result file is produced under a temporary name beside its final path
 /// and renamed into place only when complete, so a failed run never replaces a good file.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// "Did you mean" for a name that is not among the valid ones: the closest by edit distance
 /// (Levenshtein), when it is close enough to be a typo (at most a third of the longer name, and 2).

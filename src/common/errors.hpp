@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Error types. Every message names what is at fault: the file, element, node, parameter or step.
 ///  - InputError:  the user's input is wrong (file, scenario key, parameter value).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Asks the kernel to back a large, not yet touched allocation with transparent huge pages
 /// (2 MiB instead of 4 KiB: 512 times fewer page faults on first touch). On a virtual machine a

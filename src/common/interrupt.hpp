@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// SIGINT and SIGTERM as a request the time loop honours between two steps, so that a run stops
 /// with its results file closed, valid and marked incomplete instead of dying mid-write.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Numeric types used throughout roifem. Units inside are SI (m, kg, s, N, Pa); see README.md.
 #include <Eigen/Core>

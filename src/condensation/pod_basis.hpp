@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Generalized coordinates for the static part learnt from the full model's own response: a proper
 /// orthogonal decomposition (POD) of its step responses, in fixed-interface form.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// An ROI model with its static part reduced: static condensation (Bro-Nielsen; Hansen & Larsen 1998),
 ///   K~ = K_dd - K_ds K_ss^-1 K_sd,   f~(t) = f_d(t) - K_ds K_ss^-1 f_s(t),

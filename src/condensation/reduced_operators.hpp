@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The reduction of each operator onto the reduced coordinates y = [u_d; eta] (the ROI dofs, then
 /// the static basis' coordinates), with T = [[I, 0], [-X P, Phi]] (P picks the interface):

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The static part's generalized coordinates beyond the static modes. Each reduction's row names
 /// its maker (ReductionInfo::make_basis): none; the lowest fixed-interface modes of (K_ss, M_ss)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The one factorization every reduction of the static part starts from: K over the static dofs
 /// s and the interface I, with I ordered last (solvers::PartialCholesky). From it:

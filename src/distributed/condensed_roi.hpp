@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The ROI model condensed across ranks, as the serial code runs it: on one rank, the system
 ///   M_d u'' + alpha M_d u' + K~ u = sum_k r_k(t) f~_k

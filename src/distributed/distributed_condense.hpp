@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// `roifem-mpi condense`: the scenario's ROI condensed from the distributed K by MUMPS's Schur
 /// complement (mumps_condensation.hpp), K~ = K_dd - K_ds K_ss^-1 K_sd and f~ = f_d - K_ds K_ss^-1 f_s

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The full model M u'' + C u' + K u = f(t) (model/fem_model.hpp) distributed over the ranks of a
 /// communicator: K as a MatMPIAIJ of block size 3 (each rank assembles its own elements: those

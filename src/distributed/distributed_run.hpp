@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// `roifem-mpi run`: a scenario's full model (every free node dynamic; its [roi] and integrator are
 /// roifem run's) integrated by the trapezoidal rule at its dt on P ranks (distributed_trapezoid.hpp),

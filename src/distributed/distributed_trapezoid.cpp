@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "distributed/distributed_trapezoid.hpp"
 
 #include "common/errors.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The trapezoidal rule (Newmark average acceleration, model/average_acceleration.hpp) on a
 /// distributed model, with C = alpha M:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Static condensation across ranks: the ROI's Schur complement from the distributed K, computed by
 /// MUMPS (ICNTL(19) = 1: centralized on rank 0; ICNTL(26) = 1: the reduced right-hand sides):

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The free nodes of a mesh dealt to the ranks of a communicator. Every rank holds the whole mesh
 /// (a 300k-node brain's is 40 MB), so every rank knows every node's number and may assemble any

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// RAII over PETSc: the session (PetscInitialize / PetscFinalize, MPI with it), owned objects
 /// destroyed by their XDestroy, and error codes turned into exceptions. PETSc's own handler still

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Failures across ranks. One rank's failure inside collective code must not leave the others
 /// waiting in the next collective call (nor rank 0 waiting in a collective destructor while it

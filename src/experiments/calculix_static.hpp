@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// A geometrically nonlinear reference from an existing solver: CalculiX (Debian's calculix-ccx)
 /// solves the same mesh (C3D4, the same linear tetrahedra), material (*ELASTIC: with NLGEOM the

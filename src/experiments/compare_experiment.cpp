@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "experiments/compare_experiment.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// `roifem compare`: every integrator on one scenario, across a sweep of fixed steps and of
 /// tolerances, against the exact modal solution (true errors). For explicit methods the sweep

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The convergence study's table and CSV files (experiments/convergence_study.hpp).
 #include <ostream>
 #include <string>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// How far the mesh is from converged: the scenario's brain regenerated at several node counts
 /// (mesh/brain_mesh.hpp: the same ellipsoid, the same named sets), the same physical loads, fixed

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Where the paper's error comes from, on the ROI nodes, per setup and ramp, side by side:
 ///   space      the paper mesh's full model against a finer reference of the same body and load

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Verification against Lame's solution: a thick-walled sphere (radii a < b) under internal
 /// pressure p, linear elastic (E, nu). Radial displacement

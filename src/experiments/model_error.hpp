@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The linear model's own error: roifem's small-strain answer against the geometrically nonlinear
 /// one CalculiX computes (experiments/calculix_static.hpp) on the same mesh, material, supports

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Hansen & Larsen (1998), the experiment of Section 5 reproduced: the 800-node brain, base fixed,
 /// the walls of the surgical opening pulled apart by equal and opposite forces ramped over 0.5, 1

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// What `roifem paper` reports: the paper's findings checked on the run, its Table 2, the
 /// reductions' table and, driven by spatulas, the force the surgeon feels (printed); errors.csv,

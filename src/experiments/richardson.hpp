@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Richardson extrapolation on meshes whose sizes are not in a fixed ratio (generated meshes land
 /// near, not at, the node counts asked for). For a quantity q(h) = q0 + c h^p + ..., three meshes

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The error measure of Hansen & Larsen (1998): per step, the Euclidean distance between a reduced
 /// model's and the full model's displacement at each ROI node, as the mean and the max over the ROI.

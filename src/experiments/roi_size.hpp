@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// ROI sizing for an error budget: how large an ROI (the N free nodes nearest a target: a ball
 /// around it) must be so that its max error against the full dynamic model stays at or below E

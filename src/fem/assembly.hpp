@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Global matrices over the free dofs of a DofMap.
 ///  K:  stiffness, assembled directly into a compressed column pattern built once from the node

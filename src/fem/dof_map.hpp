@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Degrees of freedom and Dirichlet conditions by elimination. Node n has components 3n + c
 /// (c = 0, 1, 2: x, y, z) in the "full" numbering; the unconstrained ones are numbered 0..#free-1

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The element formulations a model is assembled with (the scenario's top-level `element` key):
 ///   tet4            the linear 4-node tetrahedron (fem/tet4.hpp): the paper's; locks as nu nears 1/2

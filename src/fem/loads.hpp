@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Nodal force vectors in the full 3N numbering (N).
 #include <string>

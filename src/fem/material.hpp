@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Isotropic linear elasticity with mass density and mass-proportional (Rayleigh alpha) damping:
 ///   sigma = lambda tr(eps) I + 2 mu eps,   C = alpha M.

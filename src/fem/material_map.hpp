@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The material of every tetrahedron: a brain with regions (grey and white matter, CSF) is
 /// assembled element by element with its own lambda, mu and rho. One damping rate alpha holds for

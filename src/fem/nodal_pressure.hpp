@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The average-nodal-pressure tetrahedron (Bonet & Burton 1998), linear elastic: the element's
 /// stiffness splits into a deviatoric part and a volumetric one, kappa V b b^T (kappa = lambda +

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// A posteriori error estimate of a displacement field in the energy norm, by strain recovery
 /// (Zienkiewicz & Zhu 1987): linear tetrahedra give a strain that is constant per element and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The static problem K u = f over the free dofs, with errors that name the model's fault.
 #include "common/types.hpp"

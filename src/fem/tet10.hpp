@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The straight-sided 10-node tetrahedron (quadratic displacement; mesh/quadratic_mesh.hpp). In the
 /// barycentric coordinates L_0..L_3 of its corners, N_i = L_i (2 L_i - 1) at corner i and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// A CSV table written atomically (temporary name, renamed on close()).
 #include <filesystem>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// A displacement over the free dofs as the field results files hold: every node's (x, y, z) in
 /// mm, row-major #N x 3, constrained components 0.

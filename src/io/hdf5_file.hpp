@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// A small RAII layer over the HDF5 C API: every hid_t is closed by its owner, errors become
 /// roifem::InputError naming the file and the object. Datasets are row-major as HDF5 stores them.

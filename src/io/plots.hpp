@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// PNG plots are drawn by Python scripts (matplotlib, run by Debian's /usr/bin/python3) from the
 /// CSV files a command wrote. A missing interpreter or library is a warning, not an error: the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Computed arrays kept on disk between runs, keyed by the text of everything they depend on (the
 /// inputs, written out in full: exact numbers as hexadecimal floats, and roifem's version), so that

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// XDMF 3 description of a time series of displacement fields stored in an HDF5 file, so that
 /// ParaView plays the deformation (open the .xdmf; "Warp By Vector" on displacement_mm).

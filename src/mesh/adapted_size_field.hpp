@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Element sizes for the next mesh of the same body, from an error estimate on this one
 /// (fem/recovery_estimate.hpp): the mesh that spends a given number of nodes best spreads the error

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Box meshes for verification: a structured one (each of nx*ny*nz hexahedra split into six
 /// tetrahedra sharing the main diagonal, Kuhn's subdivision, conforming across cells) and an

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// A simplified brain for surgery simulation, meshed with Gmsh's OpenCASCADE kernel:
 /// an ellipsoid (semi-axes 70 x 85 x 50 mm: 14 x 17 x 10 cm) with a narrow surgical opening, a

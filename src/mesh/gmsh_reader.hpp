@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Reads any tetrahedral mesh that Gmsh reads (.msh v2/v4, ASCII or binary, and other formats
 /// Gmsh knows). Physical groups become named sets. Nodes that no tetrahedron uses are dropped.

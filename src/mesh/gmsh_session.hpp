@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// RAII around the Gmsh API. Gmsh keeps one global model per process, so at most one session
 /// may be alive at a time (a second throws). Gmsh 4.8 reports errors by throwing std::string;

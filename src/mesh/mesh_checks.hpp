@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Checks a mesh before any FEM work: every tetrahedron must be positively oriented and of
 /// non-negligible volume. Errors name the tetrahedron (0-based index and its nodes).

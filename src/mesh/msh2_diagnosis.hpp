@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Gmsh 4.8 says only "Error loading 'FILE'" when an ASCII MSH 2 file is truncated or malformed.
 /// After such a failure (never on the good path), this scan finds the first line at fault.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// A guard in front of Gmsh's MSH reader. Gmsh 4.8 sizes its arrays from the counts in the
 /// $Nodes / $Elements headers before it reads a single entry, so a corrupt or hostile count

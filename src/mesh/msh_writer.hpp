@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Writes a TetMesh as Gmsh MSH 4.1 (ASCII), its named sets as physical groups, so that
 /// read_mesh() gives the same nodes, tetrahedra and sets back. Each tetrahedron (and each

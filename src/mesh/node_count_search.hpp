@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The element size for a wanted node count, for mesh generators whose count N(h) falls roughly
 /// as h^slope (Gmsh's brain, CGAL's image brains). Each trial's count refines a secant on log N

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Where a point lies in a tetrahedral mesh, to read a nodal field there: the tetrahedron that
 /// holds it and its barycentric weights, or, for a point outside the mesh, the nearest point of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// A linear mesh made quadratic for the 10-node tetrahedron (fem/tet10.hpp): one node at the
 /// midpoint of every edge, so the elements are straight-sided and the body is the linear mesh's

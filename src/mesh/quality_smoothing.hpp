@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Optimization-based smoothing (after Freitag & Ollivier-Gooch): each interior node of a poor
 /// tetrahedron moves to where the worst tetrahedron around it is best, among its neighbours'

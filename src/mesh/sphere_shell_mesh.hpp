@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// A thick-walled spherical shell (inner radius a, outer radius b), one octant (x, y, z >= 0),
 /// meshed with Gmsh's OpenCASCADE kernel at a uniform element size: the verification case of

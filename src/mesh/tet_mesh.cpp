@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "mesh/tet_mesh.hpp"
 
 #include "common/did_you_mean.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// A tetrahedral mesh with named node and element sets.
 ///   nodes: 3 x #N, metres

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Newmark's average-acceleration rule (beta = 1/4, gamma = 1/2: the paper's trapezoidal rule) for
 /// M u'' + C u' + K u = f(t), one step of size dt from (u_k, v_k, a_k):

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Energy bookkeeping along a trajectory, observed from outside the integrator:
 ///   E = v^T M v / 2 + u^T K u / 2,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// What the exact solution of M u'' + C u' + K u = f(t) can reach, known before it is computed.
 /// With M symmetric positive definite and C, K symmetric positive semi-definite, the energy

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "model/fem_model.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The full dynamic model of a mesh: free dofs after fixing named sets, lumped M, C = alpha M,
 /// K assembled, forces on named sets with their ramps, and tools (tools.hpp) whose attached nodes

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Time-dependent loads as fixed spatial patterns times scalar ramps:
 ///   f(t) = sum_k r_k(t) p_k,   r_k(t) = min(t / T_k, 1)  (T_k = 0: a step at t = 0).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// x = M^-1 b: by a product for the lumped (diagonal) mass of a full or statically condensed model,
 /// by a Cholesky solve for the full mass blocks of a Guyan or Craig-Bampton reduction.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The exact solution of M u'' + C u' + K u = sum_k r_k(t) p_k with C = alpha M, by modal
 /// superposition: K phi = w^2 M phi (dense, for systems up to a few thousand dofs), and every mode

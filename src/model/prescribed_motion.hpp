@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Tools by elimination: the tools' dofs leave the unknowns, and their prescribed motion
 /// G(t) = S^T g(t) (each attached dof follows its tool's component) enters the rest as a load,

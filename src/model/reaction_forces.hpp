@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The supports' reactions: the force the support of each fixed node exerts on the tissue,
 ///   R_i = (K u)_i   at the fixed dofs i,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The semi-discrete equations of motion every integrator solves:
 ///   M u'' + C u' + K u = f(t)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The highest angular eigenfrequency of M u'' + K u = 0, w_max = sqrt(lambda_max(M^-1 K)): what
 /// limits an explicit integrator's step (dt <= c / w_max for a method-dependent c). Lanczos

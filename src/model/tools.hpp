@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Rigid tools that move tissue (the paper's spatulas, a surgeon's instrument): a tool is attached
 /// to a set of nodes, all three components, and prescribes their displacement, g(t) (bilateral).

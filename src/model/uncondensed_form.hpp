@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Where a static condensation came from: the full system and its split into the ROI and the
 /// static part, for the integrator that keeps the static part as algebraic unknowns instead of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Where each node's three displacement components sit among a system's unknowns: the full model's
 /// free numbering (fem::DofMap), or a reduced ROI model's, whose first unknowns are the ROI dofs d

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The region of interest (ROI) and the split of the free dofs it induces:
 ///   d  ROI dofs (dynamic),  s  static dofs (the rest),

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// A simulation scenario: plain data with defaults, read strictly from TOML (read_scenario).
 /// Lengths in the file are millimetres, everything else SI; see scenarios/README.md for the keys.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// A scenario from a TOML table already in memory: what parse_scenario reads once the text is
 /// parsed, and what a table built by a program (the Python module's dicts) goes through, with the

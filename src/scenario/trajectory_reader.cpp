@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "scenario/trajectory_reader.hpp"
 
 #include <cmath>

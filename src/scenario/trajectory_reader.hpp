@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// A tool's trajectory from a CSV file: a header `t_s,x_mm,y_mm,z_mm`, then one sample per line,
 /// times strictly increasing from 0, the first sample (0, 0, 0, 0) (a tool starts where its nodes

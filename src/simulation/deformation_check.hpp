@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Does the answer make physical sense? A linear-elastic model is only meaningful for displacements
 /// small against the body and its elements, and a 100 N force on a soft brain silently gives

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// A progress line on a terminal for long runs (after `delay_s` seconds), redrawn at most every
 /// 0.2 s on stderr: "label  120/200 steps  60%  eta 3 s  detail". Silent when stderr is not a terminal.

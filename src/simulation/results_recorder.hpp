@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The run loop's HDF5 observer for `roifem run`: appends every step's time, wall time, energies
 /// (EnergyLedger), ROI displacement and, every field_every steps, the whole displacement field

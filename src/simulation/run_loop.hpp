@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The time loop: advances an integrator over the grid t_k = t_0 + k dt, k = 1..steps, timing each
 /// step, and hands every state to the observers (output, energy, error live there, never in an

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The model a scenario describes: the mesh, the full FEM model, and with an [roi] the static
 /// condensation onto it. system() is what integrators advance.

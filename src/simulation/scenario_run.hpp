@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// `roifem run`: one scenario, full or condensed, integrated and written to DIR/results.h5 and
 /// DIR/results.xdmf. results.h5 holds (lengths in mm, energies in J):

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// A scenario's model advanced step by step by a program that drives it (the Python module):
 /// the same model, integrator, time grid t_k = t_0 + k dt and energy ledger as `roifem run`, so

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The BLAS's thread count for one scope, restored when the scope ends.
 ///

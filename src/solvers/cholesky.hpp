@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Sparse Cholesky factorization A = L L^T of a symmetric positive definite matrix, by CHOLMOD
 /// (supernodal where it pays, with BLAS; simplicial otherwise). RAII over cholmod_common and

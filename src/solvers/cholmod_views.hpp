@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// CHOLMOD headers over Eigen's arrays (no copy), and its status turned into an exception:
 /// internal to the solvers.

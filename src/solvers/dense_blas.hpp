@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Dense matrix-vector products through the BLAS, on one thread.
 ///

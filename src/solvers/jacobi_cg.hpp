@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Conjugate gradients with a Jacobi (diagonal) preconditioner, for a symmetric positive definite
 /// matrix whose Cholesky factor does not fit in memory (the full brain at 300k nodes: more than

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// One Cholesky factorization that yields a Schur complement: for a symmetric positive definite
 ///   A = [[A_ll, A_lt], [A_tl, A_tt]]   (t: the "trailing" indices, l: the leading rest),

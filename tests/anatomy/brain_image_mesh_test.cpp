@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Brains from images, end to end: a synthetic ball (whose volume and surface are known) and the
 // Colin27 brain of mricron-data (scripts/setup.sh installs it): a connected mesh with a closed
 // manifold boundary, positive tetrahedra above a quality floor, the voxels' volume, the node

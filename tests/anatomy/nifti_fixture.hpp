@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Writes small NIfTI-1 files for the tests: the header laid out by hand from the NIfTI-1
 // standard (348 bytes, then 4 bytes of extension flags, then the voxels), so that the reader is

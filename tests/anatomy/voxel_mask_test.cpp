@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The image side of real brains: NIfTI reading (against files written by hand from the standard),
 // mask cleaning, block averaging and blurring (each checked on a case whose answer is known).
 #include <gtest/gtest.h>

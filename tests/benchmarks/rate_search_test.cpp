@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The haptic search of the scale benchmark against probes whose answer is known: a step time that
 // grows linearly with the ROI, so that the largest ROI within the rate is floor(limit / slope).
 #include <gtest/gtest.h>

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # One case of the bad-input suite: a run of a broken scenario must stop with exit code 1 and a
 # message matching REGEX, and create or replace no output.
 # usage: bad_input.sh ROIFEM WORK REGEX TEMPLATE MESH [--out DIR] [OLD NEW]...

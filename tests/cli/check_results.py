@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Checks a results file written by `roifem run` that was stopped before its end.
 
 usage: check_results.py FILE.h5 STATUS_PREFIX MIN_STEPS

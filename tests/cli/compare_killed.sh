@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # A compare killed mid-sweep keeps the runs that ended: compare.csv is rewritten (atomically) as each
 # run ends, so the trapezoid's rows are there when a slow method is killed.
 # usage: compare_killed.sh ROIFEM SCENARIO_DIR WORK_DIR

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # A run whose results cannot be written (a file-size limit standing in for a full disk) stops with
 # a message naming the file, exit code 1, no crash, and leaves an earlier results.h5 untouched
 # and no temporary file behind.

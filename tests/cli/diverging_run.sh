@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # A method past its stability limit stops naming the method, t and step (exit 1), keeps every good
 # step before the divergence in results.incomplete.h5 (nothing non-finite in it), and leaves the
 # good results.h5 of an earlier run in the same directory byte for byte as it was.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # expect_failure.sh REGEX COMMAND...: passes when COMMAND exits non-zero and its stderr matches REGEX.
 regex=$1
 shift

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # SIGTERM inside one long step stops the run within a second: ida-ggl on the paper's spatulas with a
 # sampled trajectory restarts IDA at each of its 100 samples (about 1 s each, so the first output
 # step takes a minute), and the signal is heard in IDA's callbacks, not at the step's end. The run

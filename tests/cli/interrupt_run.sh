@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # A long `roifem run` stopped by a signal keeps what it computed and loses nothing else.
 # usage: interrupt_run.sh ROIFEM SCENARIO_DIR WORK_DIR SIGNAL   (SIGNAL: INT, TERM or KILL)
 #   INT / TERM: exit code 128 + signal, results.incomplete.h5 valid and marked incomplete,

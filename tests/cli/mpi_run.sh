@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # `mpirun -n 2 roifem-mpi run` writes roifem run's results: the same displacement fields as the
 # serial full model to 1e-8 (CG + GAMG at rtol 1e-10), a complete status, an XDMF beside them;
 # and a failing run (an unwritable --out) stops every rank with a message and leaves no file. A

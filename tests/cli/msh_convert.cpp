@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // msh_convert IN OUT VERSION BINARY: rewrites a Gmsh mesh file in MSH VERSION (2.2 or 4.1), ASCII
 // (BINARY = 0) or binary (1), through Gmsh itself. The bad-input tests make their binary and
 // MSH 4.1 fixtures with it from one ASCII MSH 2.2 file.

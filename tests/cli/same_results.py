@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """usage: same_results.py A.h5 B.h5 -- passes when every dataset of two `roifem run` results files is
 bit-identical, except the measured wall time per step."""
 import sys

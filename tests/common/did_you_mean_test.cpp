@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // "Did you mean" (did_you_mean.hpp): edit distances of textbook pairs, and a suggestion only for
 // names close enough to be typos.
 #include "common/did_you_mean.hpp"

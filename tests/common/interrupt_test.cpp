@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // SIGINT / SIGTERM as a request (common/interrupt.hpp): heard under a guard, by the run loop and
 // inside a step's callbacks, and forgotten with the last guard, so that a later integration
 // without one does not stop for an old signal.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "condensation/reduced_model.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Guyan, Craig-Bampton and POD reductions against their definitions: K_r = T^T K T, M_r = T^T M T,
 // C_r = T^T C T with T read back column by column from expand(); with every fixed-interface mode
 // Craig-Bampton is a change of basis and reproduces the full model.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The distributed engine against the serial one, under mpirun -n 2 (and -n 1): the same K, the same
 // trapezoidal steps, the same condensation. Every rank runs every test on the replicated serial
 // model; the distributed vectors are gathered to every rank before they are compared.

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The docs check: every Markdown file's relative links resolve, every roifem / roifem-mpi command
 line it quotes parses, and the --help texts quoted in docs/commands.md are the CLI's.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The accuracy study's tools: Richardson extrapolation on analytic sequences, the point locator on
 // fields it must read exactly, the CalculiX deck against roifem's own small-strain answer, and
 // meshes adapted by the error estimate against uniform ones.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `roifem compare` on the paper's setup 2, a few integrators, a short window.
 #include "experiments/compare_experiment.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The error budget (experiments/error_budget.hpp) on a small brain: the space error against the
 // same mesh regenerated vanishes, and the time error is the trapezoidal rule's own, as a run at dt / 32
 // measures it.

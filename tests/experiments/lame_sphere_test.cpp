@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Lame's thick-walled sphere under internal pressure (experiments/lame_sphere.hpp): the linear
 // tetrahedron against the analytic solution, refined, at nu = 0.3 and nearly incompressible.
 #include "experiments/lame_sphere.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The paper's experiment driven by spatulas (roifem paper --drive spatulas): the spatulas' force
 // at rest against an independent Lagrange-multiplier solve, and the force the surgeon feels,
 // condensed against full.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The paper's findings, asserted on the shipped mesh (timing is printed by `roifem paper` and
 // measured in benchmarks, never asserted here).
 #include "experiments/paper_experiment.hpp"

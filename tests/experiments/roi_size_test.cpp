@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // roi-size against answers known without it: a budget every ROI meets gives the smallest size
 // tried; a budget only the exact model meets gives every free node (an ROI of all nodes is the full
 // model, error 0); for a budget in between, every size tried from the answer up holds and the one

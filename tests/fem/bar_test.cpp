@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A prismatic bar in uniaxial tension: u_x(L) = F L / (E A), lateral contraction nu.
 // Linear displacements lie in the P1 space, so the finite element answer is exact.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A manufactured solution on the unit cube converges at O(h^2) in L2 under uniform refinement.
 //   u = (a_1, a_2, a_3) phi,  phi = 64 p(x) p(y) p(z),  p(t) = t (1 - t)   (zero on the boundary)
 //   f = -div sigma(u) = -(lambda + mu) H a - mu (Laplacian phi) a,  H = Hessian of phi.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Materials by region: a bar of two materials in series (exact in the P1 space with nu = 0:
 // the displacement is piecewise linear, kinked at the interface, which lies on element faces),
 // lumped mass against sum rho_e V_e, and a region map of one material giving the uniform K (tet4:

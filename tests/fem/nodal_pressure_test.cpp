@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The nodal-pressure tetrahedron (fem/nodal_pressure.hpp): the linear tetrahedron at s = 1, the
 // patch test, and Lame's sphere where the linear tetrahedron locks.
 #include "fem/nodal_pressure.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The patch test: an affine displacement imposed on the boundary of an unstructured mesh with
 // distorted interior nodes must be reproduced exactly inside, with constant strain.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The recovery error estimate (fem/recovery_estimate.hpp): zero where linear elements are exact,
 // the energy norm it reports is u^T K u, and against Lame's solution it tracks the true energy error
 // (computed here from the analytic strain by quadrature) with an effectivity near one, at the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The 10-node tetrahedron (fem/tet10.hpp): its shape functions, its element matrix (symmetric,
 // six rigid-body modes, rank 24), the assembled K against a triplet scatter of element matrices,
 // HRZ's lumped mass, and the higher-order patch test: a field quadratic in x with no body force

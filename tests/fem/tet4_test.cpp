@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "fem/tet4.hpp"
 
 #include <gtest/gtest.h>

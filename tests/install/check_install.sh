@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # check_install.sh BUILD_DIR SOURCE_DIR: installs the build into a temporary prefix, builds the
 # consumer project against it with find_package(roifem) and runs it, and runs the installed CLI.
 set -euo pipefail

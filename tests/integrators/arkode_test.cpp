@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // ARKODE's methods (arkode.hpp): the trapezoid's Butcher table against the hand-written rule, the
 // observed order of every method, adaptive tolerances, and the messages of a failed run.
 #include "integrators/arkode.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The seam's divergence check (integrators/integrator.hpp, model/energy_bound.hpp): the bound it
 // holds every method to is a bound of the exact solution (checked against the modal solution and
 // the trapezoidal rule's discrete energy), and every explicit method at a fixed step past its

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The trapezoidal rule's one linear solve, x = K_eff^-1 (f + M w) with K_eff = K + 2/dt C + 4/dt^2 M
 // (effective_stiffness.hpp, modal_elimination.hpp): every strategy against a dense Cholesky solve of
 // the same system, on a Craig-Bampton model whose modal coordinates ModalElimination eliminates.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The haptic loop (a tool steered tick by tick through its compliance) against the analytic
 // spring-mass, against elimination (a second formulation of the same discrete problem), and its
 // compliance against the dense inverse of K_eff.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // IDA (ida.hpp, ida_roi_dae.hpp): BDF on the second-order system against the modal solution, and
 // the uncondensed ROI DAE (static part algebraic) against the condensed model.
 #include "integrators/ida.hpp"

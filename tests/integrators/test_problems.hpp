@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Problems with known answers shared by the integrator tests: a small cantilever (box mesh, one
 /// end fixed, a ramped tip load), a damped oscillator, and the observed order of a method

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Result files (hdf5_file.hpp, xdmf.hpp, csv.hpp, displacement_field.hpp), read back through the
 // HDF5 C API and plain text, independently of the writers.
 #include <gtest/gtest.h>

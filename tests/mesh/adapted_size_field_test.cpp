@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Sizes from an error estimate (mesh/adapted_size_field.hpp): a mesh whose error is already spread
 // evenly keeps its sizes; error gathered at one corner shrinks the sizes there and grows them
 // elsewhere, within the per-pass bounds and the gradation; the field is scaled to a uniform mesh's

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Reading meshes, and every kind of bad mesh input stopping with a message that names the fault.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // write_msh: what it writes, read_mesh reads back the same (nodes, tetrahedra, named sets).
 #include <gtest/gtest.h>
 

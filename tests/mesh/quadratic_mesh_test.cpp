@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A linear mesh made quadratic (mesh/quadratic_mesh.hpp): midpoints where they belong in Gmsh's and
 // CalculiX's order, sets that gain the midpoints between their nodes, set loads and means of 6-node
 // facets against the linear mesh's own (fem/loads.hpp) on fields both represent exactly, and

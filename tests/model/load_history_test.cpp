@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Loads as patterns times ramps (load_history.hpp): the ramp's shape, superposition of terms, and
 // the derived histories, checked against the closed form r(t) = min(t / T, 1).
 #include "model/load_history.hpp"

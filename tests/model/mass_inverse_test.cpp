@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // M^-1 B for a sparse B against the dense inverse, and its pattern against the one a block-diagonal
 // M implies: B's own pattern in the diagonal rows, the block's rows dense over the columns B's
 // block rows reach.

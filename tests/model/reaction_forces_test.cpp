@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The supports' reactions against global equilibrium: in a static state the reactions balance the
 // loads, force and moment (K annihilates rigid translations and rotations), for both elements and
 // with materials by region; and a tool's nodes are not counted among the fixed ones.

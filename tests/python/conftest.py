@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Fixtures of the Python module's tests (run by ctest: tests/CMakeLists.txt sets the paths)."""
 import os
 import pathlib

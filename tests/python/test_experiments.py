@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """roifem.paper, roifem.compare and roifem.roi_size: their tables as NumPy structured arrays,
 equal to the CSV files the same run wrote (the CLI's writers)."""
 import csv

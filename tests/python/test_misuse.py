@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Misuse from Python (issue 35): each case is refused with an error that names the cause, or
 stopped, and never runs on quietly or for ever."""
 import math

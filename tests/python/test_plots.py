@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The plot scripts (scripts/plots), read back from the figures they draw."""
 import sys
 

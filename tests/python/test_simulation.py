@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """roifem.Simulation against `roifem run` (bit for bit), views, energies, reactions, Ctrl-C."""
 import gc
 import signal

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // ROI selection and the dof partition it induces (roi.hpp), and where nodes' components sit in the
 // full and the reduced numbering (node_dofs.hpp), checked by brute force on the shipped brain.
 #include "roi/roi.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Tool trajectories from CSV files (scenario/trajectory_reader.hpp): what is refused and where, and
 // that a trajectory drives a model exactly as the same path given as a ramp does.
 #include "scenario/trajectory_reader.hpp"

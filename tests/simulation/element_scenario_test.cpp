@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // A scenario's `element`: the nodal-pressure and 10-node tetrahedra reach the model, static
 // condensation stays exact at rest with their wider stiffness patterns, the nearly incompressible
 // paper brain is less stiff than with linear tetrahedra (which lock), the 10-node model's static

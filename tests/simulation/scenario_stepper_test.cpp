@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The stepper that programs drive (the Python module) against `roifem run` itself: the same
 // states bit for bit, the same energies, the same grid.
 #include "simulation/scenario_stepper.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Cholesky with a constrained ordering: a condensed K_eff's dense interface block ordered last
 // (one trailing dense supernode) gives the same solve as CHOLMOD's own ordering.
 #include "solvers/cholesky.hpp"

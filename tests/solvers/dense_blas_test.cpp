@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The BLAS products against Eigen's own, with and without an accumulated y, and the BLAS's thread
 // count left as it was.
 #include <gtest/gtest.h>

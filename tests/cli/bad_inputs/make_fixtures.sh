@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The meshes of the bad-input suite: make_meshes.py writes the MSH 2.2 ASCII ones; Gmsh itself
 # (msh_convert) rewrites the good box as MSH 4.1 and as binary, and each of those four files is
 # cut in half. A binary MSH 4.1 file whose $Nodes header claims 10^15 nodes tests the header bound.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Writes the meshes of the bad-input suite (MSH 2.2 ASCII) into OUT_DIR.
 
 usage: make_meshes.py OUT_DIR

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Statically solves a bar in tension through the installed roifem libraries; prints the error
 // against F L / (E A) and exits non-zero if it is not at round-off level.
 #include <cmath>
