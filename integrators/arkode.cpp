@@ -1,6 +1,9 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "integrators/arkode.hpp"
 
 #include <arkode/arkode_arkstep.h>
+#include <arkode/arkode_butcher_dirk.h>
+#include <arkode/arkode_butcher_erk.h>
 
 #include <climits>
 #include <cmath>
@@ -11,6 +14,7 @@
 #include "common/number_text.hpp"
 #include "integrators/block_matrix.hpp"
 #include "integrators/callback_guard.hpp"
+#include "integrators/integrator_info.hpp"
 #include "integrators/integrator_table.hpp"
 
 namespace roifem::integrators {
@@ -220,6 +224,79 @@ Stats Arkode::stats() const {
   if (mass_solver_) s.factorization_s += mass_solver_->setup_seconds();
   if (schur_) s.factorization_s += schur_->factorization_seconds();
   return s;
+}
+
+namespace {
+
+ButcherTableau arkode_erk_tableau(ARKODE_ERKTableID id) {
+  ARKodeButcherTable table = ARKodeButcherTable_LoadERK(id);
+  ButcherTableau t{DenseMatrix(table->stages, table->stages), Vector(table->stages)};
+  for (int i = 0; i < table->stages; ++i) {
+    t.b[i] = table->b[i];
+    for (int j = 0; j < table->stages; ++j) t.A(i, j) = table->A[i][j];
+  }
+  ARKodeButcherTable_Free(table);
+  return t;
+}
+
+/// An ARKODE implicit method in its four linear-algebra variants: KLU on J = [[0, I], [-M^-1 K,
+/// -M^-1 C]], M as ARKODE's mass matrix (-mass), and the Schur-complement solver (-schur).
+void add_implicit(std::vector<IntegratorInfo>& rows, const std::string& name, int order, int table, const std::string& summary) {
+  const struct {
+    const char* suffix;
+    LinearSolver solver;
+    const char* how;
+  } variants[] = {{"", LinearSolver::klu, "KLU"},
+                  {"-mass", LinearSolver::klu_mass, "M as ARKODE's mass matrix, KLU"},
+                  {"-schur", LinearSolver::schur, "Schur-complement Cholesky"},
+                  {"-mass-schur", LinearSolver::schur_mass, "M as mass matrix, Schur-complement Cholesky"}};
+  const bool has_error_estimate = table >= 0;  // the user trapezoid table has no embedding
+  for (const auto& v : variants)
+    rows.push_back({.name = name + v.suffix,
+                    .family = Family::arkode,
+                    .order = order,
+                    .fixed_step = true,
+                    .adaptive = has_error_estimate,
+                    .linear_solver = v.solver,
+                    .method_id = table,
+                    .make = make_arkode,
+                    .summary = summary + " (" + v.how + ")"});
+}
+
+}  // namespace
+
+std::vector<IntegratorInfo> arkode_rows() {
+  std::vector<IntegratorInfo> rows;
+  auto erk = [&](const char* name, int order, ARKODE_ERKTableID id, ButcherTableau (*tableau)(), const char* summary) {
+    rows.push_back({.name = name,
+                    .family = Family::arkode,
+                    .order = order,
+                    .is_explicit = true,
+                    .fixed_step = true,
+                    .adaptive = true,
+                    .method_id = id,
+                    .tableau = tableau,
+                    .make = make_arkode,
+                    .summary = summary});
+  };
+  erk(
+      "arkode-erk2", 2, ARKODE_HEUN_EULER_2_1_2, [] { return arkode_erk_tableau(ARKODE_HEUN_EULER_2_1_2); },
+      "ARKODE explicit Heun-Euler 2(1)");
+  erk(
+      "arkode-erk3", 3, ARKODE_BOGACKI_SHAMPINE_4_2_3, [] { return arkode_erk_tableau(ARKODE_BOGACKI_SHAMPINE_4_2_3); },
+      "ARKODE explicit Bogacki-Shampine 3(2)");
+  erk(
+      "arkode-erk4", 4, ARKODE_ZONNEVELD_5_3_4, [] { return arkode_erk_tableau(ARKODE_ZONNEVELD_5_3_4); },
+      "ARKODE explicit Zonneveld 4(3)");
+  erk(
+      "arkode-erk5", 5, ARKODE_DORMAND_PRINCE_7_4_5, [] { return arkode_erk_tableau(ARKODE_DORMAND_PRINCE_7_4_5); },
+      "ARKODE explicit Dormand-Prince 5(4)");
+  add_implicit(rows, "arkode-sdirk2", 2, ARKODE_SDIRK_2_1_2, "ARKODE implicit SDIRK-2-1-2");
+  add_implicit(rows, "arkode-ark3", 3, ARKODE_ARK324L2SA_DIRK_4_2_3, "ARKODE implicit ARK324 (its DIRK table)");
+  add_implicit(rows, "arkode-esdirk4", 4, ARKODE_ESDIRK436L2SA_6_3_4, "ARKODE implicit ESDIRK436L2SA");
+  add_implicit(rows, "arkode-esdirk5", 5, ARKODE_ESDIRK547L2SA_7_4_5, "ARKODE implicit ESDIRK547L2SA");
+  add_implicit(rows, "arkode-trapezoid", 2, -1, "ARKODE with the trapezoidal rule as a user Butcher table, fixed step");
+  return rows;
 }
 
 }  // namespace roifem::integrators

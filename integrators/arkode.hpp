@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// SUNDIALS ARKODE (ARKStep) on the first-order form y = [u; v]:
 ///   u' = v,   M v' = f(t) - C v - K u.
@@ -15,10 +16,12 @@
 /// size n per stage) instead of KLU on the 2n system.
 #include <exception>
 #include <memory>
+#include <vector>
 #include <string>
 
 #include "integrators/first_order_form.hpp"
 #include "integrators/integrator.hpp"
+#include "integrators/integrator_info.hpp"
 #include "integrators/step_control.hpp"
 #include "integrators/sundials/handles.hpp"
 #include "integrators/sundials/klu_solver.hpp"
@@ -37,13 +40,15 @@ struct ArkodeMethod {
   sundials::KluOrdering klu_ordering = sundials::KluOrdering::amd;
 };
 
-struct IntegratorInfo;
 /// The ARKODE method of a row of the integrator table (integrator_table.hpp).
 ArkodeMethod arkode_method(const IntegratorInfo& info);
 /// The same by name (to vary one setting, e.g. the KLU ordering).
 ArkodeMethod arkode_method(const std::string& name);
 /// The factory's maker for the table's ARKODE rows.
 std::unique_ptr<Integrator> make_arkode(const IntegratorInfo& info, const StepControl& control);
+/// The table's rows of this family: the explicit ERK methods and each implicit one in its four
+/// linear-algebra variants.
+std::vector<IntegratorInfo> arkode_rows();
 
 class Arkode final : public Integrator {
  public:

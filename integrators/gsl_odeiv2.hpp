@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// GSL odeiv2 on the first-order form y = [u; v], y' = [v; M^-1 (f - C v - K u)], with the dense
 /// Jacobian [[0, I], [-M^-1 K, -M^-1 C]] that GSL's implicit steppers need. Dense: the factory
@@ -8,18 +9,21 @@
 
 #include <exception>
 #include <memory>
+#include <vector>
 
 #include "integrators/first_order_form.hpp"
 #include "integrators/integrator.hpp"
+#include "integrators/integrator_info.hpp"
 #include "integrators/step_control.hpp"
 
 namespace roifem::integrators {
 
 inline constexpr Index max_gsl_dofs = 2000;  ///< of the second-order system (the first-order one is twice that)
 
-struct IntegratorInfo;
 /// The factory's maker for the table's GSL rows.
 std::unique_ptr<Integrator> make_gsl(const IntegratorInfo& info, const gsl_odeiv2_step_type* stepper, const StepControl& control);
+/// The table's rows of this family: GSL's steppers.
+std::vector<IntegratorInfo> gsl_rows();
 
 struct GslDriverDeleter {
   void operator()(gsl_odeiv2_driver* driver) const { gsl_odeiv2_driver_free(driver); }

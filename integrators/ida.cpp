@@ -1,10 +1,11 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "integrators/ida.hpp"
 
 #include <utility>
 
 #include "common/errors.hpp"
 #include "integrators/block_matrix.hpp"
-#include "integrators/integrator_table.hpp"
+#include "integrators/integrator_info.hpp"
 #include "solvers/cholesky.hpp"
 
 namespace roifem::integrators {
@@ -57,6 +58,21 @@ void Ida::advance(double t_out, model::State& state) {
   state.t = t_reached;
   state.u = y.head(n);
   state.v = y.tail(n);
+}
+
+std::vector<IntegratorInfo> ida_rows() {
+  auto row = [](const char* name, int max_order, const char* summary) {
+    return IntegratorInfo{.name = name,
+                          .family = Family::ida,
+                          .order = max_order,
+                          .adaptive = true,
+                          .linear_solver = LinearSolver::klu,
+                          .method_id = max_order,
+                          .make = make_ida,
+                          .summary = summary};
+  };
+  return {row("ida-bdf5", 5, "IDA, variable-order BDF 1-5 on the residual form, KLU"),
+          row("ida-bdf2", 2, "IDA with BDF capped at order 2 (A-stable)")};
 }
 
 }  // namespace roifem::integrators

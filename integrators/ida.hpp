@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// SUNDIALS IDA (variable-order, variable-step BDF) on the residual form of the second-order system
 ///   F(t, y, y') = [u' - v;  M v' + C v + K u - f(t)] = 0,   y = [u; v],
@@ -5,17 +6,20 @@
 /// matrix and factored by KLU (AMD ordering). BDF orders 1-5 (`max_order` 5), or capped at 2,
 /// the highest A-stable BDF. IDA has no fixed-step mode: it is always error-controlled.
 #include <memory>
+#include <vector>
 #include <string>
 
 #include "integrators/integrator.hpp"
+#include "integrators/integrator_info.hpp"
 #include "integrators/step_control.hpp"
 #include "integrators/sundials/ida_solver.hpp"
 
 namespace roifem::integrators {
 
-struct IntegratorInfo;
 /// The factory's maker for the table's IDA rows (method_id: the maximum BDF order).
 std::unique_ptr<Integrator> make_ida(const IntegratorInfo& info, const StepControl& control);
+/// The table's rows of this method: ida-bdf5, ida-bdf2.
+std::vector<IntegratorInfo> ida_rows();
 
 class Ida final : public Integrator {
  public:

@@ -1,7 +1,8 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "integrators/roi_dae.hpp"
 
 #include "common/errors.hpp"
-#include "integrators/integrator_table.hpp"
+#include "integrators/integrator_info.hpp"
 #include "model/uncondensed_form.hpp"
 
 namespace roifem::integrators {
@@ -37,5 +38,18 @@ void RoiDae::advance(double t_out, model::State& state) {
 }
 
 Stats RoiDae::stats() const { return dae_ ? dae_->stats() : Stats{}; }
+
+std::vector<IntegratorInfo> roi_dae_rows() {
+  return {{.name = "ida-roi-dae",
+           .family = Family::ida,
+           .order = 5,
+           .adaptive = true,
+           .linear_solver = LinearSolver::klu,
+           .method_id = 5,
+           .make = make_roi_dae,
+           .summary = "IDA on the ROI model uncondensed: the static part kept as algebraic unknowns "
+                      "(scenarios with an [roi] and static condensation; tools eliminated), KLU",
+           .needs_uncondensed = true}};
+}
 
 }  // namespace roifem::integrators

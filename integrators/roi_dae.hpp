@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The uncondensed ROI DAE (ida_roi_dae.hpp) as an integrator of a statically condensed system:
 /// it integrates system.uncondensed, the full model with the static part kept as algebraic
@@ -5,15 +6,18 @@
 /// every observer (tools' forces, energies) take it like any other integrator. Its trajectory is
 /// the condensed model's to the tolerance: condensation eliminates exactly the static part.
 #include <memory>
+#include <vector>
 
 #include "integrators/ida_roi_dae.hpp"
 #include "integrators/integrator.hpp"
+#include "integrators/integrator_info.hpp"
 
 namespace roifem::integrators {
 
-struct IntegratorInfo;
 /// The factory's maker for the table's `ida-roi-dae` row.
 std::unique_ptr<Integrator> make_roi_dae(const IntegratorInfo& info, const StepControl& control);
+/// The table's row of this method: ida-roi-dae.
+std::vector<IntegratorInfo> roi_dae_rows();
 
 class RoiDae final : public Integrator {
  public:

@@ -1,7 +1,8 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "integrators/tool_dae.hpp"
 
 #include "common/errors.hpp"
-#include "integrators/integrator_table.hpp"
+#include "integrators/integrator_info.hpp"
 
 namespace roifem::integrators {
 
@@ -44,5 +45,25 @@ std::optional<ConstraintReport> ToolDae::constraints() const {
 }
 
 Stats ToolDae::stats() const { return dae_ ? dae_->stats() : Stats{}; }
+
+std::vector<IntegratorInfo> tool_dae_rows() {
+  auto row = [](const char* name, ToolFormulation formulation, const char* summary) {
+    return IntegratorInfo{.name = name,
+                          .family = Family::ida,
+                          .order = 5,
+                          .adaptive = true,
+                          .linear_solver = LinearSolver::klu,
+                          .method_id = static_cast<int>(formulation),
+                          .make = make_tool_dae,
+                          .summary = summary,
+                          .needs_tools = true};
+  };
+  return {row("ida-index3", ToolFormulation::index3,
+              "IDA on the tools' DAE, index 3 (position constraints; velocities and multipliers out of the error test), KLU"),
+          row("ida-ggl", ToolFormulation::ggl,
+              "IDA on the tools' DAE, GGL-stabilized index 2 (position and velocity constraints), KLU"),
+          row("ida-index1", ToolFormulation::index1,
+              "IDA on the tools' DAE, index 1 (acceleration constraint, Baumgarte-stabilized, a = 100/s), KLU")};
+}
 
 }  // namespace roifem::integrators

@@ -1,19 +1,23 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The DAE formulations of a model with tools (ida_tool_dae.hpp) as integrators of the eliminated
 /// system (model/prescribed_motion.hpp): they integrate system.constrained, the same model with the
 /// tools' dofs kept and held by multipliers, and report its state in the eliminated numbering, so
 /// that `run`, `compare` and every observer take them like any other integrator.
 #include <memory>
+#include <vector>
 #include <optional>
 
 #include "integrators/ida_tool_dae.hpp"
 #include "integrators/integrator.hpp"
+#include "integrators/integrator_info.hpp"
 
 namespace roifem::integrators {
 
-struct IntegratorInfo;
 /// The factory's maker for the table's tool-DAE rows (method_id: the ToolFormulation).
 std::unique_ptr<Integrator> make_tool_dae(const IntegratorInfo& info, const StepControl& control);
+/// The table's rows of this method: ida-index3, ida-ggl, ida-index1.
+std::vector<IntegratorInfo> tool_dae_rows();
 
 class ToolDae final : public Integrator {
  public:

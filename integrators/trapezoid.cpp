@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "integrators/trapezoid.hpp"
 
 #include <cmath>
@@ -5,7 +6,7 @@
 #include "common/errors.hpp"
 #include "common/number_text.hpp"
 #include "common/timer.hpp"
-#include "integrators/integrator_table.hpp"
+#include "integrators/integrator_info.hpp"
 #include "integrators/modal_elimination.hpp"
 
 namespace roifem::integrators {
@@ -72,6 +73,21 @@ void Trapezoid::advance(double t_out, model::State& state) {
   if (std::abs(steps - static_cast<double>(target)) > 1e-9 * std::max(1.0, std::abs(steps)) || target < k_)
     throw InputError("trapezoid: t_out = " + number_text(t_out) + " s is not a later point of the grid t0 + k dt");
   while (k_ < target) step(state);
+}
+
+std::vector<IntegratorInfo> trapezoid_rows() {
+  return {{.name = "trapezoid",
+           .order = 2,
+           .fixed_step = true,
+           .linear_solver = LinearSolver::cholmod,
+           .make = make_trapezoid,
+           .summary = "the paper's trapezoidal rule (Newmark average acceleration), K_eff factored once"},
+          {.name = "trapezoid-cg",
+           .order = 2,
+           .fixed_step = true,
+           .linear_solver = LinearSolver::jacobi_cg,
+           .make = make_trapezoid,
+           .summary = "the same rule with K_eff solved by Jacobi-preconditioned CG (no factor; for the largest brains)"}};
 }
 
 }  // namespace roifem::integrators

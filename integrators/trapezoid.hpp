@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// The trapezoidal rule (Newmark beta = 1/4, gamma = 1/2, average acceleration: the recurrence of
 /// model/average_acceleration.hpp), fixed step, as in Hansen & Larsen (1998). Unconditionally stable, second order, no numerical
@@ -15,19 +16,22 @@
 /// solve is ~20x faster where it fits. With C = alpha M (SecondOrderSystem::damping) the history
 /// term folds C into M's product; a general C adds its own product to f.
 #include <memory>
+#include <vector>
 #include <optional>
 
 #include "integrators/effective_stiffness.hpp"
 #include "integrators/integrator.hpp"
+#include "integrators/integrator_info.hpp"
 #include "integrators/step_control.hpp"
 #include "model/average_acceleration.hpp"
 #include "solvers/jacobi_cg.hpp"
 
 namespace roifem::integrators {
 
-struct IntegratorInfo;
 /// The factory's maker for the table's trapezoid rows (CG where the row's linear solver says so).
 std::unique_ptr<Integrator> make_trapezoid(const IntegratorInfo& info, const StepControl& control);
+/// The table's rows of this family (integrator_table.hpp): trapezoid, trapezoid-cg.
+std::vector<IntegratorInfo> trapezoid_rows();
 
 class Trapezoid final : public Integrator {
  public:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "distributed/petsc_ts.hpp"
 
 #include <petscts.h>
@@ -141,23 +142,17 @@ std::vector<integrators::IntegratorInfo> petsc_ts_rows() {
   return {{.name = "petsc-alpha2",
            .family = Family::petsc,
            .order = 2,
-           .is_explicit = false,
            .fixed_step = true,
-           .adaptive = false,
            .linear_solver = LinearSolver::cholmod,
            .method_id = 0,
-           .tableau = nullptr,
            .make = make,
            .summary = "PETSc TSALPHA2: generalized-alpha (Chung-Hulbert) on the second-order form, rho_inf 0.5, CHOLMOD"},
           {.name = "petsc-theta",
            .family = Family::petsc,
            .order = 2,
-           .is_explicit = false,
            .fixed_step = true,
-           .adaptive = false,
            .linear_solver = LinearSolver::klu,
            .method_id = 1,
-           .tableau = nullptr,
            .make = make,
            .summary = "PETSc TSTHETA, theta 1/2 at the endpoints (Crank-Nicolson) on the first-order form, KLU"}};
 }

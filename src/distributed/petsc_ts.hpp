@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// PETSc's time steppers as integrators of the seam (integrators/integrator.hpp), on one rank
 /// (PETSC_COMM_SELF; a PetscSession must be open), fixed step:
@@ -20,7 +21,7 @@
 #include <vector>
 
 #include "distributed/petsc_handle.hpp"
-#include "integrators/integrator_table.hpp"
+#include "integrators/integrator_info.hpp"
 
 namespace roifem::distributed {
 

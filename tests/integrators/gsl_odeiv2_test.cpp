@@ -1,8 +1,11 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // GSL odeiv2 (gsl_odeiv2.hpp): the fixed-step Runge-Kutta orders, the adaptive steppers'
 // tolerances against the modal solution, and the dense-Jacobian size limit.
 #include "integrators/gsl_odeiv2.hpp"
 
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "common/errors.hpp"
 #include "integrators/factory.hpp"
@@ -49,6 +52,32 @@ TEST(GslOdeiv2, RefusesSystemsTooLargeForDenseJacobians) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("dense Jacobian is limited to 2000 dofs"), std::string::npos) << e.what();
   }
+}
+
+TEST(GslOdeiv2, Rk4IsStableToTwiceClassicalRk4sLimitAsItsStepDoublingSays) {
+  // An undamped oscillator, w = 5 rad/s: classical RK4 is stable up to h w = 2 sqrt(2); GSL's rk4
+  // returns two half steps, so up to 4 sqrt(2) (the table's tableau says so: integrator_table_test).
+  auto sys = test_problems::damped_oscillator();
+  sys.C = model::diagonal_matrix(Vector::Zero(1));
+  const double w = 5.0, limit = 4.0 * std::sqrt(2.0) / w;
+  auto amplitude_after = [&](double dt) {
+    auto rk4 = make_integrator("gsl-rk4", dt);
+    model::State s = test_problems::oscillator_start();
+    rk4->reset(sys, s);
+    double largest = 0;
+    try {
+      for (int k = 1; k <= 400; ++k) {
+        rk4->advance_to(dt * k, s);
+        largest = std::max(largest, std::abs(s.u[0]));
+      }
+    } catch (const SolverError&) {
+      return HUGE_VAL;  // the seam stopped the divergence
+    }
+    return largest / 1e-3;
+  };
+  EXPECT_LT(amplitude_after(0.98 * limit), 1.0 + 1e-9);     // |R| < 1: it decays
+  EXPECT_GT(amplitude_after(1.02 * limit), 10.0);           // |R| > 1: it grows
+  EXPECT_LT(amplitude_after(1.5 * 2.0 * std::sqrt(2.0) / w), 1.0 + 1e-9);  // 1.5x classical RK4's limit: still stable
 }
 
 }  // namespace
