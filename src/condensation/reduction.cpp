@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "condensation/reduction.hpp"
 
 #include <array>
@@ -13,14 +14,23 @@ namespace roifem::condensation {
 namespace {
 
 constexpr std::array<ReductionInfo, 4> table{{
-    {"static", false, false, false, nullptr, false,
-     "the paper's static condensation: K~ = K_dd - K_ds K_ss^-1 K_sd; the static part answers without inertia"},
-    {"guyan", false, false, true, nullptr, false,
-     "the static part's mass carried into the ROI through the static modes, M~ = T^T M T"},
-    {"craig-bampton", true, true, true, fixed_interface_modes, false,
-     "K fixed-interface modes of (K_ss, M_ss) as extra generalized coordinates"},
-    {"pod", true, false, true, pod_modes, true,
-     "K fixed-interface vectors learnt from the full model's step responses (mass-weighted POD)"},
+    {.key = "static",
+     .description = "the paper's static condensation: K~ = K_dd - K_ds K_ss^-1 K_sd; the static part answers without inertia"},
+    {.key = "guyan",
+     .carries_mass = true,
+     .description = "the static part's mass carried into the ROI through the static modes, M~ = T^T M T"},
+    {.key = "craig-bampton",
+     .counted = true,
+     .takes_cutoff = true,
+     .carries_mass = true,
+     .make_basis = fixed_interface_modes,
+     .description = "K fixed-interface modes of (K_ss, M_ss) as extra generalized coordinates"},
+    {.key = "pod",
+     .counted = true,
+     .carries_mass = true,
+     .make_basis = pod_modes,
+     .learns_from_loads = true,
+     .description = "K fixed-interface vectors learnt from the full model's step responses (mass-weighted POD)"},
 }};
 
 /// K from "PREFIX-K" with K a positive integer, or 0.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include "fem/assembly.hpp"
 
 #include <algorithm>
@@ -138,18 +139,8 @@ SparseMatrix StiffnessAssembler::stiffness(const MaterialMap& materials) const {
         continue;
       }
       const int local_b = static_cast<int>(std::find(t.begin(), t.end(), static_cast<int>(b)) - t.begin());
-      const double lambda = material.lambda, mu = material.mu;
       const Tet4Geometry g = tet4_geometry(mesh_.node(t[0]), mesh_.node(t[1]), mesh_.node(t[2]), mesh_.node(t[3]));
-      const double V = std::abs(g.volume);
-      const double gb[3] = {g.grad(local_b, 0), g.grad(local_b, 1), g.grad(local_b, 2)};
-      for (int a = 0; a < 4; ++a) {
-        const double ga[3] = {g.grad(a, 0), g.grad(a, 1), g.grad(a, 2)};
-        const double shear = mu * (ga[0] * gb[0] + ga[1] * gb[1] + ga[2] * gb[2]);
-        Mat3 K_ab;  // K_ab(i, j) = V (lambda ga_i gb_j + mu ga_j gb_i + mu (ga . gb) delta_ij)
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) K_ab(i, j) = V * (lambda * ga[i] * gb[j] + mu * ga[j] * gb[i] + (i == j ? shear : 0.0));
-        add_block(t[u(a)], K_ab);
-      }
+      for (int a = 0; a < 4; ++a) add_block(t[u(a)], tet4_stiffness_block(g, material, a, local_b));
     }
   }
   return K;

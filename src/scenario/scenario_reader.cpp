@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #include <toml++/toml.h>
 
 #include <algorithm>
@@ -142,40 +143,60 @@ class StrictTable {
   std::set<std::string> known_;
 };
 
-fem::Material read_material_values(StrictTable& t, std::string& name) {
-  const auto preset = t.string("preset");
-  const auto lambda = t.number("lambda_Pa"), mu = t.number("mu_Pa");
-  const auto young = t.number("young_Pa"), poisson = t.number("poisson");
-  const auto rho = t.number("rho_kg_m3"), alpha = t.number("alpha_per_s");
-  t.close();
-  if ((lambda || mu) && (young || poisson))
-    throw InputError(t.source() + ": [material] gives both lambda_Pa/mu_Pa and young_Pa/poisson; give one pair");
-  fem::Material m;
-  if (preset) {
-    m = fem::material_preset(*preset);
-    name = *preset;
-  } else {
-    name = "custom";
-    if (!((lambda && mu) || (young && poisson)))
-      throw InputError(t.source() + ": [material] needs 'preset', or lambda_Pa and mu_Pa, or young_Pa and poisson");
-    if (!rho) throw InputError(t.source() + ": missing required key 'material.rho_kg_m3'");
-    if (!alpha) throw InputError(t.source() + ": missing required key 'material.alpha_per_s'");
+/// The keys a [material] or [[material_region]] table may give.
+struct MaterialKeys {
+  std::optional<std::string> preset;
+  std::optional<double> lambda, mu, young, poisson, rho, alpha;
+  bool elastic() const { return lambda || mu || young || poisson; }
+  bool any() const { return elastic() || rho || alpha; }
+};
+
+MaterialKeys read_material_keys(StrictTable& t) {
+  MaterialKeys k{.preset = t.string("preset"),
+                 .lambda = t.number("lambda_Pa"),
+                 .mu = t.number("mu_Pa"),
+                 .young = t.number("young_Pa"),
+                 .poisson = t.number("poisson"),
+                 .rho = t.number("rho_kg_m3"),
+                 .alpha = t.number("alpha_per_s")};
+  return k;
+}
+
+/// `start` with the keys given merged in (the elastic pair given, lambda/mu or E/nu, replaces the
+/// other's), validated.
+fem::Material merged_material(fem::Material m, const MaterialKeys& k) {
+  if ((k.lambda || k.mu) && (k.young || k.poisson))
+    throw InputError("gives both lambda_Pa/mu_Pa and young_Pa/poisson; give one pair");
+  if (k.lambda || k.mu) {
+    m.lambda = k.lambda.value_or(m.lambda);
+    m.mu = k.mu.value_or(m.mu);
   }
-  if (lambda || mu) {
-    m.lambda = lambda.value_or(m.lambda);
-    m.mu = mu.value_or(m.mu);
-  }
-  if (young || poisson) {
-    const double E = young.value_or(m.young()), nu = poisson.value_or(m.poisson());
-    const fem::Material elastic = fem::Material::from_young_poisson(E, nu, 1.0, 0.0);
+  if (k.young || k.poisson) {
+    const fem::Material elastic =
+        fem::Material::from_young_poisson(k.young.value_or(m.young()), k.poisson.value_or(m.poisson()), 1.0, 0.0);
     m.lambda = elastic.lambda;
     m.mu = elastic.mu;
   }
-  m.rho = rho.value_or(m.rho);
-  m.alpha = alpha.value_or(m.alpha);
-  if (preset && (lambda || mu || young || poisson || rho || alpha)) name = *preset + " (modified)";
+  m.rho = k.rho.value_or(m.rho);
+  m.alpha = k.alpha.value_or(m.alpha);
   m.validate();
   return m;
+}
+
+fem::Material read_material_values(StrictTable& t, std::string& name) {
+  const MaterialKeys k = read_material_keys(t);
+  t.close();
+  if (k.preset) {
+    name = k.any() ? *k.preset + " (modified)" : *k.preset;
+    return merged_material(fem::material_preset(*k.preset), k);
+  }
+  name = "custom";
+  if ((k.lambda || k.mu) && (k.young || k.poisson)) return merged_material({}, k);  // names the clash
+  if (!((k.lambda && k.mu) || (k.young && k.poisson)))
+    throw InputError(t.source() + ": [material] needs 'preset', or lambda_Pa and mu_Pa, or young_Pa and poisson");
+  if (!k.rho) throw InputError(t.source() + ": missing required key 'material.rho_kg_m3'");
+  if (!k.alpha) throw InputError(t.source() + ": missing required key 'material.alpha_per_s'");
+  return merged_material({}, k);
 }
 
 /// The material table; a non-physical value is reported with the file's name.
@@ -189,42 +210,16 @@ fem::Material read_material(StrictTable& t, std::string& name) {
   }
 }
 
-/// The material of a [[material_region]]: keys left out keep the brain's ([material]); a preset
-/// starts from the preset instead.
-fem::Material region_material_values(const fem::Material& base, const std::optional<std::string>& preset,
-                                     const std::optional<double>& lambda, const std::optional<double>& mu,
-                                     const std::optional<double>& young, const std::optional<double>& poisson,
-                                     const std::optional<double>& rho, const std::optional<double>& alpha) {
-  if ((lambda || mu) && (young || poisson)) throw InputError("gives both lambda_Pa/mu_Pa and young_Pa/poisson; give one pair");
-  fem::Material m = preset ? fem::material_preset(*preset) : base;
-  if (lambda || mu) {
-    m.lambda = lambda.value_or(m.lambda);
-    m.mu = mu.value_or(m.mu);
-  }
-  if (young || poisson) {
-    const fem::Material elastic =
-        fem::Material::from_young_poisson(young.value_or(m.young()), poisson.value_or(m.poisson()), 1.0, 0.0);
-    m.lambda = elastic.lambda;
-    m.mu = elastic.mu;
-  }
-  m.rho = rho.value_or(m.rho);
-  m.alpha = alpha.value_or(m.alpha);
-  m.validate();
-  return m;
-}
-
 /// A [[material_region]]: a 3D set and the material its tetrahedra take.
 fem::RegionMaterial read_region_material(StrictTable& t, const fem::Material& base) {
   const auto set = t.string("set");
-  const auto preset = t.string("preset");
-  const auto lambda = t.number("lambda_Pa"), mu = t.number("mu_Pa");
-  const auto young = t.number("young_Pa"), poisson = t.number("poisson");
-  const auto rho = t.number("rho_kg_m3"), alpha = t.number("alpha_per_s");
+  const MaterialKeys k = read_material_keys(t);
   t.close();
   if (!set) t.missing("set", " (the named volume set, e.g. white_matter)");
-  fem::RegionMaterial region{.set = *set, .material = {}, .name = preset.value_or("custom")};
+  fem::RegionMaterial region{.set = *set, .material = {}, .name = k.preset.value_or("custom")};
   try {
-    region.material = region_material_values(base, preset, lambda, mu, young, poisson, rho, alpha);
+    // Keys left out keep the brain's ([material]); a preset starts from the preset instead.
+    region.material = merged_material(k.preset ? fem::material_preset(*k.preset) : base, k);
   } catch (const InputError& e) {
     throw InputError(t.source() + ": [[material_region]] '" + region.set + "': " + e.what());
   }
