@@ -16,13 +16,13 @@
 #include "integrators/callback_guard.hpp"
 #include "integrators/integrator_info.hpp"
 #include "integrators/integrator_table.hpp"
+#include "model/time_grid.hpp"
 
 namespace roifem::integrators {
 
 Arkode::Arkode(ArkodeMethod method, StepControl control)
     : method_(std::move(method)), control_(control), context_(sundials::make_context()) {
-  if (!(control_.dt > 0) || !std::isfinite(control_.dt))
-    throw InputError(method_.name + ": time step dt = " + std::to_string(control_.dt) + " s must be positive");
+  model::check_time_step(control_.dt, method_.name);
   if (control_.adaptive && !(control_.rtol > 0 && control_.atol > 0))
     throw InputError(method_.name + ": tolerances rtol and atol must be positive");
 }

@@ -11,14 +11,14 @@
 #include "common/number_text.hpp"
 #include "integrators/callback_guard.hpp"
 #include "integrators/integrator_info.hpp"
+#include "model/time_grid.hpp"
 
 namespace roifem::integrators {
 
 GslOdeiv2::GslOdeiv2(std::string name, const gsl_odeiv2_step_type* stepper, StepControl control)
     : name_(std::move(name)), stepper_(stepper), control_(control) {
   gsl_set_error_handler_off();  // GSL's default handler aborts the process; roifem reports errors itself
-  if (!(control_.dt > 0) || !std::isfinite(control_.dt))
-    throw InputError(name_ + ": time step dt = " + std::to_string(control_.dt) + " s must be positive");
+  model::check_time_step(control_.dt, name_);
 }
 
 std::unique_ptr<Integrator> make_gsl(const IntegratorInfo& info, const gsl_odeiv2_step_type* stepper,

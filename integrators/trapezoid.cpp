@@ -37,7 +37,7 @@ void Trapezoid::prepare(const model::SecondOrderSystem& system, const model::Sta
   } catch (const solvers::NotPositiveDefinite& e) {
     throw SolverError(std::string(name()) + ": K + 2/dt C + 4/dt^2 M is not positive definite: " + e.what());
   }
-  t0_ = initial.t;
+  grid_ = model::TimeGrid(initial.t, rule_.dt(), name());
   k_ = 0;
   a_ = model::AverageAcceleration::consistent_acceleration(system, initial);
   f_.resize(n);
@@ -51,7 +51,7 @@ void Trapezoid::prepare(const model::SecondOrderSystem& system, const model::Sta
 void Trapezoid::step(model::State& s) {
   const double dt = rule_.dt();
   ++k_;
-  s.t = t0_ + static_cast<double>(k_) * dt;
+  s.t = grid_.at(k_);
   system_->load.evaluate(s.t, f_);
   rule_.history(*system_, s, a_, f_, work_);
   if (K_eff_->uses_initial_guess()) u_next_ = s.u + dt * s.v + (0.5 * dt * dt) * a_;  // constant acceleration
@@ -68,10 +68,7 @@ void Trapezoid::step(model::State& s) {
 }
 
 void Trapezoid::advance(double t_out, model::State& state) {
-  const double steps = (t_out - t0_) / rule_.dt();
-  const long target = std::lround(steps);
-  if (std::abs(steps - static_cast<double>(target)) > 1e-9 * std::max(1.0, std::abs(steps)) || target < k_)
-    throw InputError("trapezoid: t_out = " + number_text(t_out) + " s is not a later point of the grid t0 + k dt");
+  const long target = grid_.index_of(t_out, k_);
   while (k_ < target) step(state);
 }
 

@@ -24,6 +24,7 @@
 #include "integrators/integrator_info.hpp"
 #include "integrators/step_control.hpp"
 #include "model/average_acceleration.hpp"
+#include "model/time_grid.hpp"
 #include "solvers/jacobi_cg.hpp"
 
 namespace roifem::integrators {
@@ -55,7 +56,7 @@ class Trapezoid final : public Integrator {
   std::optional<solvers::CgSettings> cg_;  // set: K_eff is solved iteratively
   std::unique_ptr<EffectiveStiffnessSolver> K_eff_;
   bool eliminates_modal_ = false;
-  double t0_ = 0;
+  model::TimeGrid grid_{0.0, 1.0, "trapezoid"};  ///< t_k = t_0 + k dt from the last reset
   long k_ = 0;
   Vector a_, f_, u_next_, work_;
   Stats stats_;

@@ -4,12 +4,13 @@
 #include "common/errors.hpp"
 #include "common/number_text.hpp"
 #include "common/timer.hpp"
+#include "model/time_grid.hpp"
 
 namespace roifem::distributed {
 
 DistributedTrapezoid::DistributedTrapezoid(const DistributedModel& model, double dt, double t0, const std::string& options_prefix)
     : model_(model), dt_(dt), t0_(t0), t_(t0) {
-  if (!(dt > 0)) throw InputError("roifem-mpi: time step dt = " + number_text(dt) + " s must be positive");
+  model::check_time_step(dt, "roifem-mpi");
   const Stopwatch clock;
   const double c_u = 4.0 / (dt * dt), c_m = c_u + 2.0 * model.alpha / dt;
   check(MatDuplicate(model.K.get(), MAT_COPY_VALUES, K_eff_.out()), "MatDuplicate");

@@ -157,9 +157,7 @@ std::vector<integrators::IntegratorInfo> petsc_ts_rows() {
            .summary = "PETSc TSTHETA, theta 1/2 at the endpoints (Crank-Nicolson) on the first-order form, KLU"}};
 }
 
-PetscTs::PetscTs(Method method, double dt) : method_(method), dt_(dt) {
-  if (!(dt > 0) || !std::isfinite(dt))
-    throw InputError(std::string(name()) + ": time step dt = " + number_text(dt) + " s must be positive");
+PetscTs::PetscTs(Method method, double dt) : method_(method), grid_(0.0, dt, name()) {
   PetscBool initialized = PETSC_FALSE;
   PetscInitialized(&initialized);
   if (!initialized) throw Error("internal: " + std::string(name()) + " needs an open PetscSession");
@@ -172,7 +170,7 @@ void PetscTs::rethrow_pending() {
 void PetscTs::prepare(const model::SecondOrderSystem& system, const model::State& initial) {
   const Stopwatch clock;
   system_ = &system;
-  t0_ = initial.t;
+  grid_ = model::TimeGrid(initial.t, grid_.dt(), name());
   k_ = 0;
   jacobians_ = residuals_ = 0;
   shift_v_ = shift_a_ = -1;
@@ -205,7 +203,7 @@ void PetscTs::prepare(const model::SecondOrderSystem& system, const model::State
     check(TSSetSolution(ts, y_.get()), "TSSetSolution");
   }
   check(TSSetTime(ts, initial.t), "TSSetTime");
-  check(TSSetTimeStep(ts, dt_), "TSSetTimeStep");
+  check(TSSetTimeStep(ts, grid_.dt()), "TSSetTimeStep");
   // advance_to counts the steps itself (TSStep); PETSc still wants a bound (its default reads as none).
   check(TSSetMaxSteps(ts, PETSC_MAX_INT - 1), "TSSetMaxSteps");
   TSAdapt adapt = nullptr;
@@ -234,20 +232,17 @@ void PetscTs::prepare(const model::SecondOrderSystem& system, const model::State
 }
 
 void PetscTs::advance(double t_out, model::State& state) {
-  const double steps = (t_out - t0_) / dt_;
-  const long target = std::lround(steps);
-  if (std::abs(steps - static_cast<double>(target)) > 1e-9 * std::max(1.0, std::abs(steps)) || target < k_)
-    throw InputError(std::string(name()) + ": t_out = " + number_text(t_out) + " s is not a later point of the grid t0 + k dt");
+  const long target = grid_.index_of(t_out, k_);
   while (k_ < target) {
     const PetscErrorCode code = TSStep(ts_.get());
     rethrow_pending();
     ++k_;
     if (code != 0)
       throw SolverError(std::string(name()) + ": step " + std::to_string(k_) +
-                        ", t = " + number_text(t0_ + static_cast<double>(k_) * dt_) + " s: PETSc's TSStep failed (error " +
+                        ", t = " + number_text(grid_.at(k_)) + " s: PETSc's TSStep failed (error " +
                         std::to_string(static_cast<int>(code)) + ")");
   }
-  state.t = t0_ + static_cast<double>(k_) * dt_;
+  state.t = grid_.at(k_);
   const Index n = system_->size();
   if (method_ == Method::alpha2) {
     Vec U = nullptr, V = nullptr;

@@ -22,6 +22,7 @@
 
 #include "distributed/petsc_handle.hpp"
 #include "integrators/integrator_info.hpp"
+#include "model/time_grid.hpp"
 
 namespace roifem::distributed {
 
@@ -48,7 +49,7 @@ class PetscTs final : public integrators::Integrator {
   void advance(double t_out, model::State& state) override;
   void rethrow_pending();
   Method method_;
-  double dt_, t0_ = 0;
+  model::TimeGrid grid_;  ///< t_k = t_0 + k dt from the last reset
   long k_ = 0;
   const model::SecondOrderSystem* system_ = nullptr;
   Owned<TS, TSDestroy> ts_;

@@ -4,13 +4,14 @@
 #include <cmath>
 
 #include "common/errors.hpp"
+#include "model/time_grid.hpp"
 #include "common/number_text.hpp"
 #include "solvers/cholesky.hpp"
 
 namespace roifem::model {
 
 AverageAcceleration::AverageAcceleration(double dt) : dt_(dt) {
-  if (!(dt > 0) || !std::isfinite(dt)) throw InputError("trapezoid: time step dt = " + number_text(dt) + " s must be positive");
+  check_time_step(dt, "trapezoid");
 }
 
 SparseMatrix AverageAcceleration::effective_stiffness(const SecondOrderSystem& system) const {

@@ -13,27 +13,26 @@
 
 namespace roifem::simulation {
 
-RunSummary run(integrators::Integrator& integrator, model::State& state, double dt, long steps,
-               const std::vector<StepObserver>& observers, const std::string& progress_label) {
-  if (!(dt > 0)) throw InputError("time step dt = " + number_text(dt) + " s must be positive");
+RunSummary run(Stepper& stepper, long steps, const std::vector<StepObserver>& observers, const std::string& progress_label) {
   if (steps <= 0) throw InputError("number of steps " + std::to_string(steps) + " must be positive");
   RunSummary summary;
   // Grows as it goes beyond a million steps: a run stopped early never holds a huge reservation.
   summary.step_seconds.reserve(static_cast<std::size_t>(std::min(steps, 1L << 20)));
   std::unique_ptr<ProgressReporter> progress;
   if (!progress_label.empty()) progress = std::make_unique<ProgressReporter>(progress_label, steps);
-  const double t0 = state.t;
   for (long k = 1; k <= steps; ++k) {
     Stopwatch clock;
+    const double from = stepper.state().t;
     try {
-      integrator.advance_to(t0 + static_cast<double>(k) * dt, state);
+      stepper.step();
     } catch (const Interrupted& e) {  // heard inside the step (integrators/callback_guard.hpp)
       throw Interrupted(e.signal, "interrupted by signal " + std::to_string(e.signal) + " during step " + std::to_string(k) +
-                                      " of " + std::to_string(steps) + " (from t = " + number_text(state.t) + " s)");
+                                      " of " + std::to_string(steps) + " (from t = " + number_text(from) + " s)");
     }
     const double seconds = clock.seconds();
     summary.step_seconds.push_back(seconds);
     summary.steps = k;
+    const model::State& state = stepper.state();
     for (const auto& observe : observers) observe(k, state, seconds);
     if (progress) progress->update(k);
     if (const int signal_number = InterruptGuard::signal_received())
@@ -41,8 +40,14 @@ RunSummary run(integrators::Integrator& integrator, model::State& state, double 
                                            std::to_string(k) + " of " + std::to_string(steps) +
                                            " (t = " + std::to_string(state.t) + " s)");
   }
-  summary.stats = integrator.stats();
+  summary.stats = stepper.stats();
   return summary;
+}
+
+RunSummary run(integrators::Integrator& integrator, model::State& state, double dt, long steps,
+               const std::vector<StepObserver>& observers, const std::string& progress_label) {
+  GridStepper stepper(integrator, state, dt);
+  return run(stepper, steps, observers, progress_label);
 }
 
 double median(std::vector<double> values) { return percentile(std::move(values), 0.5); }

@@ -20,6 +20,7 @@
 #include "simulation/results_recorder.hpp"
 #include "simulation/run_loop.hpp"
 #include "simulation/scenario_model.hpp"
+#include "simulation/scenario_stepper.hpp"
 
 namespace roifem::simulation {
 
@@ -119,13 +120,14 @@ void check_results_fit(const scenario::Scenario& sc, const ScenarioModel& built,
 
 /// The run loop with the recorder as its observer. A divergence, a solver failure or a signal
 /// keeps every completed step, marked incomplete, beside (never in place of) a good results.h5.
-RunSummary integrate(const scenario::Scenario& sc, integrators::Integrator& integrator, model::State& state,
-                     ResultsRecorder& recorder, PeakDisplacement& peak, const std::filesystem::path& out, std::ostream& log) {
-  recorder.record(0, state, 0.0);
-  if (const auto held = integrator.constraints()) recorder.record_constraints(*held, state.t);
+RunSummary integrate(const scenario::Scenario& sc, ScenarioStepper& stepper, ResultsRecorder& recorder, PeakDisplacement& peak,
+                     const std::filesystem::path& out, std::ostream& log) {
+  const integrators::Integrator& integrator = stepper.integrator();
+  recorder.record(0, stepper.state(), 0.0);
+  if (const auto held = integrator.constraints()) recorder.record_constraints(*held, stepper.state().t);
   const InterruptGuard interrupts;
   try {
-    return run(integrator, state, sc.dt, sc.steps,
+    return run(stepper, sc.steps,
                {[&](long k, const model::State& s, double seconds) {
                   recorder.record(k, s, seconds);
                   if (const auto held = integrator.constraints()) recorder.record_constraints(*held, s.t);
@@ -145,14 +147,16 @@ RunSummary integrate(const scenario::Scenario& sc, integrators::Integrator& inte
 
 ScenarioRunSummary run_scenario(const scenario::Scenario& sc, const std::filesystem::path& out, std::ostream& log) {
   check_output_directory(out);
-  // An unknown name, or tolerances for a fixed-step method, fail before any work.
-  auto integrator = scenario_integrator(sc);
   ScenarioRunSummary summary;
   Stopwatch setup_clock;
-  const auto built = build_scenario_model(sc);
+  // The model, the integrator and the grid, as the Python module's Simulation steps them (an
+  // unknown integrator, or tolerances for a fixed-step method, fail before any work); the
+  // recorder keeps the energies.
+  ScenarioStepper stepper(sc, /*energy=*/false);
+  ScenarioModel& built_model = stepper.model();
+  const ScenarioModel* built = &built_model;
   const model::SecondOrderSystem& system = built->system();
-  model::State state = model::State::at_rest(system.size());
-  integrator->reset(system, state);
+  const model::State& state = stepper.state();
   summary.setup_s = setup_clock.seconds();
   summary.dofs = system.size();
   summary.roi_nodes = static_cast<Index>(built->roi_nodes.size());
@@ -161,7 +165,7 @@ ScenarioRunSummary run_scenario(const scenario::Scenario& sc, const std::filesys
 
   ResultsRecorder recorder(sc, *built, state, out);
   PeakDisplacement peak(*built);
-  const RunSummary run_summary = integrate(sc, *integrator, state, recorder, peak, out, log);
+  const RunSummary run_summary = integrate(sc, stepper, recorder, peak, out, log);
   for (const auto& stale : recorder.finish(run_summary.stats))
     log << "removed " << stale.string() << ", an earlier run's that was stopped\n";
 
@@ -175,10 +179,10 @@ ScenarioRunSummary run_scenario(const scenario::Scenario& sc, const std::filesys
                 summary.steps, summary.step_s_median * 1e3, ledger.kinetic(), ledger.strain(), ledger.external_work(),
                 ledger.dissipated());
   print_tool_forces(*built, state, ledger, log);
-  if (const auto held = integrator->constraints())
+  if (const auto held = stepper.integrator().constraints())
     log << format("%s: the multipliers' tool forces differ from the residual's by at most %.1e of their peak; drift %.1e mm\n",
                   sc.integrator.c_str(), recorder.multiplier_disagreement(), held->position_drift / mm);
-  print_deformation(check_deformation(*built, peak), peak, sc.dt, log);
+  print_deformation(check_deformation(built_model, peak), peak, sc.dt, log);
   log << "results: " << (out / "results.h5").string() << (recorder.has_fields() ? " (ParaView: results.xdmf)" : "") << '\n';
   return summary;
 }

@@ -11,11 +11,11 @@ namespace roifem::simulation {
 ScenarioStepper::ScenarioStepper(const scenario::Scenario& scenario, bool energy)
     : scenario_(scenario),
       integrator_(scenario_integrator(scenario_)),  // an unknown name fails before any work
-      state_() {
+      state_(),
+      grid_(0.0, scenario_.dt, scenario_.integrator) {
   model_ = build_scenario_model(scenario_);
-  state_ = model::State::at_rest(model_->system().size());
+  state_ = model::State::at_rest(model_->system().size(), grid_.t0());
   integrator_->reset(model_->system(), state_);
-  t0_ = state_.t;
   if (energy) ledger_.emplace(model_->system(), state_, &model_->tools);
   roi_components_ = model_->roi_components();
 }
@@ -37,9 +37,9 @@ long ScenarioStepper::steps_to(double t) const {
     throw InputError(
         io::format("step_to: t = %.9g s is not ahead of the simulation, which is at t = %.9g s (step %ld)", t, state_.t, k_));
   // The last grid point t_k <= t (to within 1e-9 dt), counted without stepping there.
-  const double k = std::floor((t - t0_) / scenario_.dt + 1e-9);
-  if (k > 1e15) throw InputError(io::format("step_to: t = %g s is %.3g steps of dt = %g s away", t, k - k_, scenario_.dt));
-  return static_cast<long>(k) - k_;
+  const double k = std::floor((t - grid_.t0()) / grid_.dt() + 1e-9);
+  if (k > 1e15) throw InputError(io::format("step_to: t = %g s is %.3g steps of dt = %g s away", t, k - static_cast<double>(k_), grid_.dt()));
+  return grid_.last_at_or_before(t) - k_;
 }
 
 long ScenarioStepper::step_to(double t) {

@@ -12,11 +12,12 @@
 #include "model/energy.hpp"
 #include "model/reaction_forces.hpp"
 #include "scenario/scenario.hpp"
+#include "simulation/run_loop.hpp"
 #include "simulation/scenario_model.hpp"
 
 namespace roifem::simulation {
 
-class ScenarioStepper {
+class ScenarioStepper final : public Stepper {
  public:
   /// Builds the scenario's model and integrator (InputError / ModelError as `roifem run`), at rest
   /// at t = 0. `energy`: keep the energy ledger (one product with K and M per step).
@@ -24,7 +25,7 @@ class ScenarioStepper {
 
   /// One step of the scenario's grid: to t_{k+1}. SolverError, naming the integrator, the step and
   /// t, on failure or divergence (integrator.hpp); the state is then that of the failed attempt.
-  void step();
+  void step() override;
   /// Steps along the grid to its last point t_k <= t (to within 1e-9 dt): returns the steps taken.
   /// InputError for a t that is not finite or not ahead of the current time.
   long step_to(double t);
@@ -33,11 +34,14 @@ class ScenarioStepper {
 
   const scenario::Scenario& scenario() const { return scenario_; }
   const ScenarioModel& model() const { return *model_; }
+  /// The model to expand a state on (a reduced model's recovery of its static part is not const).
+  ScenarioModel& model() { return *model_; }
   const integrators::Integrator& integrator() const { return *integrator_; }
-  const model::State& state() const { return state_; }
-  long steps_taken() const { return k_; }
+  const model::State& state() const override { return state_; }
+  long steps_taken() const override { return k_; }
+  integrators::Stats stats() const override { return integrator_->stats(); }
   /// The grid's next time t_{k+1}.
-  double next_time() const { return t0_ + static_cast<double>(k_ + 1) * scenario_.dt; }
+  double next_time() const { return grid_.at(k_ + 1); }
   /// The ledger; nullptr without energy bookkeeping.
   const model::EnergyLedger* energy() const { return ledger_ ? &*ledger_ : nullptr; }
 
@@ -57,7 +61,7 @@ class ScenarioStepper {
   std::unique_ptr<ScenarioModel> model_;
   std::unique_ptr<integrators::Integrator> integrator_;
   model::State state_;
-  double t0_ = 0;
+  model::TimeGrid grid_;  ///< t_k = t_0 + k dt from rest at t_0
   long k_ = 0;
   std::optional<model::EnergyLedger> ledger_;
   std::vector<Index> roi_components_;                 ///< each ROI node's components among the unknowns (-1: fixed)
