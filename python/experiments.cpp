@@ -4,14 +4,20 @@
 // `out`) and return their tables as NumPy structured arrays in a dict.
 #include <pybind11/iostream.h>
 
+#include <cmath>
 #include <ostream>
+#include <span>
+#include <type_traits>
+#include <variant>
 
 #include "bindings.hpp"
 #include "common/errors.hpp"
 #include "common/interrupt.hpp"
 #include "experiments/compare_experiment.hpp"
+#include "experiments/compare_results.hpp"
 #include "experiments/paper_experiment.hpp"
 #include "experiments/roi_size.hpp"
+#include "io/result_table.hpp"
 #include "scenario_handle.hpp"
 
 namespace roifem::python {
@@ -52,6 +58,33 @@ py::object column(const std::vector<Row>& rows, F&& field) {
   py::list out;
   for (const Row& r : rows) out.append(field(r));
   return out;
+}
+
+/// A result table (io/result_table.hpp) as a NumPy structured array, from the same column list
+/// its CSV file is written from: a cell without a figure is NaN, and a flag is 1.0 / 0.0 (so that
+/// a column's dtype does not depend on whether one of its cells is empty).
+template <class Row>
+py::object structured_table(std::span<const io::Column<Row>> columns, const std::vector<Row>& rows) {
+  std::vector<std::string> names;
+  std::vector<py::object> cols;
+  for (const auto& c : columns) {
+    names.emplace_back(c.name);
+    py::list values;
+    for (const Row& row : rows)
+      values.append(std::visit(
+          [](const auto& x) -> py::object {
+            using T = std::decay_t<decltype(x)>;
+            if constexpr (std::is_same_v<T, std::monostate>)
+              return py::float_(std::nan(""));
+            else if constexpr (std::is_same_v<T, bool>)
+              return py::float_(x ? 1.0 : 0.0);
+            else
+              return py::cast(x);
+          },
+          c.value(row)));
+    cols.push_back(values);
+  }
+  return structured_array(names, cols);
 }
 
 std::vector<condensation::Reduction> reductions_of(const std::vector<std::string>& labels) {
@@ -118,26 +151,9 @@ py::dict paper_results(const experiments::PaperResults& r) {
 }
 
 py::dict compare_results(const experiments::CompareResults& r) {
-  const auto& rows = r.rows;
   py::dict d;
-  d["rows"] = structured_array(
-      {"integrator", "mode", "dt_or_tol", "steps", "rhs_evals", "jac_evals", "lin_setups", "lin_solves", "wall_s", "err_max_mm",
-       "err_rms_mm", "energy_drift", "stable", "status"},
-      {column(rows, [](const auto& x) { return x.integrator; }), column(rows, [](const auto& x) { return x.mode; }),
-       column(rows, [](const auto& x) { return x.dt_or_tol; }), column(rows, [](const auto& x) { return x.steps; }),
-       column(rows, [](const auto& x) { return x.rhs_evals; }), column(rows, [](const auto& x) { return x.jac_evals; }),
-       column(rows, [](const auto& x) { return x.lin_setups; }), column(rows, [](const auto& x) { return x.lin_solves; }),
-       column(rows, [](const auto& x) { return x.wall_s; }),
-       // a run that did not finish has no error figures: NaN, not the zeros of its struct
-       column(rows, [](const auto& x) { return x.finished() ? x.err_max_mm : std::nan(""); }),
-       column(rows, [](const auto& x) { return x.finished() ? x.err_rms_mm : std::nan(""); }),
-       column(rows, [](const auto& x) { return x.finished() ? x.energy_drift : std::nan(""); }),
-       column(rows, [](const auto& x) { return x.stable; }), column(rows, [](const auto& x) { return x.status; })});
-  const auto& st = r.stability;
-  d["stability"] =
-      structured_array({"integrator", "predicted_dt", "measured_dt"}, {column(st, [](const auto& x) { return x.integrator; }),
-                                                                       column(st, [](const auto& x) { return x.predicted_dt; }),
-                                                                       column(st, [](const auto& x) { return x.measured_dt; })});
+  d["rows"] = structured_table(experiments::compare_columns(), r.rows);
+  d["stability"] = structured_table(experiments::stability_columns(), r.stability);
   d["omega_max"] = r.omega_max;
   return d;
 }
@@ -236,8 +252,9 @@ void bind_experiments(py::module_& m) {
       py::arg("max_steps") = compare.max_steps, py::arg("max_run_s") = compare.max_run_s, py::arg("plots") = compare.plots,
       py::arg("verbose") = true,
       "Every integrator named (all when empty) on the scenario, as `roifem compare` runs it, against the exact modal "
-      "solution. Returns a dict: rows (integrator, mode, dt_or_tol, counters, wall_s, err_max_mm, err_rms_mm, "
-      "energy_drift, stable, status; NaN errors for a run that did not finish), stability and omega_max.");
+      "solution. Returns a dict: rows (the columns of compare.csv: integrator, mode, dt_or_tol, theoretical_order, "
+      "counters, wall_s, err_max_mm, err_rms_mm, stable (1.0, 0.0, NaN if stopped), energy_drift_rel, status; NaN "
+      "figures for a run that did not finish stably), stability (the columns of stability.csv) and omega_max (rad/s).");
 
   m.def(
       "roi_size",

@@ -178,7 +178,7 @@ void report_pace(const Sweep& w, const std::string& name, std::size_t done, doub
 /// time budget (and is left out of the table).
 bool record_run(Sweep& w, const std::string& name, const std::string& mode, double dt_or_tol,
                 std::unique_ptr<integrators::Integrator> integrator) {
-  CompareRow row{.integrator = name, .mode = mode, .dt_or_tol = dt_or_tol};
+  CompareRow row{.integrator = name, .mode = mode, .dt_or_tol = dt_or_tol, .theoretical_order = row_of(w.o, name).order};
   Stopwatch run_clock;
   try {
     const RunError e = measure(*integrator, w.system, w.ref, w.o.max_run_s);
@@ -284,50 +284,20 @@ void search_stability_limit(Sweep& w, const integrators::IntegratorInfo& info, d
     const double mid = 0.5 * (lo + hi);
     (runs_stably(info, mid, w.system, w.t_end, 10 * w.peak) ? lo : hi) = mid;
   }
-  w.results.stability.push_back({info.name, limit, lo});
+  w.results.stability.push_back(
+      {.integrator = info.name, .omega_max = w.results.omega_max, .predicted_dt = limit, .measured_dt = lo});
   w.log << format("  %-20s stability limit: predicted %.4e s, largest stable found %.4e s (ratio %.3f)\n", info.name.c_str(),
                   limit, lo, lo / limit);
 }
 
-/// tools.csv, for a model with tools: per run, the tools' force error and the constraint drifts.
-void write_tool_figures(const CompareOptions& o, const CompareResults& results) {
-  // tool_force_err_rel: max |F - F_exact| / max |F_exact| over the outputs (F: the multipliers' force
-  // for the DAE forms, the residual of the state otherwise); drifts: max |H u - G| and |H v - G'|
-  // of the DAE forms (0 by construction where the tools are eliminated).
-  io::CsvWriter csv(o.out / "tools.csv", "integrator,mode,dt_or_tol,tool_force_err_rel,position_drift_mm,velocity_drift_mm_s");
-  for (const auto& r : results.rows)
-    if (r.finished() && r.stable)
-      csv.row(format("%s,%s,%.6g,%.6e,%.6e,%.6e", r.integrator.c_str(), r.mode.c_str(), r.dt_or_tol, r.tools.force_error_rel,
-                     r.tools.position_drift_mm, r.tools.velocity_drift_mm_s));
-  csv.close();
+void write_compare_files(const CompareOptions& o, const CompareResults& results) {
+  io::write_csv(o.out / "compare.csv", compare_columns(), results.rows);
+  io::write_csv(o.out / "stability.csv", stability_columns(), results.stability);
 }
 
-void write_compare_files(const CompareOptions& o, const CompareResults& results) {
-  {
-    // dt_or_tol: the fixed step in s, or the relative tolerance rtol (atol = rtol x the exact peak, m);
-    // energy_drift_rel: |E(t_end) - E_exact(t_end)| / E_exact(t_end); status: why a run has no figures.
-    io::CsvWriter csv(o.out / "compare.csv",
-                      "integrator,mode,dt_or_tol,theoretical_order,steps,rhs_evals,jac_evals,lin_setups,lin_solves,wall_s,"
-                      "err_max_mm,err_rms_mm,stable,energy_drift_rel,status");
-    for (const auto& r : results.rows) {
-      const bool figures = r.finished() && r.stable;
-      std::string status = r.status;
-      std::replace(status.begin(), status.end(), '"', '\'');
-      csv.row(format("%s,%s,%.6g,%d,%ld,%ld,%ld,%ld,%ld,%.6g,%s,%s,%s,%s,\"%s\"", r.integrator.c_str(), r.mode.c_str(),
-                     r.dt_or_tol, row_of(o, r.integrator).order, r.steps, r.rhs_evals, r.jac_evals, r.lin_setups, r.lin_solves,
-                     r.wall_s, figures ? format("%.6e", r.err_max_mm).c_str() : "",
-                     figures ? format("%.6e", r.err_rms_mm).c_str() : "",
-                     r.status.starts_with("stopped") ? "" : (r.stable ? "1" : "0"),
-                     figures ? format("%.6e", r.energy_drift).c_str() : "", status.c_str()));
-    }
-    csv.close();
-  }
-  {
-    io::CsvWriter csv(o.out / "stability.csv", "integrator,omega_max_rad_s,predicted_dt_s,largest_stable_dt_s");
-    for (const auto& s : results.stability)
-      csv.row(format("%s,%.6g,%.6e,%.6e", s.integrator.c_str(), results.omega_max, s.predicted_dt, s.measured_dt));
-    csv.close();
-  }
+/// tools.csv, for a model with tools: per run with figures, the tools' force error and the drifts.
+void write_tool_figures(const CompareOptions& o, const CompareResults& results) {
+  io::write_csv(o.out / "tools.csv", tool_columns(), results.rows, [](const CompareRow& r) { return r.has_figures(); });
 }
 
 /// The cheapest run within 0.1 mm, and the cost per step relative to the trapezoidal rule.

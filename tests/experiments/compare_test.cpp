@@ -117,5 +117,17 @@ TEST(Compare, ARunStoppedByTheTimeBudgetKeepsItsRowAndItsReason) {
   EXPECT_NE(rows[0][14].find("--max-run-seconds"), std::string::npos) << rows[0][14];
 }
 
+// docs/results.md lists each table's columns as the one column list has them.
+TEST(CompareResults, TheResultsPageListsEveryTablesColumns) {
+  std::ifstream file(std::string(ROIFEM_SOURCE_DIR) + "/docs/results.md");
+  ASSERT_TRUE(file) << "docs/results.md";
+  std::stringstream text;
+  text << file.rdbuf();
+  const std::string page = text.str();
+  for (const auto& header :
+       {io::csv_header(compare_columns()), io::csv_header(stability_columns()), io::csv_header(tool_columns())})
+    EXPECT_NE(page.find("`" + header + "`"), std::string::npos) << "docs/results.md does not list " << header;
+}
+
 }  // namespace
 }  // namespace roifem::experiments

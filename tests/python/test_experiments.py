@@ -44,6 +44,14 @@ def test_compare_returns_its_rows_and_marks_unfinished_runs(scenarios, tmp_path)
     assert set(rows["integrator"]) == {"trapezoid", "arkode-erk2"}
     csv_rows = read_csv(tmp_path / "compare.csv")
     assert len(csv_rows) == len(rows)
+    # one column list writes both: the same names, in the same order, and the same figures
+    assert list(rows.dtype.names) == list(csv_rows[0].keys())
+    for ours, theirs in zip(rows, csv_rows):
+        assert ours["integrator"] == theirs["integrator"] and ours["steps"] == int(theirs["steps"])
+        if theirs["err_max_mm"]:
+            assert ours["err_max_mm"] == pytest.approx(float(theirs["err_max_mm"]), rel=1e-6)
+    stability = r["stability"]
+    assert list(stability.dtype.names) == list(read_csv(tmp_path / "stability.csv")[0].keys())
     finished = rows[rows["status"] == "ok"]
     assert len(finished) > 0 and np.all(np.isfinite(finished["err_max_mm"]))
     assert np.all(np.isnan(rows[rows["status"] != "ok"]["err_max_mm"]))

@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+/// What `roifem compare` finds (compare_experiment.hpp): a row per run, the stability limits, and
+/// the one column list of each table, which compare.csv, stability.csv, tools.csv and the Python
+/// module's structured arrays all read (io/result_table.hpp).
+#include <span>
+#include <string>
+#include <vector>
+
+#include "io/result_table.hpp"
+
+namespace roifem::experiments {
+
+/// With tools: the tools' force against the exact one, and the DAE forms' constraint drifts.
+struct ToolFigures {
+  double force_error_rel = 0;
+  double position_drift_mm = 0, velocity_drift_mm_s = 0;
+};
+
+struct CompareRow {
+  std::string integrator, mode;
+  double dt_or_tol = 0;
+  int theoretical_order = 0;  ///< the method's (its table row)
+  long steps = 0, rhs_evals = 0, jac_evals = 0, lin_setups = 0, lin_solves = 0;
+  double wall_s = 0, err_max_mm = 0, err_rms_mm = 0, energy_drift = 0;
+  ToolFigures tools;  ///< with tools (tools.csv)
+  bool stable = true;
+  /// "ok", "diverged: <the solver's message>" or "stopped at t = ... s after ... s (--max-run-seconds)":
+  /// a run that did not finish keeps its row, with this reason, and no error figures.
+  std::string status = "ok";
+  bool finished() const { return status == "ok"; }
+  /// The run has error figures: it finished, and stably.
+  bool has_figures() const { return finished() && stable; }
+};
+
+struct StabilityRow {
+  std::string integrator;
+  double omega_max = 0;  ///< rad/s, of the integrated system
+  double predicted_dt = 0, measured_dt = 0;
+};
+
+struct CompareResults {
+  std::vector<CompareRow> rows;
+  std::vector<StabilityRow> stability;
+  double omega_max = 0;  ///< rad/s, of the integrated system
+};
+
+/// compare.csv: a row per run.
+std::span<const io::Column<CompareRow>> compare_columns();
+/// stability.csv: a row per explicit method.
+std::span<const io::Column<StabilityRow>> stability_columns();
+/// tools.csv, with tools: a row per run that has figures.
+std::span<const io::Column<CompareRow>> tool_columns();
+
+}  // namespace roifem::experiments
