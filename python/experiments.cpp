@@ -16,6 +16,7 @@
 #include "experiments/compare_experiment.hpp"
 #include "experiments/compare_results.hpp"
 #include "experiments/paper_experiment.hpp"
+#include "experiments/paper_results.hpp"
 #include "experiments/roi_size.hpp"
 #include "io/result_table.hpp"
 #include "scenario_handle.hpp"
@@ -101,51 +102,15 @@ std::vector<std::string> labels_of(const std::vector<condensation::Reduction>& r
 }
 
 py::dict paper_results(const experiments::PaperResults& r) {
-  // One row per curve and step: every reduction, every setup and ramp.
-  struct ErrorRow {
-    const experiments::PaperCurve* curve;
-    long step;
-  };
-  std::vector<ErrorRow> errors;
-  for (const auto& c : r.reduction_curves)
-    for (std::size_t k = 0; k < c.max_mm.size(); ++k) errors.push_back({&c, static_cast<long>(k + 1)});
-  const bool forces = !errors.empty() && !errors.front().curve->force_err_mN.empty();
-  std::vector<std::string> names{"setup", "reduction", "static_condensation", "ramp_s", "step", "mean_mm", "max_mm"};
-  std::vector<py::object> cols{
-      column(errors, [](const ErrorRow& e) { return e.curve->setup; }),
-      column(errors, [](const ErrorRow& e) { return e.curve->reduction; }),
-      column(errors, [](const ErrorRow& e) { return e.curve->static_condensation; }),
-      column(errors, [](const ErrorRow& e) { return e.curve->ramp_s; }),
-      column(errors, [](const ErrorRow& e) { return e.step; }),
-      column(errors, [](const ErrorRow& e) { return e.curve->mean_mm[static_cast<std::size_t>(e.step - 1)]; }),
-      column(errors, [](const ErrorRow& e) { return e.curve->max_mm[static_cast<std::size_t>(e.step - 1)]; })};
-  if (forces) {
-    names.insert(names.end(), {"force_err_mN", "force_full_mN"});
-    cols.push_back(column(errors, [](const ErrorRow& e) { return e.curve->force_err_mN[static_cast<std::size_t>(e.step - 1)]; }));
-    cols.push_back(
-        column(errors, [](const ErrorRow& e) { return e.curve->force_full_mN[static_cast<std::size_t>(e.step - 1)]; }));
-  }
   py::dict d;
-  d["drive"] = r.drive == experiments::PaperDrive::forces ? "forces" : "spatulas";
   d["force_N"] = r.force_N;
   d["opening_mm"] = r.opening_mm;
-  d["errors"] = structured_array(names, cols);
-  const auto& t = r.timing;
-  d["timing"] = structured_array(
-      {"model", "nodes", "dofs", "step_s_median", "step_s_p99", "setup_s"},
-      {column(t, [](const auto& x) { return x.model; }), column(t, [](const auto& x) { return x.nodes; }),
-       column(t, [](const auto& x) { return x.dofs; }), column(t, [](const auto& x) { return x.step_s_median; }),
-       column(t, [](const auto& x) { return x.step_s_p99; }), column(t, [](const auto& x) { return x.setup_s; })});
-  const auto& red = r.reductions;
-  d["reductions"] = structured_array(
-      {"setup", "reduction", "static_condensation", "dofs", "extra_dofs", "ramp_s", "peak_max_mm", "steady_mean_mm",
-       "step_s_median", "setup_s", "peak_force_err_mN"},
-      {column(red, [](const auto& x) { return x.setup; }), column(red, [](const auto& x) { return x.reduction; }),
-       column(red, [](const auto& x) { return x.static_condensation; }), column(red, [](const auto& x) { return x.dofs; }),
-       column(red, [](const auto& x) { return x.extra_dofs; }), column(red, [](const auto& x) { return x.ramp_s; }),
-       column(red, [](const auto& x) { return x.peak_max_mm; }), column(red, [](const auto& x) { return x.steady_mean_mm; }),
-       column(red, [](const auto& x) { return x.step_s_median; }), column(red, [](const auto& x) { return x.setup_s; }),
-       column(red, [](const auto& x) { return x.peak_force_err_mN; })});
+  const auto steps = experiments::paper_steps(r);
+  d["errors"] = structured_table(experiments::error_columns(), steps);
+  if (r.drive == experiments::PaperDrive::spatulas)
+    d["force_errors"] = structured_table(experiments::force_error_columns(), steps);
+  d["timing"] = structured_table(experiments::timing_columns(), r.timing);
+  d["reductions"] = structured_table(experiments::reduction_columns(), r.reductions);
   d["interface_nodes"] = r.interface_nodes;
   return d;
 }
@@ -159,20 +124,10 @@ py::dict compare_results(const experiments::CompareResults& r) {
 }
 
 py::dict roi_size_results(const experiments::RoiSizeResults& r) {
-  const auto& rows = r.rows;
   py::dict d;
-  d["rows"] = structured_array(
-      {"reduction", "found", "nodes", "dofs", "peak_max_mm", "step_s_median", "missing_from", "missing_to", "holds_below"},
-      {column(rows, [](const auto& x) { return x.reduction; }), column(rows, [](const auto& x) { return x.found; }),
-       column(rows, [](const auto& x) { return x.nodes; }), column(rows, [](const auto& x) { return x.dofs; }),
-       column(rows, [](const auto& x) { return x.peak_max_mm; }), column(rows, [](const auto& x) { return x.step_s_median; }),
-       column(rows, [](const auto& x) { return x.missing_from; }), column(rows, [](const auto& x) { return x.missing_to; }),
-       column(rows, [](const auto& x) { return x.holds_below; })});
+  d["rows"] = structured_table(experiments::roi_size_columns(), r.rows);
   py::dict probes;
-  for (const auto& row : rows)
-    probes[row.reduction.c_str()] =
-        structured_array({"nodes", "peak_max_mm"}, {column(row.probes, [](const auto& p) { return p.nodes; }),
-                                                    column(row.probes, [](const auto& p) { return p.peak_max_mm; })});
+  for (const auto& row : r.rows) probes[row.reduction.c_str()] = structured_table(experiments::roi_size_run_columns(), experiments::runs_of(row));
   d["probes"] = probes;
   d["target_mm"] = std::vector<double>{r.target.x() / mm, r.target.y() / mm, r.target.z() / mm};
   d["free_nodes"] = r.free_nodes;
@@ -227,8 +182,9 @@ void bind_experiments(py::module_& m) {
       py::arg("timing_steps") = paper.timing_steps, py::arg("field_every") = paper.field_every, py::arg("plots") = paper.plots,
       py::arg("error_budget") = paper.error_budget, py::arg("verbose") = true,
       "Hansen & Larsen's experiment, as `roifem paper` runs it (its files go to `out`). Returns a dict: force_N, "
-      "opening_mm, errors (per setup, reduction, ramp and step: mean_mm, max_mm), timing (Table 2), reductions "
-      "(one row per setup and reduction at the fastest ramp) and interface_nodes.");
+      "opening_mm, errors (errors.csv's columns: per setup, reduction, ramp and step, mean_mm and max_mm), "
+      "force_errors (driven by spatulas: force_errors.csv's), timing (Table 2: timing.csv's), reductions "
+      "(reductions.csv's: one row per setup and reduction at the fastest ramp) and interface_nodes.");
 
   m.def(
       "compare",
@@ -280,7 +236,8 @@ void bind_experiments(py::module_& m) {
       py::arg("resolution") = roi_size.resolution, py::arg("timing_steps") = roi_size.timing_steps, py::arg("out") = py::none(),
       py::arg("verbose") = true,
       "The smallest ROI around the scenario's target from which every larger one keeps the error within "
-      "max_error_mm, per reduction, as `roifem roi-size` finds it. Returns a dict: rows, probes (per reduction: "
+      "max_error_mm, per reduction, as `roifem roi-size` finds it. Returns a dict: rows (roi_size.csv's columns), probes (per "
+      "reduction: roi_size_runs.csv's rows, "
       "every size tried and its error), target_mm, free_nodes, full_step_s_median, and the scenario's own ROI.");
 }
 

@@ -14,18 +14,15 @@
 /// force the surgeon feels (each spatula's force on the tissue, condensed against full).
 #include <filesystem>
 #include <iosfwd>
-#include <optional>
 #include <string>
 #include <vector>
 
 #include "common/types.hpp"
 #include "condensation/reduction.hpp"
 #include "experiments/error_budget.hpp"
+#include "experiments/paper_results.hpp"
 
 namespace roifem::experiments {
-
-/// What widens the opening: the paper's two forces, or two spatulas that move its walls.
-enum class PaperDrive { forces, spatulas };
 
 struct PaperOptions {
   std::filesystem::path mesh;      ///< the 800-node brain (meshes/brain-800.msh)
@@ -55,51 +52,8 @@ struct PaperOptions {
                                                   condensation::parse_reduction("pod-40")};
 };
 
-struct PaperCurve {  ///< one setup, one reduction, one ramp
-  std::string setup;
-  bool static_condensation = true;   ///< the paper's reduction
-  std::string reduction = "static";  ///< its label
-  double ramp_s = 0;
-  std::vector<double> mean_mm, max_mm;  ///< per step 1..steps
-  /// Spatulas only, per step: the largest of the spatulas' force errors |F_reduced - F_full| and
-  /// the largest force |F_full| (mN).
-  std::vector<double> force_err_mN, force_full_mN;
-};
-
-struct PaperTiming {
-  std::string model;
-  Index nodes = 0, dofs = 0;
-  double step_s_median = 0, step_s_p99 = 0, setup_s = 0;
-};
-
-struct ReductionRow {               ///< one setup, one reduction, at the fastest (first) ramp
-  std::string setup, reduction;     ///< reduction: its label
-  bool static_condensation = true;  ///< the paper's reduction
-  Index dofs = 0, extra_dofs = 0;   ///< of the reduced system; beyond the ROI's own
-  double ramp_s = 0, peak_max_mm = 0, steady_mean_mm = 0;
-  double step_s_median = 0, setup_s = 0;
-  double peak_force_err_mN = 0;  ///< spatulas only
-};
-
-struct PaperResults {
-  PaperDrive drive = PaperDrive::forces;
-  double force_N = 0;                        ///< per wall: applied, or (spatulas) held at rest
-  double opening_mm = 0;                     ///< static widening it gives
-  std::vector<PaperCurve> curves;            ///< static condensation (the paper's), setup-major
-  std::vector<PaperCurve> reduction_curves;  ///< every reduction (static included), every setup and ramp
-  std::vector<ReductionRow> reductions;
-  std::vector<PaperTiming> timing;     ///< full first, then the setups
-  std::vector<Index> interface_nodes;  ///< per setup
-  std::optional<ErrorBudget> budget;   ///< forces drive, when asked
-};
-
 /// Runs the experiment, writes errors.csv, timing.csv, results.h5, results.xdmf and (if asked and
 /// Python with matplotlib is there) the PNG plots into options.out; progress and Table 2 go to `log`.
 PaperResults run_paper_experiment(const PaperOptions& options, std::ostream& log);
-
-/// Hansen & Larsen's Table 2 (1998 hardware): seconds per step.
-inline constexpr double paper_full_step_s = 0.440, paper_setup1_step_s = 0.071, paper_setup2_step_s = 0.037;
-/// The paper's Fig. 6: setup 1's max error at the 0.5 s ramp peaks at about 6 mm (mm).
-inline constexpr double paper_peak_max_error_mm = 6.0;
 
 }  // namespace roifem::experiments

@@ -5,25 +5,11 @@
 #include <ostream>
 
 #include "common/number_text.hpp"
-#include "io/csv.hpp"
+#include "io/result_table.hpp"
 
 namespace roifem::experiments {
 
 using io::format;
-
-namespace {
-
-double mean_after_step_100(const std::vector<double>& values) {
-  double sum = 0;
-  long count = 0;
-  for (std::size_t k = 100; k < values.size(); ++k, ++count) sum += values[k];
-  return count ? sum / static_cast<double>(count) : 0.0;
-}
-
-}  // namespace
-
-double steady_mean(const PaperCurve& c) { return mean_after_step_100(c.mean_mm); }
-double steady_force_err(const PaperCurve& c) { return mean_after_step_100(c.force_err_mN); }
 
 namespace {
 
@@ -42,13 +28,13 @@ void print_reductions(const PaperResults& r, std::ostream& log) {
     log << format("  %-7s %-18s %5lld %6lld %15.4f %17.5f %11.4f %8.2fx %8.1fx", row.setup.c_str(), row.reduction.c_str(),
                   static_cast<long long>(row.dofs), static_cast<long long>(row.extra_dofs), row.peak_max_mm, row.steady_mean_mm,
                   row.step_s_median * 1e3, row.step_s_median / plain.step_s_median, plain.peak_max_mm / row.peak_max_mm);
-    log << (spatulas ? format(" %16.4f\n", row.peak_force_err_mN) : std::string("\n"));
+    log << (spatulas ? format(" %16.4f\n", row.peak_force_err_mN.value_or(0.0)) : std::string("\n"));
   }
   log << "  (vs static: step cost relative to plain condensation; peak /: how many times lower the peak is"
       << (spatulas ? ";\n   force err: the peak of the spatulas' force error)\n" : ")\n");
 }
 
-void print_findings(const PaperOptions& o, const PaperResults& r, std::ostream& log) {
+void print_findings(const PaperResults& r, std::ostream& log) {
   log << "\nFindings (Hansen & Larsen 1998, Section 5), checked on this run"
       << (r.drive == PaperDrive::spatulas ? ", driven by spatulas:\n" : ":\n");
   bool steady_ok = true;
@@ -61,11 +47,11 @@ void print_findings(const PaperOptions& o, const PaperResults& r, std::ostream& 
   }
   log << format("  [%s] steady-state mean error below 0.2 mm for every ramp and setup\n", steady_ok ? "yes" : "NO");
   bool ramp_order = true, setup_order = true;
-  const std::size_t n_ramps = o.ramps_s.size();
-  for (std::size_t s = 0; s < o.setup_nodes.size(); ++s)
+  const std::size_t n_ramps = r.ramps_s.size(), n_setups = n_ramps ? r.curves.size() / n_ramps : 0;
+  for (std::size_t s = 0; s < n_setups; ++s)
     for (std::size_t k = 0; k + 1 < n_ramps; ++k)
       ramp_order = ramp_order && peak(r.curves[s * n_ramps + k].max_mm) > peak(r.curves[s * n_ramps + k + 1].max_mm);
-  for (std::size_t k = 0; k < n_ramps && o.setup_nodes.size() > 1; ++k)
+  for (std::size_t k = 0; k < n_ramps && n_setups > 1; ++k)
     setup_order = setup_order && peak(r.curves[n_ramps + k].max_mm) > peak(r.curves[k].max_mm);
   log << format("  [%s] the faster the ramp, the higher the max-error peak (0.5 s highest, 2 s lowest)\n",
                 ramp_order ? "yes" : "NO");
@@ -123,46 +109,19 @@ void print_table2(const PaperResults& r, std::ostream& log) {
 
 }  // namespace
 
-void print_paper_report(const PaperOptions& o, const PaperResults& r, std::ostream& log) {
-  print_findings(o, r, log);
+void print_paper_report(const PaperResults& r, std::ostream& log) {
+  print_findings(r, log);
   print_tool_forces(r, log);
   print_table2(r, log);
   print_reductions(r, log);
 }
 
-void write_paper_tables(const PaperOptions& o, const PaperResults& results) {
-  {
-    io::CsvWriter csv(o.out / "errors.csv", "setup,reduction,ramp_s,step,time_s,mean_mm,max_mm");
-    for (const auto& c : results.reduction_curves)
-      for (std::size_t k = 0; k < c.mean_mm.size(); ++k)
-        csv.row(format("%s,%s,%g,%zu,%.4f,%.9g,%.9g", c.setup.c_str(), c.reduction.c_str(), c.ramp_s, k + 1,
-                       static_cast<double>(k + 1) * o.dt, c.mean_mm[k], c.max_mm[k]));
-    csv.close();
-  }
-  {
-    io::CsvWriter csv(o.out / "reductions.csv",
-                      "setup,reduction,dofs,extra_dofs,ramp_s,peak_max_mm,steady_mean_mm,step_s_median,setup_s");
-    for (const auto& r : results.reductions)
-      csv.row(format("%s,%s,%lld,%lld,%g,%.9g,%.9g,%.6e,%.6e", r.setup.c_str(), r.reduction.c_str(),
-                     static_cast<long long>(r.dofs), static_cast<long long>(r.extra_dofs), r.ramp_s, r.peak_max_mm,
-                     r.steady_mean_mm, r.step_s_median, r.setup_s));
-    csv.close();
-  }
-  {
-    io::CsvWriter csv(o.out / "timing.csv", "model,nodes,dofs,step_s_median,frame_rate_hz");
-    for (const auto& t : results.timing)
-      csv.row(format("%s,%lld,%lld,%.6e,%.1f", t.model.c_str(), static_cast<long long>(t.nodes), static_cast<long long>(t.dofs),
-                     t.step_s_median, 1.0 / t.step_s_median));
-    csv.close();
-  }
-  if (results.drive == PaperDrive::spatulas) {
-    io::CsvWriter csv(o.out / "force_errors.csv", "setup,reduction,ramp_s,step,time_s,force_full_mN,force_err_mN");
-    for (const auto& c : results.reduction_curves)
-      for (std::size_t k = 0; k < c.force_err_mN.size(); ++k)
-        csv.row(format("%s,%s,%g,%zu,%.4f,%.9g,%.9g", c.setup.c_str(), c.reduction.c_str(), c.ramp_s, k + 1,
-                       static_cast<double>(k + 1) * o.dt, c.force_full_mN[k], c.force_err_mN[k]));
-    csv.close();
-  }
+void write_paper_tables(const PaperResults& results, const std::filesystem::path& out) {
+  const auto steps = paper_steps(results);
+  io::write_csv(out / "errors.csv", error_columns(), steps);
+  io::write_csv(out / "reductions.csv", reduction_columns(), results.reductions);
+  io::write_csv(out / "timing.csv", timing_columns(), results.timing);
+  if (results.drive == PaperDrive::spatulas) io::write_csv(out / "force_errors.csv", force_error_columns(), steps);
 }
 
 }  // namespace roifem::experiments

@@ -2,6 +2,8 @@
 #include "experiments/roi_size.hpp"
 
 #include <algorithm>
+#include <array>
+#include <iterator>
 #include <cmath>
 #include <ostream>
 
@@ -12,7 +14,7 @@
 #include "condensation/reduced_model.hpp"
 #include "experiments/roi_error.hpp"
 #include "integrators/factory.hpp"
-#include "io/csv.hpp"
+#include "io/result_table.hpp"
 #include "simulation/progress.hpp"
 #include "simulation/run_loop.hpp"
 #include "simulation/scenario_model.hpp"
@@ -87,27 +89,44 @@ class ErrorProbe {
   std::vector<Vector> reference_;
 };
 
+using io::Cell;
+using io::Column;
+
+const std::array<Column<RoiSizeRow>, 11> roi_size_table{{
+    {"reduction", "the static part's reduction", [](const RoiSizeRow& r) -> Cell { return r.reduction; }},
+    {"found", "1: a size from which every larger ROI tried holds", [](const RoiSizeRow& r) -> Cell { return r.found; }},
+    {"nodes", "that size: the ROI's nodes", [](const RoiSizeRow& r) -> Cell { return static_cast<long>(r.nodes); }},
+    {"dofs", "the reduced system's degrees of freedom there", [](const RoiSizeRow& r) -> Cell { return static_cast<long>(r.dofs); }},
+    {"peak_max_mm", "its peak max error over the run (mm)", [](const RoiSizeRow& r) -> Cell { return r.peak_max_mm; }, "%.9g"},
+    {"step_s_median", "its median step cost (s)", [](const RoiSizeRow& r) -> Cell { return r.step_s_median; }, "%.6e"},
+    {"evaluations", "the sizes tried", [](const RoiSizeRow& r) -> Cell { return static_cast<long>(r.probes.size()); }},
+    {"max_error_mm", "the budget (mm)", [](const RoiSizeRow& r) -> Cell { return r.max_error_mm; }, "%g"},
+    {"misses_from", "the smallest size tried that misses the budget (0: none)",
+     [](const RoiSizeRow& r) -> Cell { return static_cast<long>(r.missing_from); }},
+    {"misses_to", "the largest size tried that misses it (0: none)",
+     [](const RoiSizeRow& r) -> Cell { return static_cast<long>(r.missing_to); }},
+    {"holds_below", "the largest size below the misses that holds (0: none; else the error is not monotone in the size)",
+     [](const RoiSizeRow& r) -> Cell { return static_cast<long>(r.holds_below); }},
+}};
+
+const std::array<Column<RoiSizeRun>, 4> roi_size_run_table{{
+    {"reduction", "the static part's reduction", [](const RoiSizeRun& r) -> Cell { return r.row->reduction; }},
+    {"nodes", "the ROI's nodes", [](const RoiSizeRun& r) -> Cell { return static_cast<long>(r.probe.nodes); }},
+    {"peak_max_mm", "the peak max error over the run (mm)", [](const RoiSizeRun& r) -> Cell { return r.probe.peak_max_mm; },
+     "%.9g"},
+    {"within_budget", "1: peak_max_mm <= the budget",
+     [](const RoiSizeRun& r) -> Cell { return r.probe.holds(r.row->max_error_mm); }},
+}};
+
 /// The two result tables, rewritten (atomically) after every run, so that a search stopped early
 /// keeps what it found.
-void write_files(const std::filesystem::path& out, const RoiSizeResults& results, const RoiSizeRow* current, double budget) {
+void write_files(const std::filesystem::path& out, const RoiSizeResults& results, const RoiSizeRow* current) {
   if (out.empty()) return;
-  io::CsvWriter runs(out / "roi_size_runs.csv", "reduction,nodes,peak_max_mm,within_budget");
-  auto probes = [&](const RoiSizeRow& row) {
-    for (const auto& p : row.probes)
-      runs.row(format("%s,%lld,%.9g,%d", row.reduction.c_str(), static_cast<long long>(p.nodes), p.peak_max_mm, p.holds(budget)));
-  };
-  for (const auto& row : results.rows) probes(row);
-  if (current) probes(*current);
-  runs.close();
-  io::CsvWriter csv(
-      out / "roi_size.csv",
-      "reduction,found,nodes,dofs,peak_max_mm,step_s_median,evaluations,max_error_mm,misses_from,misses_to,holds_below");
-  for (const auto& r : results.rows)
-    csv.row(format("%s,%d,%lld,%lld,%.9g,%.6e,%zu,%g,%lld,%lld,%lld", r.reduction.c_str(), r.found ? 1 : 0,
-                   static_cast<long long>(r.nodes), static_cast<long long>(r.dofs), r.peak_max_mm, r.step_s_median,
-                   r.probes.size(), budget, static_cast<long long>(r.missing_from), static_cast<long long>(r.missing_to),
-                   static_cast<long long>(r.holds_below)));
-  csv.close();
+  std::vector<RoiSizeRun> runs;
+  for (const auto& row : results.rows) std::ranges::copy(runs_of(row), std::back_inserter(runs));
+  if (current) std::ranges::copy(runs_of(*current), std::back_inserter(runs));
+  io::write_csv(out / "roi_size_runs.csv", roi_size_run_columns(), runs);
+  io::write_csv(out / "roi_size.csv", roi_size_columns(), results.rows);
 }
 
 /// The answer from the probes: the smallest size tried above every miss, and the stretch below.
@@ -138,11 +157,11 @@ class Search {
         results_(results) {}
 
   RoiSizeRow find(const condensation::Reduction& reduction) {
-    RoiSizeRow row{.reduction = reduction.label()};
+    RoiSizeRow row{.reduction = reduction.label(), .max_error_mm = o_.max_error_mm};
     auto holds = [&](Index n) {
       const auto reduced = probe_.reduce(n, reduction);
       row.probes.push_back({n, probe_.peak_error_mm(*reduced)});
-      write_files(o_.out, results_, &row, o_.max_error_mm);
+      write_files(o_.out, results_, &row);
       progress_.update(++runs_, format("%s: %lld nodes %.4f mm", row.reduction.c_str(), static_cast<long long>(n),
                                        row.probes.back().peak_max_mm));
       return row.probes.back().holds(o_.max_error_mm);
@@ -261,7 +280,7 @@ RoiSizeResults run_roi_size(const RoiSizeOptions& o, std::ostream& log) {
   Search search(o, probe, results.free_nodes, results);
   for (const auto& reduction : o.reductions) {
     results.rows.push_back(search.find(reduction));
-    write_files(o.out, results, nullptr, o.max_error_mm);
+    write_files(o.out, results, nullptr);
     log << row_text(results.rows.back()) << std::flush;
   }
   print_summary(results, o.max_error_mm, log);
@@ -269,5 +288,14 @@ RoiSizeResults run_roi_size(const RoiSizeOptions& o, std::ostream& log) {
     log << "results: " << (o.out / "roi_size.csv").string() << ", " << (o.out / "roi_size_runs.csv").string() << '\n';
   return results;
 }
+
+std::vector<RoiSizeRun> runs_of(const RoiSizeRow& row) {
+  std::vector<RoiSizeRun> runs;
+  for (const auto& p : row.probes) runs.push_back({&row, p});
+  return runs;
+}
+
+std::span<const io::Column<RoiSizeRow>> roi_size_columns() { return roi_size_table; }
+std::span<const io::Column<RoiSizeRun>> roi_size_run_columns() { return roi_size_run_table; }
 
 }  // namespace roifem::experiments

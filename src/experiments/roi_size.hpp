@@ -19,10 +19,12 @@
 /// answer that hold are reported as the non-monotone stretch.
 #include <filesystem>
 #include <iosfwd>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "condensation/reduction.hpp"
+#include "io/result_table.hpp"
 #include "scenario/scenario.hpp"
 
 namespace roifem::experiments {
@@ -49,6 +51,7 @@ struct RoiSizeProbe {
 
 struct RoiSizeRow {
   std::string reduction;
+  double max_error_mm = 0;    ///< the budget searched for
   bool found = false;         ///< false: even the whole brain as ROI misses the budget (it cannot: error 0)
   Index nodes = 0, dofs = 0;  ///< the answer: every size tried from `nodes` up holds
   double peak_max_mm = 0, step_s_median = 0;
@@ -66,6 +69,20 @@ struct RoiSizeResults {
   double scenario_peak_max_mm = 0;  ///< its own error with its own reduction
   std::vector<RoiSizeRow> rows;
 };
+
+/// One size tried: a row of roi_size_runs.csv.
+struct RoiSizeRun {
+  const RoiSizeRow* row = nullptr;  ///< the search it belongs to
+  RoiSizeProbe probe;
+};
+/// Every size `row` tried, in the order tried.
+std::vector<RoiSizeRun> runs_of(const RoiSizeRow& row);
+
+/// roi_size.csv, a row per reduction, and roi_size_runs.csv, a row per size tried: the one column
+/// list of each, which the CSV files and the Python module's structured arrays read
+/// (io/result_table.hpp).
+std::span<const io::Column<RoiSizeRow>> roi_size_columns();
+std::span<const io::Column<RoiSizeRun>> roi_size_run_columns();
 
 /// Throws InputError for a scenario without an ROI target ([roi] kind = ball or nearest), a
 /// non-positive budget or an unknown reduction or integrator.
