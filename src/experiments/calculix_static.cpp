@@ -3,7 +3,7 @@
 
 #include <cstdlib>
 #include <fstream>
-#include <map>
+#include <algorithm>
 #include <ostream>
 #include <sstream>
 
@@ -16,6 +16,37 @@ namespace fs = std::filesystem;
 using io::format;
 
 namespace {
+
+/// CalculiX's Newton controls (*CONTROLS, PARAMETERS=FIELD): R_n and C_n (the residual against the
+/// mean force, the correction against the increment), q0 and qu left to CalculiX, R_P at its
+/// default 0.02, and epsilon, below which it takes the residual for zero and converges whatever the
+/// correction (default 1e-5: the 10-node brain's increments then stop after two iterations with a
+/// 1-3% correction, 3e-5 off), then C_epsilon and C_f at their defaults.
+std::string field_controls(double tolerance) {
+  return format("*CONTROLS, PARAMETERS=FIELD\n%.3g, %.3g, 0, 0, 0.02, %.3g, 1e-3, 1e-8\n", tolerance, tolerance, tolerance);
+}
+
+/// The nodal forces at `scale` of the full load.
+void write_loads(const CalculixProblem& p, double scale, std::ostream& out) {
+  out << "*CLOAD\n";
+  for (Index n = 0; n < p.mesh->num_nodes(); ++n)
+    for (int c = 0; c < 3; ++c)
+      if (const double f = p.forces[3 * n + c] * scale; f != 0)
+        out << format("%lld, %d, %.13g\n", static_cast<long long>(n) + 1, c + 1, f);
+}
+
+/// One *STEP per fraction, each ramping the load from the previous fraction's to its own over its
+/// step time 0..1 and printing the displacements at its end.
+void write_steps(const CalculixProblem& p, const std::vector<double>& fractions, bool nlgeom, std::ostream& out) {
+  out << "*TIME POINTS, NAME=END\n1.0\n";
+  for (const double f : fractions) {
+    out << (nlgeom ? "*STEP, NLGEOM, INC=10000\n" : "*STEP\n") << "*STATIC\n0.05, 1.0, 1e-6, 0.05\n";
+    if (p.newton_tolerance > 0)
+      out << field_controls(p.newton_tolerance);
+    write_loads(p, f, out);
+    out << "*NODE PRINT, NSET=NALL, TIME POINTS=END\nU\n*END STEP\n";
+  }
+}
 
 /// The deck, in mm, N and MPa. Node and element numbers are 1-based; roifem's positive
 /// orientation is C3D4's. Numbers keep 13 digits: ccx reads a field of at most 20 characters.
@@ -43,8 +74,19 @@ void write_deck(const CalculixProblem& p, const std::vector<double>& fractions, 
   out << "*BOUNDARY\n";
   if (!p.fixed_nodes.empty()) out << "FIXED, 1, 3\n";
   for (const auto& [node, c] : p.held_components) out << format("%d, %d, %d\n", node + 1, c + 1, c + 1);
-  out << "*MATERIAL, NAME=TISSUE\n*ELASTIC\n" << format("%.13g, %.13g\n", p.material.young() * 1e-6, p.material.poisson());
+  out << "*MATERIAL, NAME=TISSUE\n";
+  if (p.material.model == fem::MaterialModel::neo_hookean) {
+    const double kappa = p.material.lambda + 2 * p.material.mu / 3;  // Pa
+    out << "*HYPERELASTIC, NEO HOOKE\n" << format("%.13g, %.13g\n", p.material.mu / 2 * 1e-6, 2 / (kappa * 1e-6));
+  } else {
+    out << "*ELASTIC\n" << format("%.13g, %.13g\n", p.material.young() * 1e-6, p.material.poisson());
+  }
   out << "*SOLID SECTION, ELSET=EALL, MATERIAL=TISSUE\n";
+  if (p.step_per_fraction) {
+    write_steps(p, fractions, nlgeom, out);
+    if (!out.flush()) throw InputError(file.string() + ": cannot write the CalculiX deck");
+    return;
+  }
   // The load is scaled to the largest fraction and ramped over the step time 0..1; the time
   // points are the fractions over it.
   const double top = fractions.back();
@@ -52,26 +94,24 @@ void write_deck(const CalculixProblem& p, const std::vector<double>& fractions, 
   for (double f : fractions) out << format("%.13g\n", f / top);
   out << (nlgeom ? "*STEP, NLGEOM, INC=10000\n" : "*STEP\n");
   out << format("*STATIC\n%.6g, 1.0, 1e-6, %.6g\n", fractions.front() / top / 2, fractions.front() / top);
-  out << "*CLOAD\n";
-  for (Index n = 0; n < mesh.num_nodes(); ++n)
-    for (int c = 0; c < 3; ++c)
-      if (const double f = p.forces[3 * n + c] * top; f != 0)
-        out << format("%lld, %d, %.13g\n", static_cast<long long>(n) + 1, c + 1, f);
+  if (p.newton_tolerance > 0)
+    out << field_controls(p.newton_tolerance);
+  write_loads(p, top, out);
   out << "*NODE PRINT, NSET=NALL, TIME POINTS=FRACTIONS\nU\n*END STEP\n";
   if (!out.flush()) throw InputError(file.string() + ": cannot write the CalculiX deck");
 }
 
-/// The displacement blocks of the .dat file, by step time.
-std::map<double, Vector> read_dat(const fs::path& file, Index nodes) {
+/// The displacement blocks of the .dat file, in the order printed, with their times.
+std::vector<std::pair<double, Vector>> read_dat(const fs::path& file, Index nodes) {
   std::ifstream in(file);
-  std::map<double, Vector> blocks;
+  std::vector<std::pair<double, Vector>> blocks;
   Vector* current = nullptr;
   std::string line;
   while (std::getline(in, line)) {
     if (line.find("displacements (vx,vy,vz)") != std::string::npos) {
       const auto at = line.find("time");
       const double t = std::stod(line.substr(at + 4));
-      current = &blocks.emplace(t, Vector::Zero(3 * nodes)).first->second;
+      current = &blocks.emplace_back(t, Vector::Zero(3 * nodes)).second;
       continue;
     }
     std::istringstream fields(line);
@@ -109,11 +149,17 @@ std::vector<CalculixSolution> solve_with_calculix(const CalculixProblem& p, cons
   const auto blocks = read_dat(work_dir / (job + ".dat"), nodes);
   std::vector<CalculixSolution> solutions;
   const double top = fractions.back();
-  for (double f : fractions) {
+  for (std::size_t i = 0; i < fractions.size(); ++i) {
+    if (p.step_per_fraction) {  // one block per step, in order
+      if (i >= blocks.size()) break;
+      solutions.push_back({fractions[i], blocks[i].second});
+      continue;
+    }
     // ccx prints the step time with 7 digits.
-    const auto it = blocks.lower_bound(f / top - 1e-6);
-    if (it == blocks.end() || std::abs(it->first - f / top) > 1e-6) break;
-    solutions.push_back({f, it->second});
+    const double t = fractions[i] / top;
+    const auto it = std::find_if(blocks.begin(), blocks.end(), [&](const auto& b) { return std::abs(b.first - t) <= 1e-6; });
+    if (it == blocks.end()) break;
+    solutions.push_back({fractions[i], it->second});
   }
   if (solutions.empty())
     throw SolverError(

@@ -6,6 +6,8 @@
 #include <string>
 #include <string_view>
 
+#include "fem/material_model.hpp"
+
 namespace roifem::fem {
 
 struct Material {
@@ -13,6 +15,8 @@ struct Material {
   double mu = 0;      ///< Pa (shear modulus)
   double rho = 0;     ///< kg/m^3
   double alpha = 0;   ///< 1/s, C = alpha M
+  /// The constitutive law (fem/material_model.hpp); lambda and mu are its small-strain moduli.
+  MaterialModel model = MaterialModel::linear;
 
   static Material from_young_poisson(double young, double poisson, double rho, double alpha);
   double young() const { return mu * (3 * lambda + 2 * mu) / (lambda + mu); }

@@ -35,6 +35,12 @@ class MaterialMap {
   const Material& base() const { return materials_.front(); }
   bool uniform() const { return index_.empty(); }
   double alpha() const { return materials_.front().alpha; }
+  /// Whether some tetrahedron's law is not the linear one (fem/material_model.hpp).
+  bool nonlinear() const {
+    for (const Material& m : materials_)
+      if (m.model != MaterialModel::linear) return true;
+    return false;
+  }
   /// Tetrahedra per material (index 0: the base), for reports.
   std::vector<Index> counts(Index num_tets) const;
   const std::vector<Material>& materials() const { return materials_; }

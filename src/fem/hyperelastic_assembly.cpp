@@ -1,0 +1,172 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "fem/hyperelastic_assembly.hpp"
+
+#include <algorithm>
+#include <array>
+#include <numeric>
+#include <span>
+
+#include "common/errors.hpp"
+#include "fem/assembly.hpp"
+#include "fem/hyperelastic_element.hpp"
+#include "io/csv.hpp"
+
+namespace roifem::fem {
+
+namespace {
+
+std::size_t as_size(Index i) { return static_cast<std::size_t>(i); }
+
+std::vector<Index> all_elements(const mesh::TetMesh& mesh) {
+  std::vector<Index> all(as_size(mesh.num_tets()));
+  std::iota(all.begin(), all.end(), Index{0});
+  return all;
+}
+
+}  // namespace
+
+HyperelasticAssembler::HyperelasticAssembler(const mesh::TetMesh& mesh, const DofMap& dofs, const MaterialMap& materials)
+    : HyperelasticAssembler(mesh, dofs, materials, all_elements(mesh)) {}
+
+HyperelasticAssembler::HyperelasticAssembler(const mesh::TetMesh& mesh, const DofMap& dofs, const MaterialMap& materials,
+                                             std::vector<Index> elements)
+    : mesh_(mesh), dofs_(dofs), materials_(materials), elements_(std::move(elements)) {
+  for (const Index e : elements_)
+    if (e < 0 || e >= mesh.num_tets())
+      throw InputError("hyperelastic assembly: tetrahedron " + std::to_string(e) + " is not in the mesh");
+  pattern_ = StiffnessAssembler(mesh, dofs).stiffness(materials);
+  std::fill(pattern_.valuePtr(), pattern_.valuePtr() + pattern_.nonZeros(), 0.0);
+  cache_positions();
+}
+
+std::span<const int> HyperelasticAssembler::nodes_of(std::size_t slot, std::array<int, 10>& nodes) const {
+  const Index e = elements_[slot];
+  const auto& c = mesh_.tets[as_size(e)];
+  std::copy(c.begin(), c.end(), nodes.begin());
+  if (!mesh_.is_quadratic()) return {nodes.data(), 4};
+  std::copy(mesh_.midside.of_tet[as_size(e)].begin(), mesh_.midside.of_tet[as_size(e)].end(), nodes.begin() + 4);
+  return {nodes.data(), 10};
+}
+
+void HyperelasticAssembler::cache_positions() {
+  const std::size_t n = mesh_.is_quadratic() ? 30 : 12, per_element = n * n;
+  constexpr std::size_t budget = std::size_t{32} << 20;
+  if (elements_.size() * per_element > budget) return;
+  positions_.resize(elements_.size() * per_element);
+  const int* outer = pattern_.outerIndexPtr();
+  const int* inner = pattern_.innerIndexPtr();
+  std::array<int, 10> buffer{};
+  for (std::size_t slot = 0; slot < elements_.size(); ++slot) {
+    const auto nodes = nodes_of(slot, buffer);
+    int* at = positions_.data() + slot * per_element;
+    for (std::size_t b = 0; b < nodes.size(); ++b)
+      for (int k = 0; k < 3; ++k) {
+        const int column = dofs_.free_dof(nodes[b], k);
+        for (std::size_t a = 0; a < nodes.size(); ++a)
+          for (int i = 0; i < 3; ++i) {
+            const int row = dofs_.free_dof(nodes[a], i);
+            *at++ = row < 0 || column < 0 ? -1
+                                          : static_cast<int>(std::lower_bound(inner + outer[column], inner + outer[column + 1], row) - inner);
+          }
+      }
+  }
+}
+
+/// Calls visit(nodes, response) for every element, with the element's nodes (corners, then
+/// midpoints) and its HyperelasticResponse; an inverted one is a ModelError.
+template <class Visit>
+void HyperelasticAssembler::for_each_element(const Vector& u_full, bool tangent, Visit&& visit) const {
+  if (u_full.size() != 3 * mesh_.num_nodes())
+    throw InputError(io::format("hyperelastic assembly: %lld displacement values for %lld nodes",
+                                static_cast<long long>(u_full.size()), static_cast<long long>(mesh_.num_nodes())));
+  const Evaluate what = tangent ? Evaluate::force_and_tangent : Evaluate::force;
+  std::array<int, 10> buffer{};
+  for (std::size_t slot = 0; slot < elements_.size(); ++slot) {
+    const Index e = elements_[slot];
+    const auto& c = mesh_.tets[as_size(e)];
+    const NeoHookean law = NeoHookean::of(materials_.of(e));
+    const auto nodes = nodes_of(slot, buffer);
+    auto inverted = [&](double min_J) {
+      return ModelError(io::format("tetrahedron %lld (nodes %d %d %d %d) has inverted: det F = %.4g <= 0",
+                                   static_cast<long long>(e), c[0], c[1], c[2], c[3], min_J));
+    };
+    if (nodes.size() == 4) {
+      Eigen::Matrix<double, 12, 1> ue;
+      for (int a = 0; a < 4; ++a) ue.segment<3>(3 * a) = u_full.segment<3>(3 * nodes[as_size(a)]);
+      const auto r = tet4_hyperelastic(tet4_geometry(mesh_.node(c[0]), mesh_.node(c[1]), mesh_.node(c[2]), mesh_.node(c[3])),
+                                       law, ue, what);
+      if (!(r.min_J > 0)) throw inverted(r.min_J);
+      visit(slot, nodes, r);
+    } else {
+      Eigen::Matrix<double, 30, 1> ue;
+      for (int a = 0; a < 10; ++a) ue.segment<3>(3 * a) = u_full.segment<3>(3 * nodes[as_size(a)]);
+      const auto r = tet10_hyperelastic(tet10_geometry(mesh_.node(c[0]), mesh_.node(c[1]), mesh_.node(c[2]), mesh_.node(c[3])),
+                                        law, ue, what);
+      if (!(r.min_J > 0)) throw inverted(r.min_J);
+      visit(slot, nodes, r);
+    }
+  }
+}
+
+void HyperelasticAssembler::scatter(std::size_t slot, std::span<const int> nodes, const Eigen::Ref<const DenseMatrix>& K_e,
+                                    SparseMatrix& K) const {
+  double* values = K.valuePtr();
+  const Index n = 3 * static_cast<Index>(nodes.size());
+  if (!positions_.empty()) {
+    const int* at = positions_.data() + slot * as_size(n * n);
+    for (Index j = 0; j < n; ++j)
+      for (Index i = 0; i < n; ++i, ++at)
+        if (*at >= 0) values[*at] += K_e(i, j);
+    return;
+  }
+  const int* outer = K.outerIndexPtr();
+  const int* inner = K.innerIndexPtr();
+  for (std::size_t b = 0; b < nodes.size(); ++b)
+    for (int k = 0; k < 3; ++k) {
+      const int column = dofs_.free_dof(nodes[b], k);
+      if (column < 0) continue;
+      const int* begin = inner + outer[column];
+      const int* end = inner + outer[column + 1];
+      for (std::size_t a = 0; a < nodes.size(); ++a) {
+        // A node's free components are adjacent rows of every column (the free numbering is
+        // node-major): one search finds the first, the others follow.
+        const int node = nodes[a];
+        int first = -1;
+        for (int i = 0; i < 3 && first < 0; ++i) first = dofs_.free_dof(node, i);
+        if (first < 0) continue;
+        double* target = values + (std::lower_bound(begin, end, first) - inner);
+        const Index row0 = 3 * static_cast<Index>(a), col = 3 * static_cast<Index>(b) + k;
+        for (int i = 0; i < 3; ++i)
+          if (dofs_.free_dof(node, i) >= 0) *target++ += K_e(row0 + i, col);
+      }
+    }
+}
+
+void HyperelasticAssembler::force(const Vector& u_full, Eigen::Ref<Vector> f_int) const {
+  f_int.setZero();
+  for_each_element(u_full, false, [&](std::size_t, std::span<const int> nodes, const auto& r) {
+    for (std::size_t a = 0; a < nodes.size(); ++a)
+      for (int i = 0; i < 3; ++i)
+        if (const int row = dofs_.free_dof(nodes[a], i); row >= 0) f_int[row] += r.force[3 * static_cast<Index>(a) + i];
+  });
+}
+
+void HyperelasticAssembler::force_and_tangent(const Vector& u_full, Eigen::Ref<Vector> f_int, SparseMatrix& K_t) const {
+  if (K_t.nonZeros() != pattern_.nonZeros() || K_t.rows() != pattern_.rows()) K_t = pattern_;
+  std::fill(K_t.valuePtr(), K_t.valuePtr() + K_t.nonZeros(), 0.0);
+  f_int.setZero();
+  for_each_element(u_full, true, [&](std::size_t slot, std::span<const int> nodes, const auto& r) {
+    for (std::size_t a = 0; a < nodes.size(); ++a)
+      for (int i = 0; i < 3; ++i)
+        if (const int row = dofs_.free_dof(nodes[a], i); row >= 0) f_int[row] += r.force[3 * static_cast<Index>(a) + i];
+    scatter(slot, nodes, r.tangent, K_t);
+  });
+}
+
+double HyperelasticAssembler::energy(const Vector& u_full) const {
+  double total = 0;
+  for_each_element(u_full, false, [&](std::size_t, std::span<const int>, const auto& r) { total += r.energy; });
+  return total;
+}
+
+}  // namespace roifem::fem

@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+/// The internal force f_int(u) and tangent K_t(u) = df_int/du of the neo-Hookean tetrahedra
+/// (fem/hyperelastic_element.hpp) over the free dofs of a DofMap:
+///   f_int(u) = sum_e A_e^T f_e(u_e),   K_t(u) = sum_e A_e^T K_e(u_e) A_e,
+/// at the full displacement u (3 per node, the prescribed values included, so a prescribed motion
+/// strains the elements it touches as it does in the linear model's f_D = -K_fp u_p).
+/// K_t has the linear stiffness's pattern (fem/assembly.hpp), whatever the subset of elements, so a
+/// sparse factorization analysed once on K serves every K_t.
+#include <array>
+#include <span>
+#include <vector>
+
+#include "common/types.hpp"
+#include "fem/dof_map.hpp"
+#include "fem/material_map.hpp"
+#include "mesh/tet_mesh.hpp"
+
+namespace roifem::fem {
+
+class HyperelasticAssembler {
+ public:
+  /// Every tetrahedron of `mesh` (tet4, or tet10 on a quadratic mesh), each with its material's
+  /// lambda and mu. Keeps references to mesh and dofs, which must outlive it (materials: a copy).
+  HyperelasticAssembler(const mesh::TetMesh& mesh, const DofMap& dofs, const MaterialMap& materials);
+  /// Only the tetrahedra listed (the hybrid ROI's nonlinear elements).
+  HyperelasticAssembler(const mesh::TetMesh& mesh, const DofMap& dofs, const MaterialMap& materials,
+                        std::vector<Index> elements);
+
+  /// f_int at the full displacement u_full (3N). Throws ModelError naming the first tetrahedron
+  /// that has inverted (det F <= 0 at a quadrature point), with its nodes and det F.
+  void force(const Vector& u_full, Eigen::Ref<Vector> f_int) const;
+  /// f_int and K_t at u_full; K_t's values are overwritten in pattern()'s pattern.
+  void force_and_tangent(const Vector& u_full, Eigen::Ref<Vector> f_int, SparseMatrix& K_t) const;
+  /// The strain energy sum_e int W(F) dV (J).
+  double energy(const Vector& u_full) const;
+  /// The pattern of K_t (the linear K_ff's), values zero.
+  const SparseMatrix& pattern() const { return pattern_; }
+  const std::vector<Index>& elements() const { return elements_; }
+
+ private:
+  template <class Visit>
+  void for_each_element(const Vector& u_full, bool tangent, Visit&& visit) const;
+  /// The nodes of the `slot`-th element listed (corners, then midpoints on a quadratic mesh).
+  std::span<const int> nodes_of(std::size_t slot, std::array<int, 10>& nodes) const;
+  /// Where each entry of an element's matrix lands among the pattern's values (-1: a constrained
+  /// row or column), column by column: built once when it fits the budget below.
+  void cache_positions();
+  /// Adds the `slot`-th element's matrix into K at its free dofs.
+  void scatter(std::size_t slot, std::span<const int> nodes, const Eigen::Ref<const DenseMatrix>& K_e, SparseMatrix& K) const;
+
+  const mesh::TetMesh& mesh_;
+  const DofMap& dofs_;
+  MaterialMap materials_;
+  std::vector<Index> elements_;
+  SparseMatrix pattern_;
+  /// Per element, its matrix's (3 n)^2 positions (cache_positions); empty where they would pass
+  /// 32M entries (128 MB: the 20k-node brain's tet4 take 16M), and scatter() then searches.
+  std::vector<int> positions_;
+};
+
+}  // namespace roifem::fem

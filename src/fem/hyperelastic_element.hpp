@@ -1,0 +1,36 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+/// A neo-Hookean tetrahedron (fem/neo_hookean.hpp): its internal force and consistent tangent at the
+/// nodal displacements u_e, by the quadrature of the linear one (tet4: one point, exact for its
+/// constant gradients) or of the quadratic one (tet10: 4 Gauss points, as CalculiX's C3D10):
+///   F_q = I + sum_a u_a g_a^T,      f_a = sum_q w_q P(F_q) g_a,
+///   K_ab(i, k) = sum_q w_q sum_{J,L} A_iJkL(F_q) g_aJ g_bL,
+/// with g_a the reference gradients of N_a at point q and w_q its share of the reference volume.
+/// The energy is sum_q w_q W(F_q), so f = dE/du_e and K = df/du_e (the tests check both by
+/// finite differences). Dof order: node a, component i -> 3a + i, as the linear elements'.
+#include "common/types.hpp"
+#include "fem/neo_hookean.hpp"
+#include "fem/tet10.hpp"
+#include "fem/tet4.hpp"
+
+namespace roifem::fem {
+
+template <int Nodes>
+struct HyperelasticResponse {
+  Eigen::Matrix<double, 3 * Nodes, 1> force;
+  Eigen::Matrix<double, 3 * Nodes, 3 * Nodes> tangent;  ///< filled when asked for
+  double energy = 0;                                    ///< J
+  /// The smallest det F over the quadrature points. At or below zero the element has inverted:
+  /// force, tangent and energy are then not computed.
+  double min_J = 1;
+};
+
+/// What an evaluation computes.
+enum class Evaluate { force, force_and_tangent };
+
+HyperelasticResponse<4> tet4_hyperelastic(const Tet4Geometry& g, const NeoHookean& law, const Eigen::Matrix<double, 12, 1>& u_e,
+                                          Evaluate what);
+HyperelasticResponse<10> tet10_hyperelastic(const Tet10Geometry& g, const NeoHookean& law,
+                                            const Eigen::Matrix<double, 30, 1>& u_e, Evaluate what);
+
+}  // namespace roifem::fem

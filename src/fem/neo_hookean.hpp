@@ -1,0 +1,41 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+/// The compressible neo-Hookean law in CalculiX's form (*HYPERELASTIC, NEO HOOKE), total
+/// Lagrangian, as a function of the displacement gradient H = Grad u (F = I + H):
+///   W = C10 (I1bar - 3) + (J - 1)^2 / D1,   J = det F,  I1bar = J^(-2/3) tr(F^T F),
+/// with C10 = mu/2 and D1 = 2/kappa, kappa = lambda + 2 mu/3 the bulk modulus (so that its
+/// linearization at H = 0 is the linear law with the same lambda and mu). Its derivatives:
+///   P = dW/dF = F^-T [mu J^(-2/3) dev C + kappa (J - 1) J I]    (first Piola-Kirchhoff)
+///   A = dP/dF, a 9x9 matrix over the flattened F (entry (i, J) at 3 i + J, row-major), symmetric.
+/// The law takes H, not F: a double holding 1 + 1e-9 keeps 7 of its digits, so F = I + H formed
+/// first loses at small strain what no formula after it recovers. J - 1, dev C and I1bar - 3 are
+/// formed from H without cancellation, so P and W keep their digits at any strain (the tests check
+/// them at 1e-9 against the linear law).
+/// W, P and A are finite only for J > 0; callers check J first (an inverted element).
+#include "common/types.hpp"
+#include "fem/material.hpp"
+
+namespace roifem::fem {
+
+using Mat9 = Eigen::Matrix<double, 9, 9>;
+
+struct NeoHookean {
+  double C10 = 0;  ///< Pa, mu/2
+  double D1 = 0;   ///< 1/Pa, 2/kappa
+
+  /// C10 and D1 from a material's lambda and mu.
+  static NeoHookean of(const Material& material);
+  double mu() const { return 2 * C10; }
+  double kappa() const { return 2 / D1; }
+
+  /// J - 1 = det(I + H) - 1, without cancellation.
+  static double J_minus_1(const Mat3& H);
+  /// Strain energy density (J/m^3).
+  double energy(const Mat3& H) const;
+  /// First Piola-Kirchhoff stress P (Pa).
+  Mat3 stress(const Mat3& H) const;
+  /// P and its derivative A = dP/dF in one pass.
+  void stress_and_tangent(const Mat3& H, Mat3& P, Mat9& A) const;
+};
+
+}  // namespace roifem::fem
