@@ -277,7 +277,8 @@ std::vector<IntegratorInfo> arkode_rows() {
                     .method_id = id,
                     .tableau = tableau,
                     .make = make_arkode,
-                    .summary = summary});
+                    .summary = summary,
+                    .nonlinear = true});
   };
   erk(
       "arkode-erk2", 2, ARKODE_HEUN_EULER_2_1_2, [] { return arkode_erk_tableau(ARKODE_HEUN_EULER_2_1_2); },

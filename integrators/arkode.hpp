@@ -16,8 +16,8 @@
 /// size n per stage) instead of KLU on the 2n system.
 #include <exception>
 #include <memory>
-#include <vector>
 #include <string>
+#include <vector>
 
 #include "integrators/first_order_form.hpp"
 #include "integrators/integrator.hpp"
@@ -55,6 +55,8 @@ class Arkode final : public Integrator {
   Arkode(ArkodeMethod method, StepControl control);
   std::string_view name() const override { return method_.name; }
   Stats stats() const override;
+  /// The explicit methods: they need f_int(u) alone (FirstOrderForm::evaluate), no Jacobian.
+  bool takes_nonlinear() const override { return !method_.implicit; }
 
  private:
   void prepare(const model::SecondOrderSystem& system, const model::State& initial) override;

@@ -3,6 +3,8 @@
 
 #include <cstring>
 
+#include "model/internal_force.hpp"
+
 namespace roifem::integrators {
 
 FirstOrderForm::FirstOrderForm(const model::SecondOrderSystem& system, Mass mass)
@@ -17,7 +19,12 @@ void FirstOrderForm::evaluate(double t, const double* y, double* ydot) {
   system_.load.evaluate(t, force_);
   if (!(cached_u_.size() == n && std::memcmp(cached_u_.data(), y, sizeof(double) * static_cast<std::size_t>(n)) == 0)) {
     cached_u_ = u;
-    system_.apply_stiffness(u, cached_Ku_);
+    if (system_.internal_force) {
+      cached_Ku_.resize(n);
+      system_.internal_force->force(cached_u_, cached_Ku_);  // f_int(u) in place of K u
+    } else {
+      system_.apply_stiffness(u, cached_Ku_);
+    }
   }
   work_ = force_ - cached_Ku_;
   work_.noalias() -= system_.C * v;

@@ -3,7 +3,9 @@
 /// The first-order form y = [u; v] of M u'' + C u' + K u = f(t) that ARKODE and GSL integrate:
 ///   u' = v,   v' = M^-1 (f(t) - C v - K u)          (or, with M kept as a mass matrix,
 ///   u' = v,   M v' = f(t) - C v - K u),
-/// with its constant Jacobian J = [[0, I], [-M^-1 K, -M^-1 C]]. M^-1 is a product for a lumped M
+/// with its constant Jacobian J = [[0, I], [-M^-1 K, -M^-1 C]]. A nonlinear system's f_int(u)
+/// takes K u's place in evaluate() (model/internal_force.hpp); its Jacobian is then not constant,
+/// and only the methods that need no Jacobian (the explicit ones) take it. M^-1 is a product for a lumped M
 /// and a Cholesky solve for the full M of a Guyan, Craig-Bampton or POD model (MassInverse).
 #include <memory>
 

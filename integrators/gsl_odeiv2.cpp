@@ -26,6 +26,13 @@ std::unique_ptr<Integrator> make_gsl(const IntegratorInfo& info, const gsl_odeiv
   return std::make_unique<GslOdeiv2>(info.name, stepper, control);
 }
 
+bool GslOdeiv2::takes_nonlinear() const {
+  for (const gsl_odeiv2_step_type* implicit :
+       {gsl_odeiv2_step_rk1imp, gsl_odeiv2_step_rk2imp, gsl_odeiv2_step_rk4imp, gsl_odeiv2_step_bsimp, gsl_odeiv2_step_msbdf})
+    if (stepper_ == implicit) return false;
+  return true;
+}
+
 int GslOdeiv2::rhs(double t, const double y[], double dydt[], void* self) {
   auto* me = static_cast<GslOdeiv2*>(self);
   const int status = guarded_callback(me->pending_, GSL_EBADFUNC, [&] { me->form_->evaluate(t, y, dydt); });
@@ -123,7 +130,8 @@ std::vector<IntegratorInfo> gsl_rows() {
                     .linear_solver = solver,
                     .tableau = tableau,
                     .make = make,
-                    .summary = summary});
+                    .summary = summary,
+                    .nonlinear = is_explicit});
   };
   gsl(
       "gsl-bsimp", 6, false, false, LinearSolver::dense, nullptr,

@@ -34,6 +34,8 @@ class GslOdeiv2 final : public Integrator {
   GslOdeiv2(std::string name, const gsl_odeiv2_step_type* stepper, StepControl control);
   std::string_view name() const override { return name_; }
   Stats stats() const override { return stats_; }
+  /// The steppers that use no Jacobian (GSL's explicit ones) take a nonlinear model.
+  bool takes_nonlinear() const override;
 
  private:
   void prepare(const model::SecondOrderSystem& system, const model::State& initial) override;

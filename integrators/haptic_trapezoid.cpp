@@ -6,6 +6,7 @@
 
 #include "common/errors.hpp"
 #include "common/timer.hpp"
+#include "model/internal_force.hpp"
 
 namespace roifem::integrators {
 
@@ -21,8 +22,17 @@ DirectSolve factor_effective_stiffness(const model::SecondOrderSystem& system, c
 
 }  // namespace
 
+namespace {
+/// The haptic tick solves one linear system per tick: a nonlinear model is not built for it yet.
+const model::SecondOrderSystem& linear_only(const model::SecondOrderSystem& system) {
+  if (system.is_nonlinear())
+    throw InputError("the haptic trapezoid takes a linear model; this one is " + system.internal_force->describe());
+  return system;
+}
+}  // namespace
+
 HapticTrapezoid::HapticTrapezoid(const model::SecondOrderSystem& system, double dt)
-    : system_(system), rule_(dt), K_eff_(factor_effective_stiffness(system, rule_)) {
+    : system_(linear_only(system)), rule_(dt), K_eff_(factor_effective_stiffness(system, rule_)) {
   const Index n = system.size();
   a_ = Vector::Zero(n);
   f_.resize(n);

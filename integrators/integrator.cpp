@@ -6,11 +6,16 @@
 #include "common/errors.hpp"
 #include "common/number_text.hpp"
 #include "io/csv.hpp"
+#include "model/internal_force.hpp"
 
 namespace roifem::integrators {
 
 void Integrator::reset(const model::SecondOrderSystem& system, const model::State& initial) {
   bound_.reset();
+  if (system.is_nonlinear() && !takes_nonlinear())
+    throw InputError(std::string(name()) + " does not take a nonlinear model (" + system.internal_force->describe() +
+                     "): the methods that do are marked 'nonlinear' in `roifem run --help`; or give [material] model = "
+                     "\"linear\"");
   prepare(system, initial);
   bound_.emplace(system, initial);
 }

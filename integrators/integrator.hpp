@@ -21,8 +21,9 @@ namespace roifem::integrators {
 /// Counters every integrator reports (zero where the method has no such thing).
 struct Stats {
   long steps = 0, rhs_evals = 0, jac_evals = 0, lin_setups = 0, lin_solves = 0, failed_steps = 0;
-  long lin_iterations = 0;     ///< iterations of an iterative linear solver (trapezoid-cg)
-  double factorization_s = 0;  ///< seconds in linear-solver setups: orderings, analyses, factorizations
+  long lin_iterations = 0;        ///< iterations of an iterative linear solver (trapezoid-cg)
+  long nonlinear_iterations = 0;  ///< Newton iterations on a nonlinear system
+  double factorization_s = 0;     ///< seconds in linear-solver setups: orderings, analyses, factorizations
 };
 
 /// What a method that holds the tools' constraints itself (the DAE forms) says of them now.
@@ -47,6 +48,9 @@ class Integrator {
   /// swaps or resizes them, so that views of them (the Python module's arrays) stay valid.
   void advance_to(double t_out, model::State& state);
   virtual Stats stats() const = 0;
+  /// Whether it integrates a nonlinear system (model/internal_force.hpp); the table's `nonlinear`
+  /// says the same (a test holds the two together). reset() refuses a nonlinear system otherwise.
+  virtual bool takes_nonlinear() const { return false; }
   /// The constraints' report after the last advance_to, from methods that hold constraints (else none).
   virtual std::optional<ConstraintReport> constraints() const { return std::nullopt; }
 

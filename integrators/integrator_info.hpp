@@ -51,6 +51,7 @@ struct IntegratorInfo {
   std::string summary;             ///< one line for --help and the README
   bool needs_tools = false;        ///< a DAE formulation of a model with tools: runs only where there are some
   bool needs_uncondensed = false;  ///< integrates a static condensation's full system: runs only on one
+  bool nonlinear = false;  ///< takes a nonlinear model (model/internal_force.hpp); Integrator::takes_nonlinear says the same
 };
 
 }  // namespace roifem::integrators

@@ -52,14 +52,15 @@ std::string integrator_name_list() {
 }
 
 std::string integrator_table_text() {
-  std::string text = "Integrators (scenario [time] integrator, --integrators):\n";
+  std::string text =
+      "Integrators (scenario [time] integrator, --integrators; 'nonlinear': takes a neo-hookean [material] model too):\n";
   for (const auto& info : integrator_table()) {
     std::string steps = info.fixed_step && info.adaptive ? "fixed or adaptive" : info.fixed_step ? "fixed step" : "adaptive";
     char line[160];
     std::snprintf(line, sizeof line, "  %-28s order %-2d %-8s %-17s %-20s ", info.name.c_str(), info.order,
                   info.is_explicit ? "explicit" : "implicit", steps.c_str(),
                   std::string(linear_solver_name(info.linear_solver)).c_str());
-    text += line + info.summary + "\n";
+    text += line + info.summary + (info.nonlinear ? " [nonlinear]" : "") + "\n";
   }
   return text;
 }

@@ -26,9 +26,12 @@ void Trapezoid::prepare(const model::SecondOrderSystem& system, const model::Sta
   if (initial.u.size() != n || initial.v.size() != n) throw Error("internal: trapezoid: state size mismatch");
   const Stopwatch clock;
   K_eff_.reset();
-  eliminates_modal_ = !cg_ && system.modal && system.damping.is_mass_proportional();
+  newton_.reset();
+  eliminates_modal_ = !cg_ && system.modal && system.damping.is_mass_proportional() && !system.is_nonlinear();
   try {
-    if (cg_)
+    if (system.is_nonlinear())
+      newton_ = std::make_unique<TrapezoidNewton>(system, rule_);
+    else if (cg_)
       K_eff_ = std::make_unique<ConjugateGradients>(system, rule_, *cg_);
     else if (eliminates_modal_)
       K_eff_ = std::make_unique<ModalElimination>(system, rule_.dt());
@@ -44,8 +47,35 @@ void Trapezoid::prepare(const model::SecondOrderSystem& system, const model::Sta
   u_next_.resize(n);
   work_.resize(n);
   stats_ = {};
-  stats_.lin_setups = 1;
+  stats_.lin_setups = newton_ ? 0 : 1;
   stats_.factorization_s = clock.seconds();
+}
+
+void Trapezoid::solve_nonlinear(const model::State& s) {
+  const double dt = rule_.dt();
+  // b = f + M w; the tolerance's scale: the largest of the load, the history's inertia and the
+  // internal force it balances.
+  system_->apply_mass(work_, u_next_);
+  f_ += u_next_;
+  const double scale = std::max(f_.lpNorm<Eigen::Infinity>(), (system_->M * a_).lpNorm<Eigen::Infinity>());
+  u_next_ = s.u + dt * s.v + (0.5 * dt * dt) * a_;  // the rule with a_{n+1} = a_n
+  const Stopwatch clock;
+  solvers::NewtonReport report;
+  try {
+    report = newton_->solve(f_, u_next_, scale);
+  } catch (const Error&) {
+    // The predictor can land where the tangent is indefinite (a soft material compressed by the
+    // step's inertia) or an element inverts: start once more from u_n, where the last step converged.
+    ++stats_.failed_steps;
+    u_next_ = s.u;
+    report = newton_->solve(f_, u_next_, scale);
+  }
+  stats_.factorization_s += clock.seconds();
+  stats_.nonlinear_iterations += report.iterations();
+  stats_.jac_evals += static_cast<long>(report.history.size());
+  stats_.lin_setups += report.iterations();
+  stats_.lin_solves += report.iterations();
+  stats_.rhs_evals += static_cast<long>(report.history.size());
 }
 
 void Trapezoid::step(model::State& s) {
@@ -54,11 +84,26 @@ void Trapezoid::step(model::State& s) {
   s.t = grid_.at(k_);
   system_->load.evaluate(s.t, f_);
   rule_.history(*system_, s, a_, f_, work_);
+  const auto at_step = [&] {
+    return std::string(name()) + ": step " + std::to_string(k_) + ", t = " + number_text(s.t) + " s: ";
+  };
+  if (newton_) {
+    try {
+      solve_nonlinear(s);
+    } catch (const SolverError& e) {
+      throw SolverError(at_step() + e.what());
+    } catch (const ModelError& e) {  // an inverted element
+      throw ModelError(at_step() + e.what());
+    }
+    rule_.advance(s, a_, u_next_, work_);
+    ++stats_.steps;
+    return;
+  }
   if (K_eff_->uses_initial_guess()) u_next_ = s.u + dt * s.v + (0.5 * dt * dt) * a_;  // constant acceleration
   try {
     K_eff_->solve(f_, work_, u_next_);
   } catch (const SolverError& e) {
-    throw SolverError(std::string(name()) + ": step " + std::to_string(k_) + ", t = " + number_text(s.t) + " s: " + e.what());
+    throw SolverError(at_step() + e.what());
   }
   stats_.lin_iterations = K_eff_->iterations();
   rule_.advance(s, a_, u_next_, work_);
@@ -73,18 +118,20 @@ void Trapezoid::advance(double t_out, model::State& state) {
 }
 
 std::vector<IntegratorInfo> trapezoid_rows() {
-  return {{.name = "trapezoid",
-           .order = 2,
-           .fixed_step = true,
-           .linear_solver = LinearSolver::cholmod,
-           .make = make_trapezoid,
-           .summary = "the paper's trapezoidal rule (Newmark average acceleration), K_eff factored once"},
-          {.name = "trapezoid-cg",
-           .order = 2,
-           .fixed_step = true,
-           .linear_solver = LinearSolver::jacobi_cg,
-           .make = make_trapezoid,
-           .summary = "the same rule with K_eff solved by Jacobi-preconditioned CG (no factor; for the largest brains)"}};
+  return {
+      {.name = "trapezoid",
+       .order = 2,
+       .fixed_step = true,
+       .linear_solver = LinearSolver::cholmod,
+       .make = make_trapezoid,
+       .summary = "the paper's trapezoidal rule (Newmark average acceleration), K_eff factored once; Newton on a nonlinear model",
+       .nonlinear = true},
+      {.name = "trapezoid-cg",
+       .order = 2,
+       .fixed_step = true,
+       .linear_solver = LinearSolver::jacobi_cg,
+       .make = make_trapezoid,
+       .summary = "the same rule with K_eff solved by Jacobi-preconditioned CG (no factor; for the largest brains)"}};
 }
 
 }  // namespace roifem::integrators

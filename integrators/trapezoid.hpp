@@ -15,14 +15,21 @@
 /// dt^2/2 a_n). Both give the same answer to ~1e-9 relative over hundreds of steps; the direct
 /// solve is ~20x faster where it fits. With C = alpha M (SecondOrderSystem::damping) the history
 /// term folds C into M's product; a general C adds its own product to f.
+///
+/// A nonlinear system (model/internal_force.hpp) takes the same history and solves its implicit
+/// equation by Newton instead of one solve (trapezoid_newton.hpp); its statistics count the Newton
+/// iterations (nonlinear_iterations), the tangents assembled (jac_evals) and factorized
+/// (lin_setups). A step whose Newton iteration does not converge, or that inverts an element, is an
+/// error naming the step and time; nothing is extrapolated.
 #include <memory>
-#include <vector>
 #include <optional>
+#include <vector>
 
 #include "integrators/effective_stiffness.hpp"
 #include "integrators/integrator.hpp"
 #include "integrators/integrator_info.hpp"
 #include "integrators/step_control.hpp"
+#include "integrators/trapezoid_newton.hpp"
 #include "model/average_acceleration.hpp"
 #include "model/time_grid.hpp"
 #include "solvers/jacobi_cg.hpp"
@@ -40,6 +47,7 @@ class Trapezoid final : public Integrator {
   /// The same rule with K_eff solved by conjugate gradients instead of a factorization.
   Trapezoid(double dt, solvers::CgSettings cg);
   std::string_view name() const override { return cg_ ? "trapezoid-cg" : "trapezoid"; }
+  bool takes_nonlinear() const override { return !cg_; }
   Stats stats() const override { return stats_; }
   /// One step from the current state (the hot path a simulator calls each tick).
   void step(model::State& state);
@@ -55,9 +63,11 @@ class Trapezoid final : public Integrator {
   const model::SecondOrderSystem* system_ = nullptr;
   std::optional<solvers::CgSettings> cg_;  // set: K_eff is solved iteratively
   std::unique_ptr<EffectiveStiffnessSolver> K_eff_;
+  std::unique_ptr<TrapezoidNewton> newton_;  // a nonlinear system's implicit equation (K_eff_ then unused)
   bool eliminates_modal_ = false;
   model::TimeGrid grid_{0.0, 1.0, "trapezoid"};  ///< t_k = t_0 + k dt from the last reset
   long k_ = 0;
+  void solve_nonlinear(const model::State& s);
   Vector a_, f_, u_next_, work_;
   Stats stats_;
 };

@@ -127,7 +127,8 @@ py::dict roi_size_results(const experiments::RoiSizeResults& r) {
   py::dict d;
   d["rows"] = structured_table(experiments::roi_size_columns(), r.rows);
   py::dict probes;
-  for (const auto& row : r.rows) probes[row.reduction.c_str()] = structured_table(experiments::roi_size_run_columns(), experiments::runs_of(row));
+  for (const auto& row : r.rows)
+    probes[row.reduction.c_str()] = structured_table(experiments::roi_size_run_columns(), experiments::runs_of(row));
   d["probes"] = probes;
   d["target_mm"] = std::vector<double>{r.target.x() / mm, r.target.y() / mm, r.target.z() / mm};
   d["free_nodes"] = r.free_nodes;

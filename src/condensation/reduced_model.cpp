@@ -5,6 +5,7 @@
 #include "common/timer.hpp"
 #include "condensation/reduced_operators.hpp"
 #include "condensation/static_basis.hpp"
+#include "model/internal_force.hpp"
 #include "model/mass_inverse.hpp"
 
 namespace roifem::condensation {
@@ -27,6 +28,9 @@ ReducedModel::ReducedModel(const model::SecondOrderSystem& full, const roi::Part
 }
 
 void ReducedModel::validate(const model::SecondOrderSystem& full) const {
+  if (full.is_nonlinear())
+    throw InputError("static condensation and every reduction of the static part take a linear model; this one is " +
+                     full.internal_force->describe() + " (give [material] model = \"linear\", or run the full model)");
   if (partition_.d.empty()) throw ModelError("static condensation: the ROI has no free dof");
   const ReductionInfo& info = reduction_.info();
   if (info.counted && reduction_.modes <= 0 && !(info.takes_cutoff && reduction_.cutoff_rad_s > 0))

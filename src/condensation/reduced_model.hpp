@@ -58,6 +58,9 @@ class ReducedModel {
   /// Gives the reduced system (a static condensation) the full system it came from
   /// (system().uncondensed).
   void attach_uncondensed_form(std::shared_ptr<const model::UncondensedForm> form) { reduced_.uncondensed = std::move(form); }
+  /// Gives the reduced system a nonlinear internal force in place of K~ u (the hybrid ROI:
+  /// model/hyperelastic_force.hpp); the condensation itself stays the linear model's.
+  void attach_internal_force(std::shared_ptr<const model::InternalForce> force) { reduced_.internal_force = std::move(force); }
   const roi::Partition& partition() const { return partition_; }
   const Reduction& reduction() const { return reduction_; }
   /// Static-part vectors kept (Craig-Bampton modes or POD vectors), and their (Ritz) frequencies (rad/s).

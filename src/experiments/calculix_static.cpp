@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "experiments/calculix_static.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
-#include <algorithm>
 #include <ostream>
 #include <sstream>
 
@@ -41,8 +41,7 @@ void write_steps(const CalculixProblem& p, const std::vector<double>& fractions,
   out << "*TIME POINTS, NAME=END\n1.0\n";
   for (const double f : fractions) {
     out << (nlgeom ? "*STEP, NLGEOM, INC=10000\n" : "*STEP\n") << "*STATIC\n0.05, 1.0, 1e-6, 0.05\n";
-    if (p.newton_tolerance > 0)
-      out << field_controls(p.newton_tolerance);
+    if (p.newton_tolerance > 0) out << field_controls(p.newton_tolerance);
     write_loads(p, f, out);
     out << "*NODE PRINT, NSET=NALL, TIME POINTS=END\nU\n*END STEP\n";
   }
@@ -94,8 +93,7 @@ void write_deck(const CalculixProblem& p, const std::vector<double>& fractions, 
   for (double f : fractions) out << format("%.13g\n", f / top);
   out << (nlgeom ? "*STEP, NLGEOM, INC=10000\n" : "*STEP\n");
   out << format("*STATIC\n%.6g, 1.0, 1e-6, %.6g\n", fractions.front() / top / 2, fractions.front() / top);
-  if (p.newton_tolerance > 0)
-    out << field_controls(p.newton_tolerance);
+  if (p.newton_tolerance > 0) out << field_controls(p.newton_tolerance);
   write_loads(p, top, out);
   out << "*NODE PRINT, NSET=NALL, TIME POINTS=FRACTIONS\nU\n*END STEP\n";
   if (!out.flush()) throw InputError(file.string() + ": cannot write the CalculiX deck");

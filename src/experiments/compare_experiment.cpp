@@ -16,6 +16,7 @@
 #include "integrators/stability.hpp"
 #include "io/csv.hpp"
 #include "io/plots.hpp"
+#include "model/internal_force.hpp"
 #include "model/modal_reference.hpp"
 #include "model/spectrum.hpp"
 #include "simulation/scenario_model.hpp"
@@ -124,6 +125,11 @@ struct Sweep {
 /// The exact modal solution compare measures against; InputError naming what it cannot solve and
 /// what runs without it.
 model::ModalReference modal_reference_of(const scenario::Scenario& sc, const model::SecondOrderSystem& system) {
+  if (system.is_nonlinear())
+    throw InputError("compare: " + sc.file.string() + ": a nonlinear model (" + system.internal_force->describe() +
+                     ") has no exact modal solution, and compare measures every run against one; a reference from a "
+                     "tight run is not built yet. Give [material] model = \"linear\", or run one method: roifem run " +
+                     sc.file.string() + " --out DIR");
   try {
     return model::ModalReference(system, model::State::at_rest(system.size()));
   } catch (const InputError& e) {

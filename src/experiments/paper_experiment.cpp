@@ -428,9 +428,9 @@ void PaperExperiment::measure_speed() {
          .steady_mean_mm = steady_mean(curve),
          .step_s_median = simulation::median(seconds),
          .setup_s = setup.setup_s,
-         .peak_force_err_mN = curve.force_err_mN.empty() ? std::nullopt
-                                                         : std::optional(*std::max_element(curve.force_err_mN.begin(),
-                                                                                          curve.force_err_mN.end()))});
+         .peak_force_err_mN = curve.force_err_mN.empty()
+                                  ? std::nullopt
+                                  : std::optional(*std::max_element(curve.force_err_mN.begin(), curve.force_err_mN.end()))});
   }
 }
 

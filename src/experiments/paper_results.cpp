@@ -25,8 +25,8 @@ const Column<PaperStep> setup_column{"setup", "setup1, setup2, ... (by ROI size,
                                      [](const PaperStep& s) -> Cell { return s.curve->setup; }};
 const Column<PaperStep> reduction_column{"reduction", "the static part's reduction (static: the paper's condensation)",
                                          [](const PaperStep& s) -> Cell { return s.curve->reduction; }};
-const Column<PaperStep> ramp_column{"ramp_s", "the load's ramp time (s)", [](const PaperStep& s) -> Cell { return s.curve->ramp_s; },
-                                    "%g"};
+const Column<PaperStep> ramp_column{"ramp_s", "the load's ramp time (s)",
+                                    [](const PaperStep& s) -> Cell { return s.curve->ramp_s; }, "%g"};
 const Column<PaperStep> step_column{"step", "the step, 1..steps", [](const PaperStep& s) -> Cell { return s.step; }};
 const Column<PaperStep> time_column{"time_s", "the step's time (s)", [](const PaperStep& s) -> Cell { return s.time_s; }, "%.4f"};
 
@@ -65,8 +65,8 @@ const std::array<Column<ReductionRow>, 10> reductions{{
      "%.9g"},
     {"steady_mean_mm", "the mean error averaged over the steps after the 100th (mm)",
      [](const ReductionRow& r) -> Cell { return r.steady_mean_mm; }, "%.9g"},
-    {"step_s_median", "the trapezoidal rule's median step cost (s)", [](const ReductionRow& r) -> Cell { return r.step_s_median; },
-     "%.6e"},
+    {"step_s_median", "the trapezoidal rule's median step cost (s)",
+     [](const ReductionRow& r) -> Cell { return r.step_s_median; }, "%.6e"},
     {"setup_s", "the reduction's setup time (s)", [](const ReductionRow& r) -> Cell { return r.setup_s; }, "%.6e"},
     {"peak_force_err_mN", "driven by spatulas: the peak of the spatulas' force error (mN)",
      [](const ReductionRow& r) { return optional_cell(r.peak_force_err_mN); }, "%.9g"},
@@ -75,7 +75,8 @@ const std::array<Column<ReductionRow>, 10> reductions{{
 const std::array<Column<PaperTiming>, 7> timing{{
     {"model", "full, setup1, setup2, ...", [](const PaperTiming& t) -> Cell { return t.model; }},
     {"nodes", "the model's nodes (a setup: its ROI's)", [](const PaperTiming& t) -> Cell { return static_cast<long>(t.nodes); }},
-    {"dofs", "the integrated system's degrees of freedom", [](const PaperTiming& t) -> Cell { return static_cast<long>(t.dofs); }},
+    {"dofs", "the integrated system's degrees of freedom",
+     [](const PaperTiming& t) -> Cell { return static_cast<long>(t.dofs); }},
     {"step_s_median", "the median step cost of the trapezoidal rule (s)",
      [](const PaperTiming& t) -> Cell { return t.step_s_median; }, "%.6e"},
     {"frame_rate_hz", "1 / step_s_median (Hz)", [](const PaperTiming& t) -> Cell { return 1.0 / t.step_s_median; }, "%.1f"},

@@ -3,8 +3,8 @@
 
 #include <algorithm>
 #include <array>
-#include <iterator>
 #include <cmath>
+#include <iterator>
 #include <ostream>
 
 #include "common/atomic_file.hpp"
@@ -96,7 +96,8 @@ const std::array<Column<RoiSizeRow>, 11> roi_size_table{{
     {"reduction", "the static part's reduction", [](const RoiSizeRow& r) -> Cell { return r.reduction; }},
     {"found", "1: a size from which every larger ROI tried holds", [](const RoiSizeRow& r) -> Cell { return r.found; }},
     {"nodes", "that size: the ROI's nodes", [](const RoiSizeRow& r) -> Cell { return static_cast<long>(r.nodes); }},
-    {"dofs", "the reduced system's degrees of freedom there", [](const RoiSizeRow& r) -> Cell { return static_cast<long>(r.dofs); }},
+    {"dofs", "the reduced system's degrees of freedom there",
+     [](const RoiSizeRow& r) -> Cell { return static_cast<long>(r.dofs); }},
     {"peak_max_mm", "its peak max error over the run (mm)", [](const RoiSizeRow& r) -> Cell { return r.peak_max_mm; }, "%.9g"},
     {"step_s_median", "its median step cost (s)", [](const RoiSizeRow& r) -> Cell { return r.step_s_median; }, "%.6e"},
     {"evaluations", "the sizes tried", [](const RoiSizeRow& r) -> Cell { return static_cast<long>(r.probes.size()); }},

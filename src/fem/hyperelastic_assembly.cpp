@@ -65,8 +65,9 @@ void HyperelasticAssembler::cache_positions() {
         for (std::size_t a = 0; a < nodes.size(); ++a)
           for (int i = 0; i < 3; ++i) {
             const int row = dofs_.free_dof(nodes[a], i);
-            *at++ = row < 0 || column < 0 ? -1
-                                          : static_cast<int>(std::lower_bound(inner + outer[column], inner + outer[column + 1], row) - inner);
+            *at++ = row < 0 || column < 0
+                        ? -1
+                        : static_cast<int>(std::lower_bound(inner + outer[column], inner + outer[column + 1], row) - inner);
           }
       }
   }
@@ -93,8 +94,8 @@ void HyperelasticAssembler::for_each_element(const Vector& u_full, bool tangent,
     if (nodes.size() == 4) {
       Eigen::Matrix<double, 12, 1> ue;
       for (int a = 0; a < 4; ++a) ue.segment<3>(3 * a) = u_full.segment<3>(3 * nodes[as_size(a)]);
-      const auto r = tet4_hyperelastic(tet4_geometry(mesh_.node(c[0]), mesh_.node(c[1]), mesh_.node(c[2]), mesh_.node(c[3])),
-                                       law, ue, what);
+      const auto r =
+          tet4_hyperelastic(tet4_geometry(mesh_.node(c[0]), mesh_.node(c[1]), mesh_.node(c[2]), mesh_.node(c[3])), law, ue, what);
       if (!(r.min_J > 0)) throw inverted(r.min_J);
       visit(slot, nodes, r);
     } else {

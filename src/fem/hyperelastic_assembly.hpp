@@ -24,8 +24,7 @@ class HyperelasticAssembler {
   /// lambda and mu. Keeps references to mesh and dofs, which must outlive it (materials: a copy).
   HyperelasticAssembler(const mesh::TetMesh& mesh, const DofMap& dofs, const MaterialMap& materials);
   /// Only the tetrahedra listed (the hybrid ROI's nonlinear elements).
-  HyperelasticAssembler(const mesh::TetMesh& mesh, const DofMap& dofs, const MaterialMap& materials,
-                        std::vector<Index> elements);
+  HyperelasticAssembler(const mesh::TetMesh& mesh, const DofMap& dofs, const MaterialMap& materials, std::vector<Index> elements);
 
   /// f_int at the full displacement u_full (3N). Throws ModelError naming the first tetrahedron
   /// that has inverted (det F <= 0 at a quadrature point), with its nodes and det F.

@@ -11,7 +11,8 @@ namespace {
 /// The quadrature over `points` points, each with its gradients (Nodes x 3) and weight.
 template <int Nodes, int Points>
 HyperelasticResponse<Nodes> integrate_element(const std::array<Eigen::Matrix<double, Nodes, 3>, Points>& grads, double weight,
-                                      const NeoHookean& law, const Eigen::Matrix<double, 3 * Nodes, 1>& u_e, Evaluate what) {
+                                              const NeoHookean& law, const Eigen::Matrix<double, 3 * Nodes, 1>& u_e,
+                                              Evaluate what) {
   HyperelasticResponse<Nodes> r;
   // The displacement gradients H = F - I first (the law takes H: neo_hookean.hpp), so that an
   // inverted element computes nothing.
@@ -42,8 +43,7 @@ HyperelasticResponse<Nodes> integrate_element(const std::array<Eigen::Matrix<dou
     // K_ab(i, k) = w sum_{J,L} A(3i+J, 3k+L) g_aJ g_bL. First H_a(i, 3k+L) = sum_J A(3i+J, 3k+L) g_aJ.
     for (int a = 0; a < Nodes; ++a) {
       Eigen::Matrix<double, 3, 9> H;
-      for (int i = 0; i < 3; ++i)
-        H.row(i) = g(a, 0) * A.row(3 * i) + g(a, 1) * A.row(3 * i + 1) + g(a, 2) * A.row(3 * i + 2);
+      for (int i = 0; i < 3; ++i) H.row(i) = g(a, 0) * A.row(3 * i) + g(a, 1) * A.row(3 * i + 1) + g(a, 2) * A.row(3 * i + 2);
       for (int b = 0; b < Nodes; ++b)
         for (int k = 0; k < 3; ++k) {
           const Eigen::Vector3d gb = g.row(b).transpose();

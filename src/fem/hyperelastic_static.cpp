@@ -11,19 +11,20 @@ namespace roifem::fem {
 namespace {
 
 /// Newton at fraction s from u (overwritten when it converges).
-solvers::NewtonReport solve_at(const HyperelasticAssembler& assembler, const DofMap& dofs, const Vector& f_ext, double s, Vector& u,
-                      solvers::Cholesky& solver, const solvers::NewtonOptions& options) {
+solvers::NewtonReport solve_at(const HyperelasticAssembler& assembler, const DofMap& dofs, const Vector& f_ext, double s,
+                               Vector& u, solvers::Cholesky& solver, const solvers::NewtonOptions& options) {
   const Vector u_prescribed = s * dofs.prescribed();
   auto full = [&](const Vector& x) { return Vector(u_prescribed + dofs.expand_homogeneous(x)); };
-  solvers::NonlinearSystem system{
-      .residual = [&](const Vector& x, Vector& r) {
-        assembler.force(full(x), r);
-        r -= s * f_ext;
-      },
-      .residual_and_jacobian = [&](const Vector& x, Vector& r, SparseMatrix& J) {
-        assembler.force_and_tangent(full(x), r, J);
-        r -= s * f_ext;
-      }};
+  solvers::NonlinearSystem system{.residual =
+                                      [&](const Vector& x, Vector& r) {
+                                        assembler.force(full(x), r);
+                                        r -= s * f_ext;
+                                      },
+                                  .residual_and_jacobian =
+                                      [&](const Vector& x, Vector& r, SparseMatrix& J) {
+                                        assembler.force_and_tangent(full(x), r, J);
+                                        r -= s * f_ext;
+                                      }};
   // The force scale: the load, or (driven by prescribed values alone) the first residual.
   Vector r0(u.size());
   system.residual(u, r0);
@@ -59,9 +60,10 @@ std::vector<StaticLoadSolution> solve_hyperelastic_static(const HyperelasticAsse
         solution.newton.push_back(solve_at(assembler, dofs, f_ext, s, trial, solver, o.newton));
       } catch (const Error& e) {  // no convergence, or an element inverted on the way
         if (++cutbacks > o.max_cutbacks)
-          throw SolverError(io::format("static solve: stopped at %.6g of the load, the increment to %.6g failed after %d "
-                                       "cutbacks: %s",
-                                       reached, s, o.max_cutbacks, e.what()));
+          throw SolverError(
+              io::format("static solve: stopped at %.6g of the load, the increment to %.6g failed after %d "
+                         "cutbacks: %s",
+                         reached, s, o.max_cutbacks, e.what()));
         increment /= 2;
         continue;
       }

@@ -24,7 +24,7 @@ struct StaticLoadOptions {
 
 struct StaticLoadSolution {
   double fraction = 0;
-  Vector u_free;                     ///< m, over the free dofs
+  Vector u_free;                              ///< m, over the free dofs
   std::vector<solvers::NewtonReport> newton;  ///< one per increment taken since the previous fraction
 };
 

@@ -10,8 +10,8 @@ namespace {
 /// The strain measures of F = I + H, each formed from H without cancellation.
 struct NeoHookeanStrain {
   double J_minus_1 = 0;
-  Mat3 dev_C;                  ///< dev(C) = dev(2E), 2E = H + H^T + H^T H
-  double I1_minus_3J23 = 0;    ///< tr C - 3 J^(2/3) >= 0 (I1bar - 3 = J^(-2/3) times it)
+  Mat3 dev_C;                ///< dev(C) = dev(2E), 2E = H + H^T + H^T H
+  double I1_minus_3J23 = 0;  ///< tr C - 3 J^(2/3) >= 0 (I1bar - 3 = J^(-2/3) times it)
 };
 
 /// h(d) = 3 ((1 + d)^(1/3) - 1) - d = O(d^2): its series where direct evaluation would cancel.
@@ -80,7 +80,7 @@ void NeoHookean::stress_and_tangent(const Mat3& H, Mat3& P, Mat9& A) const {
   const double shear = 2 * C10 * a, bulk = 2 / D1;
   P = G.transpose() * (shear * s.dev_C + bulk * s.J_minus_1 * J * Mat3::Identity());
   const double c_GG = shear * 2.0 / 9.0 * I1 + bulk * (2 * J - 1) * J;  // G_Ji G_Lk
-  const double c_GGx = shear * I1 / 3.0 - bulk * (J * J - J);          // G_Jk G_Li
+  const double c_GGx = shear * I1 / 3.0 - bulk * (J * J - J);           // G_Jk G_Li
   for (int i = 0; i < 3; ++i)
     for (int Jc = 0; Jc < 3; ++Jc)
       for (int k = 0; k < 3; ++k)

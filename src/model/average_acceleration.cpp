@@ -4,15 +4,14 @@
 #include <cmath>
 
 #include "common/errors.hpp"
-#include "model/time_grid.hpp"
 #include "common/number_text.hpp"
+#include "model/internal_force.hpp"
+#include "model/time_grid.hpp"
 #include "solvers/cholesky.hpp"
 
 namespace roifem::model {
 
-AverageAcceleration::AverageAcceleration(double dt) : dt_(dt) {
-  check_time_step(dt, "trapezoid");
-}
+AverageAcceleration::AverageAcceleration(double dt) : dt_(dt) { check_time_step(dt, "trapezoid"); }
 
 SparseMatrix AverageAcceleration::effective_stiffness(const SecondOrderSystem& system) const {
   return system.K + (2.0 / dt_) * system.C + c_u() * system.M;
@@ -37,7 +36,14 @@ void AverageAcceleration::advance(State& s, Vector& a, Vector& u_next, Vector& w
 }
 
 Vector AverageAcceleration::consistent_acceleration(const SecondOrderSystem& system, const State& s) {
-  const Vector r = system.load.at(s.t) - system.C * s.v - system.K * s.u;
+  Vector r = system.load.at(s.t) - system.C * s.v;
+  if (system.internal_force) {
+    Vector f_int(s.u.size());
+    system.internal_force->force(s.u, f_int);
+    r -= f_int;
+  } else {
+    r -= system.K * s.u;
+  }
   solvers::Cholesky mass;
   mass.compute(system.M);
   return mass.solve(r);

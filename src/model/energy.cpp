@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "model/internal_force.hpp"
+
 namespace roifem::model {
 
 EnergyLedger::ToolTerms EnergyLedger::tool_terms(const State& s) const {
@@ -12,6 +14,12 @@ EnergyLedger::ToolTerms EnergyLedger::tool_terms(const State& s) const {
   terms.forces = terms.coupled + self_g - terms.loads;
   terms.coupling_energy = terms.g.dot(terms.coupled) + 0.5 * terms.g.dot(self_g);
   return terms;
+}
+
+double EnergyLedger::strain(const Vector& u) {
+  if (system_.internal_force) return system_.internal_force->energy(u);  // W(u)
+  system_.apply_stiffness(u, Ku_);
+  return 0.5 * u.dot(Ku_);
 }
 
 EnergyLedger::EnergyLedger(const SecondOrderSystem& system, const State& initial, const ToolSet* tools)
@@ -24,9 +32,8 @@ EnergyLedger::EnergyLedger(const SecondOrderSystem& system, const State& initial
       Mv_next_(initial.v.size()),
       Ku_(initial.u.size()) {
   system_.apply_mass(initial.v, Mv_previous_);
-  system_.apply_stiffness(initial.u, Ku_);
   kinetic_ = 0.5 * initial.v.dot(Mv_previous_);
-  strain_ = 0.5 * initial.u.dot(Ku_);
+  strain_ = strain(initial.u);
   if (tools_ != nullptr) {
     tools_previous_ = tool_terms(initial);
     coupling_ = tools_previous_.coupling_energy;
@@ -46,9 +53,8 @@ void EnergyLedger::record(const State& next) {
     dissipated_ += dt * alpha_ * 0.5 * v_mid.dot(Mv_previous_ + Mv_next_);
   else
     dissipated_ += dt * v_mid.dot(system_.C * v_mid);
-  system_.apply_stiffness(next.u, Ku_);
   kinetic_ = 0.5 * next.v.dot(Mv_next_);
-  strain_ = 0.5 * next.u.dot(Ku_);
+  strain_ = strain(next.u);
   if (tools_ != nullptr) {
     ToolTerms now = tool_terms(next);
     const ToolTerms& was = tools_previous_;

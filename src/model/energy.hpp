@@ -40,6 +40,8 @@ class EnergyLedger {
     double coupling_energy = 0;
   };
   ToolTerms tool_terms(const State& s) const;
+  /// The strain energy u^T K u / 2, or a nonlinear system's W(u).
+  double strain(const Vector& u);
 
   const SecondOrderSystem& system_;
   const ToolSet* tools_;  ///< null or empty: none

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "model/internal_force.hpp"
 #include "model/mass_inverse.hpp"
 
 namespace roifem::model {
@@ -29,8 +30,14 @@ EnergyBound::EnergyBound(const SecondOrderSystem& system, const State& initial)
     M_inverse.apply(term.pattern, x);
     rate_ += std::sqrt(std::max(0.0, term.pattern.dot(x))) * largest_value(term.ramp);
   }
-  system.apply_stiffness(initial.u, work_);
-  const double strain = std::max(0.0, initial.u.dot(work_));
+  // 2 E_strain: u^T K u, or a nonlinear system's 2 W(u) (the bound's argument holds for any W >= 0).
+  double strain = 0;
+  if (system.internal_force) {
+    strain = std::max(0.0, 2 * system.internal_force->energy(initial.u));
+  } else {
+    system.apply_stiffness(initial.u, work_);
+    strain = std::max(0.0, initial.u.dot(work_));
+  }
   const double kinetic = velocity_norm(initial);
   initial_ = std::sqrt(strain + kinetic * kinetic);
 }

@@ -8,6 +8,7 @@
 #include "fem/assembly.hpp"
 #include "fem/loads.hpp"
 #include "io/csv.hpp"
+#include "model/hyperelastic_force.hpp"
 #include "model/prescribed_motion.hpp"
 
 namespace roifem::model {
@@ -183,6 +184,10 @@ FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::Material& materia
 FemModel build_fem_model_without_stiffness(const mesh::TetMesh& mesh, const fem::MaterialMap& materials,
                                            const std::vector<std::string>& fixed_sets, const std::vector<SetLoad>& loads,
                                            fem::Element element) {
+  if (materials.nonlinear())
+    throw InputError(mesh.source +
+                     ": the distributed engine takes the linear material only; run a neo-hookean model with "
+                     "roifem run, or give [material] model = \"linear\"");
   FemModel model = unassembled_model(mesh, materials, element);
   model.dofs = std::make_unique<fem::DofMap>(fixed_constraints(mesh, fixed_sets));
   require_a_support(mesh, *model.dofs);
@@ -203,8 +208,14 @@ FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::MaterialMap& mate
     model.dofs = std::make_unique<fem::DofMap>(constraints);
     model.system = assemble(mesh, materials, element, *model.dofs);
     model.system.load = loads_on(mesh, materials, *model.dofs, loads, model.warnings);
+    model.system.internal_force = hyperelastic_force(mesh, *model.dofs, materials, element);
     return model;
   }
+  if (materials.nonlinear())
+    throw InputError(
+        (tools.front().where.empty() ? mesh.source : tools.front().where) +
+        ": tools on a nonlinear material (neo-hookean) are not built yet: drive it with [[load]]s, or give [material] "
+        "model = \"linear\"");
   // With tools: the model over every unfixed dof, then the tools' dofs eliminated.
   SecondOrderSystem all = assemble(mesh, materials, element, fixed_only);
   // Over these dofs only the fixed nodes take a load's share (one on tools' nodes is theirs to carry).

@@ -7,6 +7,7 @@
 #include <complex>
 
 #include "common/errors.hpp"
+#include "model/internal_force.hpp"
 
 namespace roifem::model {
 
@@ -46,6 +47,9 @@ double free_response(double w, double alpha, double q0, double v0, double t, boo
 }  // namespace
 
 ModalReference::ModalReference(const SecondOrderSystem& system, const State& initial, Index max_dofs) {
+  if (system.is_nonlinear())
+    throw InputError("modal reference: the exact modal solution exists for a linear model only, and this one is " +
+                     system.internal_force->describe());
   const Index n = system.size();
   if (n > max_dofs)
     throw ModelError("modal reference: " + std::to_string(n) + " dofs is more than the dense eigensolver's limit of " +

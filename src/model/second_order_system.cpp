@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "model/internal_force.hpp"
 #include "solvers/dense_blas.hpp"
 
 namespace roifem::model {
@@ -65,6 +66,7 @@ double kinetic_energy(const SecondOrderSystem& sys, const State& s) {
 }
 
 double strain_energy(const SecondOrderSystem& sys, const State& s) {
+  if (sys.internal_force) return sys.internal_force->energy(s.u);
   Vector Ku(s.u.size());
   sys.apply_stiffness(s.u, Ku);
   return 0.5 * s.u.dot(Ku);

@@ -46,6 +46,7 @@ struct ModalBlock {
 };
 
 struct ConstrainedForm;  // prescribed_motion.hpp
+class InternalForce;     // internal_force.hpp
 struct UncondensedForm;  // uncondensed_form.hpp
 
 struct SecondOrderSystem {
@@ -61,7 +62,11 @@ struct SecondOrderSystem {
   /// Set on a static condensation: the full system it came from, for the DAE that keeps the static
   /// part as algebraic unknowns (integrators/ida_roi_dae.hpp).
   std::shared_ptr<const UncondensedForm> uncondensed;
+  /// Set on a nonlinear model: f_int(u) replaces K u in the equation, and K is its tangent at rest
+  /// (internal_force.hpp). Only the methods whose table row says `nonlinear` take it.
+  std::shared_ptr<const InternalForce> internal_force;
   Index size() const { return K.rows(); }
+  bool is_nonlinear() const { return internal_force != nullptr; }
   /// y = K x, through K_split when there is one.
   void apply_stiffness(const Eigen::Ref<const Vector>& x, Eigen::Ref<Vector> y) const;
   /// y = M x, through M_split when there is one.
@@ -86,7 +91,7 @@ double mass_proportional_damping(const SecondOrderSystem& system, double toleran
 SparseMatrix diagonal_matrix(const Vector& d);
 
 /// Energies of a state: kinetic v^T M v / 2 and strain u^T K u / 2 (J), through the split M and K
-/// where the system has them.
+/// where the system has them; a nonlinear system's strain energy is its W(u).
 double kinetic_energy(const SecondOrderSystem& sys, const State& s);
 double strain_energy(const SecondOrderSystem& sys, const State& s);
 

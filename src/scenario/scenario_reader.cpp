@@ -145,7 +145,7 @@ class StrictTable {
 
 /// The keys a [material] or [[material_region]] table may give.
 struct MaterialKeys {
-  std::optional<std::string> preset;
+  std::optional<std::string> preset, model;
   std::optional<double> lambda, mu, young, poisson, rho, alpha;
   bool elastic() const { return lambda || mu || young || poisson; }
   bool any() const { return elastic() || rho || alpha; }
@@ -153,6 +153,7 @@ struct MaterialKeys {
 
 MaterialKeys read_material_keys(StrictTable& t) {
   MaterialKeys k{.preset = t.string("preset"),
+                 .model = t.string("model"),
                  .lambda = t.number("lambda_Pa"),
                  .mu = t.number("mu_Pa"),
                  .young = t.number("young_Pa"),
@@ -179,6 +180,7 @@ fem::Material merged_material(fem::Material m, const MaterialKeys& k) {
   }
   m.rho = k.rho.value_or(m.rho);
   m.alpha = k.alpha.value_or(m.alpha);
+  if (k.model) m.model = fem::parse_material_model(*k.model);
   m.validate();
   return m;
 }
@@ -219,7 +221,9 @@ fem::RegionMaterial read_region_material(StrictTable& t, const fem::Material& ba
   fem::RegionMaterial region{.set = *set, .material = {}, .name = k.preset.value_or("custom")};
   try {
     // Keys left out keep the brain's ([material]); a preset starts from the preset instead.
-    region.material = merged_material(k.preset ? fem::material_preset(*k.preset) : base, k);
+    fem::Material start = k.preset ? fem::material_preset(*k.preset) : base;
+    start.model = base.model;  // a region keeps the brain's law unless it names its own
+    region.material = merged_material(start, k);
   } catch (const InputError& e) {
     throw InputError(t.source() + ": [[material_region]] '" + region.set + "': " + e.what());
   }
@@ -504,10 +508,13 @@ std::string Scenario::resolved_toml() const {
   o << "mesh = \"" << mesh.string() << "\"\nelement = \"" << fem::element_name(element) << "\"\n\n[material]  # " << material_name
     << "\nlambda_Pa = " << toml_number(material.lambda) << "\nmu_Pa = " << toml_number(material.mu)
     << "\nrho_kg_m3 = " << toml_number(material.rho) << "\nalpha_per_s = " << toml_number(material.alpha) << "\n";
+  if (material.model != fem::MaterialModel::linear) o << "model = \"" << fem::material_model_name(material.model) << "\"\n";
   for (const auto& r : material_regions)
     o << "\n[[material_region]]  # " << r.name << "\nset = \"" << r.set << "\"\nlambda_Pa = " << toml_number(r.material.lambda)
       << "\nmu_Pa = " << toml_number(r.material.mu) << "\nrho_kg_m3 = " << toml_number(r.material.rho)
-      << "\nalpha_per_s = " << toml_number(r.material.alpha) << "\n";
+      << "\nalpha_per_s = " << toml_number(r.material.alpha) << "\n"
+      << (r.material.model != material.model ? "model = \"" + std::string(fem::material_model_name(r.material.model)) + "\"\n"
+                                             : std::string());
   o << "\n[boundary]\nfixed = [";
   for (std::size_t i = 0; i < fixed_sets.size(); ++i) o << (i ? ", " : "") << '"' << fixed_sets[i] << '"';
   o << "]\n";

@@ -62,20 +62,22 @@ DeformationReport check_deformation(ScenarioModel& model, const PeakDisplacement
       if (r.inverted++ == 0) r.first_inverted = e;
     }
   }
-  if (r.peak_m > 0.1 * r.smallest_extent_m)
+  // A neo-Hookean model is made for large deformations: the size warnings are the linear law's.
+  const bool linear = !model.full.system.is_nonlinear();
+  if (linear && r.peak_m > 0.1 * r.smallest_extent_m)
     r.warnings.push_back(
         format("the peak displacement %.3g mm exceeds a tenth of the mesh's smallest extent (%.3g mm): "
                "far beyond small deformations, where a linear model means little (check the forces' "
                "size and units: N)",
                r.peak_m / mm, r.smallest_extent_m / mm));
-  else if (r.peak_m > 3 * r.mean_edge_m)
+  else if (linear && r.peak_m > 3 * r.mean_edge_m)
     r.warnings.push_back(format("the peak displacement %.3g mm exceeds three mean element edges (%.3g mm each)", r.peak_m / mm,
                                 r.mean_edge_m / mm));
   if (r.inverted > 0)
     r.warnings.push_back(
-        format("the linear solution turns %lld tetrahedra inside out (the first: element %lld), "
+        format("the %s solution turns %lld tetrahedra inside out (the first: element %lld), "
                "physically impossible",
-               static_cast<long long>(r.inverted), static_cast<long long>(r.first_inverted)));
+               linear ? "linear" : "nonlinear", static_cast<long long>(r.inverted), static_cast<long long>(r.first_inverted)));
   return r;
 }
 

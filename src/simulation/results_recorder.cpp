@@ -114,7 +114,8 @@ std::vector<std::filesystem::path> ResultsRecorder::finish(const integrators::St
   h5_.attribute(
       "counters",
       io::format("steps=%ld rhs_evals=%ld jac_evals=%ld lin_setups=%ld lin_solves=%ld lin_iterations=%ld failed_steps=%ld",
-                 st.steps, st.rhs_evals, st.jac_evals, st.lin_setups, st.lin_solves, st.lin_iterations, st.failed_steps));
+                 st.steps, st.rhs_evals, st.jac_evals, st.lin_setups, st.lin_solves, st.lin_iterations, st.failed_steps) +
+          (st.nonlinear_iterations > 0 ? io::format(" nonlinear_iterations=%ld", st.nonlinear_iterations) : std::string()));
   h5_.attribute("status", "complete");
   h5_.close();
   file_.commit();

@@ -2,11 +2,13 @@
 #include "simulation/scenario_model.hpp"
 
 #include <algorithm>
+#include <utility>
 
 #include "common/errors.hpp"
 #include "integrators/factory.hpp"
 #include "mesh/gmsh_reader.hpp"
 #include "mesh/mesh_checks.hpp"
+#include "model/hyperelastic_force.hpp"
 #include "model/prescribed_motion.hpp"
 #include "model/uncondensed_form.hpp"
 
@@ -71,12 +73,24 @@ std::unique_ptr<ScenarioModel> build_scenario_model(const scenario::Scenario& sc
   const fem::DofMap& dofs = *m->full.dofs;
   if (sc.roi) {
     m->roi_nodes = roi::select_roi_nodes(m->mesh, dofs, *sc.roi);
+    // A neo-Hookean model's ROI is the hybrid: the linear model condensed as always, the law set
+    // aside meanwhile (condensation takes a linear model) and given back after.
+    std::shared_ptr<const model::InternalForce> law = std::exchange(m->full.system.internal_force, nullptr);
+    if (law && !sc.reduction.is_static_condensation())
+      throw InputError(sc.file.string() + ": [roi] reduction = \"" + sc.reduction.label() +
+                       "\" with a neo-hookean material: a reduction by modes linearizes the ROI's motion; the nonlinear "
+                       "ROI takes static condensation (reduction = \"static\"), or give [material] model = \"linear\"");
     try {
       m->condensation = std::make_unique<condensation::ReducedModel>(
           m->full.system, roi::partition_dofs(m->full.system.K, dofs, m->roi_nodes), dofs, sc.reduction);
     } catch (const ModelError& e) {  // a singular static part: name the mesh whose nodes it names
+      m->full.system.internal_force = law;
       throw ModelError(m->mesh.source + ": " + e.what());
     }
+    m->full.system.internal_force = law;
+    if (law)
+      m->condensation->attach_internal_force(model::hybrid_roi_force(m->mesh, dofs, m->full.materials, sc.element,
+                                                                     m->condensation->partition(), m->condensation->system().K));
   }
   if (!m->full.tools.empty())
     m->tools = m->condensation ? tools_in_reduced(m->full, m->condensation->partition(), m->condensation->system().size())

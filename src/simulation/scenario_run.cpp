@@ -16,6 +16,7 @@
 #include "io/xdmf.hpp"
 #include "model/energy.hpp"
 #include "model/fem_model.hpp"
+#include "model/internal_force.hpp"
 #include "simulation/deformation_check.hpp"
 #include "simulation/results_recorder.hpp"
 #include "simulation/run_loop.hpp"
@@ -178,6 +179,11 @@ ScenarioRunSummary run_scenario(const scenario::Scenario& sc, const std::filesys
   log << format("done: %ld steps, median %.4f ms per step; final kinetic %.3e J, strain %.3e J, work %.3e J, dissipated %.3e J\n",
                 summary.steps, summary.step_s_median * 1e3, ledger.kinetic(), ledger.strain(), ledger.external_work(),
                 ledger.dissipated());
+  if (system.is_nonlinear())
+    log << format("Newton (%s): %ld iterations, %.2f per step, %ld tangents factorized\n",
+                  system.internal_force->describe().c_str(), summary.stats.nonlinear_iterations,
+                  static_cast<double>(summary.stats.nonlinear_iterations) / static_cast<double>(std::max(1L, summary.steps)),
+                  summary.stats.lin_setups);
   print_tool_forces(*built, state, ledger, log);
   if (const auto held = stepper.integrator().constraints())
     log << format("%s: the multipliers' tool forces differ from the residual's by at most %.1e of their peak; drift %.1e mm\n",

@@ -20,11 +20,11 @@
 namespace roifem::solvers {
 
 struct NewtonOptions {
-  double residual_tolerance = 1e-10;   ///< relative to the force scale
+  double residual_tolerance = 1e-10;  ///< relative to the force scale
   /// relative to ||x||_inf: in the quadratic regime a correction d leaves an error of order d^2, so
   /// 1e-8 leaves ~1e-16 once the residual test holds (1e-10 cost one more iteration per step)
   double increment_tolerance = 1e-8;
-  double increment_floor = 1e-12;      ///< m: below this ||x|| the increment test is absolute
+  double increment_floor = 1e-12;  ///< m: below this ||x|| the increment test is absolute
   int max_iterations = 25;
 };
 

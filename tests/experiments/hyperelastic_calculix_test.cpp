@@ -34,9 +34,14 @@ void compare_with_calculix(const mesh::TetMesh& mesh, const char* name, const st
   fem::Material material = fem::material_preset("paper");
   material.model = fem::MaterialModel::neo_hookean;
   const double force = 0.01601;  // N per wall: scenarios/paper-full.toml
-  const Vector forces = fem::set_force(mesh, "opening_left", Vec3(-force, 0, 0)) + fem::set_force(mesh, "opening_right", Vec3(force, 0, 0));
-  CalculixProblem problem{.mesh = &mesh, .material = material, .fixed_nodes = mesh.set("base").nodes, .forces = forces,
-                          .newton_tolerance = 1e-9, .step_per_fraction = true};
+  const Vector forces =
+      fem::set_force(mesh, "opening_left", Vec3(-force, 0, 0)) + fem::set_force(mesh, "opening_right", Vec3(force, 0, 0));
+  CalculixProblem problem{.mesh = &mesh,
+                          .material = material,
+                          .fixed_nodes = mesh.set("base").nodes,
+                          .forces = forces,
+                          .newton_tolerance = 1e-9,
+                          .step_per_fraction = true};
   std::ostringstream log;
   const auto dir = std::filesystem::path(::testing::TempDir()) / (std::string("roifem_neo_hooke_") + name);
   const auto ccx = solve_with_calculix(problem, fractions, true, dir, log);
@@ -48,8 +53,8 @@ void compare_with_calculix(const mesh::TetMesh& mesh, const char* name, const st
   const fem::MaterialMap materials(material);
   const fem::HyperelasticAssembler assembler(mesh, dofs, materials);
   const auto ours = fem::solve_hyperelastic_static(assembler, dofs, dofs.restrict_to_free(forces), fractions);
-  const Vector u_linear = dofs.expand(fem::solve_static(fem::StiffnessAssembler(mesh, dofs).stiffness(materials),
-                                                        dofs.restrict_to_free(forces), dofs));
+  const Vector u_linear = dofs.expand(
+      fem::solve_static(fem::StiffnessAssembler(mesh, dofs).stiffness(materials), dofs.restrict_to_free(forces), dofs));
   for (std::size_t k = 0; k < fractions.size(); ++k) {
     const Vector u = dofs.expand(ours[k].u_free);
     const double scale = max_nodal_norm(ccx[k].u);
@@ -57,9 +62,10 @@ void compare_with_calculix(const mesh::TetMesh& mesh, const char* name, const st
     const double linear = max_nodal_norm(fractions[k] * u_linear - ccx[k].u) / scale;
     int iterations = 0;
     for (const auto& r : ours[k].newton) iterations += r.iterations();
-    std::printf("%s, %3.0f%% load: max |u| %.4f mm; max |u - u_ccx| / max |u_ccx| = %.2e (the linear answer's: %.2e); %zu "
-                "increments, %d Newton iterations\n",
-                name, 100 * fractions[k], scale / mm, difference, linear, ours[k].newton.size(), iterations);
+    std::printf(
+        "%s, %3.0f%% load: max |u| %.4f mm; max |u - u_ccx| / max |u_ccx| = %.2e (the linear answer's: %.2e); %zu "
+        "increments, %d Newton iterations\n",
+        name, 100 * fractions[k], scale / mm, difference, linear, ours[k].newton.size(), iterations);
     EXPECT_LT(difference, 1e-5) << name << " at " << fractions[k];
     EXPECT_GT(linear, 100 * difference) << "the comparison tells the two laws apart";
   }

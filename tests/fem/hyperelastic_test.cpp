@@ -2,8 +2,8 @@
 // The neo-Hookean law and elements (fem/neo_hookean.hpp, fem/hyperelastic_element.hpp,
 // fem/hyperelastic_assembly.hpp, fem/hyperelastic_static.hpp), each against an independent
 // expectation: the stress and tangent against finite differences of the energy and the stress;
-// the tangent at F = I against the linear law; the stress and energy at a strain of 1e-9 against it; the stress against the spatial (Cauchy) form of the
-// same law; homogeneous large deformations (a stretch of 1.5, a shear) reproduced exactly inside a
+// the tangent at F = I against the linear law; the stress and energy at a strain of 1e-9 against it; the stress against the
+// spatial (Cauchy) form of the same law; homogeneous large deformations (a stretch of 1.5, a shear) reproduced exactly inside a
 // distorted mesh; a rigid rotation by 90 degrees free of force (the linear element is not); the
 // linear answer recovered at small load; an inverted element named.
 #include <gtest/gtest.h>
@@ -213,7 +213,8 @@ mesh::TetMesh distorted_box(bool quadratic) {
   std::mt19937 rng(42);
   std::uniform_real_distribution<double> jitter(-0.04, 0.04);
   for (int n = 0; n < linear.num_nodes(); ++n)
-    if (!std::binary_search(boundary.begin(), boundary.end(), n)) linear.nodes.col(n) += Vec3(jitter(rng), jitter(rng), jitter(rng));
+    if (!std::binary_search(boundary.begin(), boundary.end(), n))
+      linear.nodes.col(n) += Vec3(jitter(rng), jitter(rng), jitter(rng));
   mesh::check_mesh(linear);
   return quadratic ? mesh::with_midside_nodes(linear) : linear;
 }

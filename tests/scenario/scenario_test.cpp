@@ -277,3 +277,33 @@ TEST(ScenarioReader, NamesABadMaterialRegion) {
 
 }  // namespace
 }  // namespace roifem::scenario
+
+namespace roifem::scenario {
+namespace {
+
+TEST(ScenarioReader, ReadsTheMaterialModelAndSuggestsAMisspeltOne) {
+  EXPECT_EQ(parse_scenario(valid, "s.toml", "/data").material.model, fem::MaterialModel::linear);
+  const std::string neo = replaced(valid, "alpha_per_s = 2.5", "alpha_per_s = 2.5\nmodel = \"neo-hookean\"");
+  const Scenario s = parse_scenario(neo, "s.toml", "/data");
+  EXPECT_EQ(s.material.model, fem::MaterialModel::neo_hookean);
+  EXPECT_EQ(parse_scenario(s.resolved_toml(), "r.toml", "/data").material.model, fem::MaterialModel::neo_hookean);
+  const std::string message = error_of(replaced(valid, "alpha_per_s = 2.5", "alpha_per_s = 2.5\nmodel = \"neo-hooke\""));
+  EXPECT_NE(message.find("s.toml"), std::string::npos) << message;
+  EXPECT_NE(message.find("material model 'neo-hooke' is unknown (did you mean 'neo-hookean'?)"), std::string::npos) << message;
+  EXPECT_NE(message.find("valid: linear, neo-hookean"), std::string::npos) << message;
+}
+
+TEST(ScenarioReader, AMaterialRegionKeepsTheBrainsLawUnlessItNamesItsOwn) {
+  const std::string neo = replaced(valid, "alpha_per_s = 2.5", "alpha_per_s = 2.5\nmodel = \"neo-hookean\"");
+  const Scenario inherits =
+      parse_scenario(neo + "[[material_region]]\nset = \"csf\"\npreset = \"brain\"\nalpha_per_s = 2.5\n", "s.toml", "/data");
+  EXPECT_EQ(inherits.material_regions.at(0).material.model, fem::MaterialModel::neo_hookean);
+  const Scenario own =
+      parse_scenario(neo + "[[material_region]]\nset = \"csf\"\nmu_Pa = 100\nmodel = \"linear\"\n", "s.toml", "/data");
+  EXPECT_EQ(own.material_regions.at(0).material.model, fem::MaterialModel::linear);
+  EXPECT_EQ(parse_scenario(own.resolved_toml(), "r.toml", "/data").material_regions.at(0).material.model,
+            fem::MaterialModel::linear);
+}
+
+}  // namespace
+}  // namespace roifem::scenario

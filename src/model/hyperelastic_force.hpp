@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+/// The internal force of a model whose elements follow the neo-Hookean law, all or some of them
+/// (fem/hyperelastic_assembly.hpp), over its dofs:
+///   f_int(u) = K_lin u + sum_{e nonlinear} A_e^T f_e(u_e),   K_t(u) = K_lin + sum_e A_e^T K_e(u_e) A_e,
+/// where K_lin holds what stays linear:
+///  - a full model: the elements of a linear material (none when every element is neo-Hookean);
+///  - the hybrid ROI: the condensed K~ less the nonlinear elements' linear stiffness. Its nonlinear
+///    elements are those with no node in the static part, so their linear stiffness lies wholly in
+///    K_dd and condensation stays exact: K~ and f~ are the linear model's, and u_s is recovered
+///    from u_d as before. With the ROI every free node, the hybrid is the full nonlinear model.
+/// K_t is written in K_lin's pattern (the system's K), which contains the assembler's.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fem/dof_map.hpp"
+#include "fem/element.hpp"
+#include "fem/hyperelastic_assembly.hpp"
+#include "model/internal_force.hpp"
+#include "roi/roi.hpp"
+
+namespace roifem::model {
+
+class HyperelasticForce final : public InternalForce {
+ public:
+  /// The force of `elements` (their materials' law) over `dofs`, plus K_lin u; K_lin's pattern must
+  /// contain the linear stiffness's over `dofs`. `dofs` is shared: the force may own it (the
+  /// hybrid's) or borrow it (a FemModel's, through a non-owning pointer).
+  HyperelasticForce(std::shared_ptr<const fem::DofMap> dofs, const mesh::TetMesh& mesh, const fem::MaterialMap& materials,
+                    std::vector<Index> elements, SparseMatrix K_lin, bool K_lin_is_zero, std::string description);
+  void force(const Vector& u, Vector& f) const override;
+  void force_and_tangent(const Vector& u, Vector& f, SparseMatrix& K_t) const override;
+  double energy(const Vector& u) const override;
+  std::string describe() const override { return description_; }
+  /// The elements that follow the law.
+  const std::vector<Index>& elements() const { return assembler_.elements(); }
+
+ private:
+  std::shared_ptr<const fem::DofMap> dofs_;  // before the assembler, which keeps a reference to it
+  fem::HyperelasticAssembler assembler_;
+  SparseMatrix K_lin_;
+  bool K_lin_is_zero_;
+  std::vector<int> assembler_in_K_;       ///< where the assembler's pattern's values land in K_lin's
+  mutable SparseMatrix element_tangent_;  ///< the elements' tangent, in the assembler's pattern
+  std::string description_;
+};
+
+/// The internal force of a full model when some material is neo-Hookean (else null): the
+/// neo-Hookean tetrahedra by the law, the others by their linear K.
+std::shared_ptr<const InternalForce> hyperelastic_force(const mesh::TetMesh& mesh, const fem::DofMap& dofs,
+                                                        const fem::MaterialMap& materials, fem::Element element);
+
+/// The hybrid ROI's internal force over the ROI dofs of a static condensation (partition.d, in
+/// order), from the condensed K~ (the reduced system's K) and the full model's dofs and materials.
+std::shared_ptr<const InternalForce> hybrid_roi_force(const mesh::TetMesh& mesh, const fem::DofMap& dofs,
+                                                      const fem::MaterialMap& materials, fem::Element element,
+                                                      const roi::Partition& partition, const SparseMatrix& K_condensed);
+
+}  // namespace roifem::model
