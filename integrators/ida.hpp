@@ -6,8 +6,8 @@
 /// matrix and factored by KLU (AMD ordering). BDF orders 1-5 (`max_order` 5), or capped at 2,
 /// the highest A-stable BDF. IDA has no fixed-step mode: it is always error-controlled.
 #include <memory>
-#include <vector>
 #include <string>
+#include <vector>
 
 #include "integrators/integrator.hpp"
 #include "integrators/integrator_info.hpp"

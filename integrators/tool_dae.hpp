@@ -5,8 +5,8 @@
 /// tools' dofs kept and held by multipliers, and report its state in the eliminated numbering, so
 /// that `run`, `compare` and every observer take them like any other integrator.
 #include <memory>
-#include <vector>
 #include <optional>
+#include <vector>
 
 #include "integrators/ida_tool_dae.hpp"
 #include "integrators/integrator.hpp"

@@ -23,12 +23,12 @@ struct BasisRequest;  // static_basis.hpp
 using BasisMaker = model::Modes (*)(const BasisRequest&);
 
 struct ReductionInfo {
-  std::string_view key;              ///< scenario: [roi] reduction = "<key>"; CLI label: <key> or <key>-K
-  bool counted = false;              ///< the CLI label takes a count K (modes or vectors): scenario key `modes`
-  bool takes_cutoff = false;         ///< instead of K, every mode below a frequency: scenario key `cutoff_rad_s`
-  bool carries_mass = false;         ///< the static part's inertia moves with the ROI (needs a lumped M, C)
-  BasisMaker make_basis = nullptr;   ///< nullptr: no coordinates beyond the static modes
-  bool learns_from_loads = false;    ///< the basis is learnt from the model's own response to its loads (POD)
+  std::string_view key;             ///< scenario: [roi] reduction = "<key>"; CLI label: <key> or <key>-K
+  bool counted = false;             ///< the CLI label takes a count K (modes or vectors): scenario key `modes`
+  bool takes_cutoff = false;        ///< instead of K, every mode below a frequency: scenario key `cutoff_rad_s`
+  bool carries_mass = false;        ///< the static part's inertia moves with the ROI (needs a lumped M, C)
+  BasisMaker make_basis = nullptr;  ///< nullptr: no coordinates beyond the static modes
+  bool learns_from_loads = false;   ///< the basis is learnt from the model's own response to its loads (POD)
   std::string_view description;
 };
 

@@ -238,9 +238,8 @@ void PetscTs::advance(double t_out, model::State& state) {
     rethrow_pending();
     ++k_;
     if (code != 0)
-      throw SolverError(std::string(name()) + ": step " + std::to_string(k_) +
-                        ", t = " + number_text(grid_.at(k_)) + " s: PETSc's TSStep failed (error " +
-                        std::to_string(static_cast<int>(code)) + ")");
+      throw SolverError(std::string(name()) + ": step " + std::to_string(k_) + ", t = " + number_text(grid_.at(k_)) +
+                        " s: PETSc's TSStep failed (error " + std::to_string(static_cast<int>(code)) + ")");
   }
   state.t = grid_.at(k_);
   const Index n = system_->size();

@@ -38,7 +38,8 @@ long ScenarioStepper::steps_to(double t) const {
         io::format("step_to: t = %.9g s is not ahead of the simulation, which is at t = %.9g s (step %ld)", t, state_.t, k_));
   // The last grid point t_k <= t (to within 1e-9 dt), counted without stepping there.
   const double k = std::floor((t - grid_.t0()) / grid_.dt() + 1e-9);
-  if (k > 1e15) throw InputError(io::format("step_to: t = %g s is %.3g steps of dt = %g s away", t, k - static_cast<double>(k_), grid_.dt()));
+  if (k > 1e15)
+    throw InputError(io::format("step_to: t = %g s is %.3g steps of dt = %g s away", t, k - static_cast<double>(k_), grid_.dt()));
   return grid_.last_at_or_before(t) - k_;
 }
 

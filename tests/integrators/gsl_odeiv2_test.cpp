@@ -75,8 +75,8 @@ TEST(GslOdeiv2, Rk4IsStableToTwiceClassicalRk4sLimitAsItsStepDoublingSays) {
     }
     return largest / 1e-3;
   };
-  EXPECT_LT(amplitude_after(0.98 * limit), 1.0 + 1e-9);     // |R| < 1: it decays
-  EXPECT_GT(amplitude_after(1.02 * limit), 10.0);           // |R| > 1: it grows
+  EXPECT_LT(amplitude_after(0.98 * limit), 1.0 + 1e-9);                    // |R| < 1: it decays
+  EXPECT_GT(amplitude_after(1.02 * limit), 10.0);                          // |R| > 1: it grows
   EXPECT_LT(amplitude_after(1.5 * 2.0 * std::sqrt(2.0) / w), 1.0 + 1e-9);  // 1.5x classical RK4's limit: still stable
 }
 
