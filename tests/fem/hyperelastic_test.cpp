@@ -25,12 +25,12 @@
 namespace roifem::fem {
 namespace {
 
-const Material tissue = [] {
+const Material neo_hookean_tissue = [] {
   Material m = Material::from_young_poisson(3000, 0.45, 1000, 0);
   m.model = MaterialModel::neo_hookean;
   return m;
 }();
-const NeoHookean law = NeoHookean::of(tissue);
+const NeoHookean law = NeoHookean::of(neo_hookean_tissue);
 
 /// A displacement gradient H = F - I with entries up to `amplitude`.
 Mat3 random_gradient(std::mt19937& rng, double amplitude) {
@@ -80,8 +80,9 @@ TEST(NeoHookean, TangentAtRestIsTheLinearLawWithTheSameLameConstants) {
     for (int J = 0; J < 3; ++J)
       for (int k = 0; k < 3; ++k)
         for (int L = 0; L < 3; ++L) {
-          const double linear = tissue.lambda * (i == J) * (k == L) + tissue.mu * ((i == k) * (J == L) + (i == L) * (J == k));
-          EXPECT_NEAR(A(3 * i + J, 3 * k + L), linear, 1e-12 * tissue.lambda) << i << J << k << L;
+          const double linear = neo_hookean_tissue.lambda * (i == J) * (k == L) +
+                                neo_hookean_tissue.mu * ((i == k) * (J == L) + (i == L) * (J == k));
+          EXPECT_NEAR(A(3 * i + J, 3 * k + L), linear, 1e-12 * neo_hookean_tissue.lambda) << i << J << k << L;
         }
 }
 
@@ -100,7 +101,7 @@ TEST(NeoHookean, FirstPiolaStressEqualsTheSpatialFormOfTheLaw) {
     const double W = law.C10 * (std::pow(J, -2.0 / 3.0) * F.squaredNorm() - 3) + (J - 1) * (J - 1) / law.D1;
     EXPECT_NEAR(law.energy(H) / W, 1.0, 1e-13);
   }
-  EXPECT_DOUBLE_EQ(law.kappa(), tissue.lambda + 2 * tissue.mu / 3);
+  EXPECT_DOUBLE_EQ(law.kappa(), neo_hookean_tissue.lambda + 2 * neo_hookean_tissue.mu / 3);
 }
 
 TEST(NeoHookean, KeepsItsDigitsAtTinyStrainWhereItIsTheLinearLaw) {
@@ -112,7 +113,7 @@ TEST(NeoHookean, KeepsItsDigitsAtTinyStrainWhereItIsTheLinearLaw) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) H(i, j) = 1e-9 * draw(rng);
   const Mat3 eps = 0.5 * (H + H.transpose());
-  const Mat3 sigma = tissue.lambda * eps.trace() * Mat3::Identity() + 2 * tissue.mu * eps;
+  const Mat3 sigma = neo_hookean_tissue.lambda * eps.trace() * Mat3::Identity() + 2 * neo_hookean_tissue.mu * eps;
   const double W = 0.5 * (sigma.array() * eps.array()).sum();
   EXPECT_LT((law.stress(H) - sigma).norm() / sigma.norm(), 1e-7);
   EXPECT_NEAR(law.energy(H) / W, 1.0, 1e-7);
@@ -123,7 +124,9 @@ TEST(NeoHookean, KeepsItsDigitsAtTinyStrainWhereItIsTheLinearLaw) {
 }
 
 /// A skewed tetrahedron, positively oriented.
-std::array<Vec3, 4> skewed() { return {Vec3(0, 0, 0), Vec3(1.2, 0.1, -0.1), Vec3(0.3, 0.9, 0.2), Vec3(0.2, 0.3, 1.1)}; }
+std::array<Vec3, 4> skewed_tetrahedron() {
+  return {Vec3(0, 0, 0), Vec3(1.2, 0.1, -0.1), Vec3(0.3, 0.9, 0.2), Vec3(0.2, 0.3, 1.1)};
+}
 
 template <int N, class Evaluate>
 void expect_consistent(const Eigen::Matrix<double, 3 * N, 1>& ue, Evaluate evaluate) {
@@ -147,7 +150,7 @@ void expect_consistent(const Eigen::Matrix<double, 3 * N, 1>& ue, Evaluate evalu
 }
 
 TEST(HyperelasticElement, Tet4ForceAndTangentMatchFiniteDifferences) {
-  const auto x = skewed();
+  const auto x = skewed_tetrahedron();
   const Tet4Geometry g = tet4_geometry(x[0], x[1], x[2], x[3]);
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> draw(-0.15, 0.15);
@@ -157,7 +160,7 @@ TEST(HyperelasticElement, Tet4ForceAndTangentMatchFiniteDifferences) {
 }
 
 TEST(HyperelasticElement, Tet10ForceAndTangentMatchFiniteDifferences) {
-  const auto x = skewed();
+  const auto x = skewed_tetrahedron();
   const Tet10Geometry g = tet10_geometry(x[0], x[1], x[2], x[3]);
   std::mt19937 rng(6);
   std::uniform_real_distribution<double> draw(-0.08, 0.08);
@@ -167,9 +170,9 @@ TEST(HyperelasticElement, Tet10ForceAndTangentMatchFiniteDifferences) {
 }
 
 TEST(HyperelasticElement, SmallDisplacementGivesTheLinearElementsForceAndStiffness) {
-  const auto x = skewed();
+  const auto x = skewed_tetrahedron();
   const Tet4Geometry g = tet4_geometry(x[0], x[1], x[2], x[3]);
-  const ElementMatrix K = tet4_stiffness(g, tissue);
+  const ElementMatrix K = tet4_stiffness(g, neo_hookean_tissue);
   const auto at_rest = tet4_hyperelastic(g, law, Eigen::Matrix<double, 12, 1>::Zero(), Evaluate::force_and_tangent);
   EXPECT_LT((at_rest.tangent - K).norm() / K.norm(), 1e-13);
   std::mt19937 rng(8);
@@ -181,7 +184,7 @@ TEST(HyperelasticElement, SmallDisplacementGivesTheLinearElementsForceAndStiffne
 }
 
 TEST(HyperelasticElement, RigidRotationBy90DegreesGivesNoForceWhereTheLinearElementsIsLarge) {
-  const auto x = skewed();
+  const auto x = skewed_tetrahedron();
   const Tet4Geometry g4 = tet4_geometry(x[0], x[1], x[2], x[3]);
   const Tet10Geometry g10 = tet10_geometry(x[0], x[1], x[2], x[3]);
   const Mat3 R = Eigen::AngleAxisd(M_PI / 2, Vec3(1, 2, 3).normalized()).toRotationMatrix();
@@ -194,7 +197,7 @@ TEST(HyperelasticElement, RigidRotationBy90DegreesGivesNoForceWhereTheLinearElem
   const double scale = tet4_hyperelastic(g4, law, stretch, Evaluate::force).force.norm();
   EXPECT_LT(r4.force.norm(), 1e-12 * scale);
   EXPECT_NEAR(r4.energy, 0, 1e-12 * scale);
-  const double linear = (tet4_stiffness(g4, tissue) * u4).norm();
+  const double linear = (tet4_stiffness(g4, neo_hookean_tissue) * u4).norm();
   EXPECT_GT(linear, 5 * scale) << "the linear element resists a rotation";
   std::printf("rotation by 90 degrees: neo-Hookean |f| = %.2e, linear |K u| = %.2e (10%% stretch: %.2e)\n", r4.force.norm(),
               linear, scale);
@@ -225,7 +228,7 @@ std::pair<double, int> homogeneous_error(const mesh::TetMesh& mesh, const Mat3& 
   Constraints constraints(mesh.num_nodes());
   for (int n : mesh::boundary_nodes(mesh)) constraints.fix_node(n, (F - Mat3::Identity()) * mesh.node(n));
   const DofMap dofs(constraints);
-  const MaterialMap materials(tissue);
+  const MaterialMap materials(neo_hookean_tissue);
   const HyperelasticAssembler assembler(mesh, dofs, materials);
   const auto solution = solve_hyperelastic_static(assembler, dofs, Vector::Zero(dofs.num_free()), {1.0});
   const Vector u = dofs.prescribed() + dofs.expand_homogeneous(solution.back().u_free);
@@ -262,7 +265,7 @@ TEST(HyperelasticStatic, SmallLoadRecoversTheLinearAnswer) {
   Vector f = Vector::Zero(dofs.num_free());
   for (int n = 0; n < mesh.num_nodes(); ++n)
     if (mesh.node(n).x() > 1 - 1e-9) f[dofs.free_dof(n, 2)] = -1.0;
-  const MaterialMap materials(tissue);
+  const MaterialMap materials(neo_hookean_tissue);
   const Vector u_linear = solve_static(StiffnessAssembler(mesh, dofs).stiffness(materials), f, dofs);
   const HyperelasticAssembler assembler(mesh, dofs, materials);
   // Loads that give a peak displacement of 1e-3 and 1e-5 of the beam's length: the nonlinear answer
@@ -283,7 +286,7 @@ TEST(HyperelasticAssembly, TangentMatchesFiniteDifferencesOfTheAssembledForce) {
   Constraints constraints(mesh.num_nodes());
   constraints.fix_set(mesh, "x0");
   const DofMap dofs(constraints);
-  const MaterialMap materials(tissue);
+  const MaterialMap materials(neo_hookean_tissue);
   const HyperelasticAssembler assembler(mesh, dofs, materials);
   std::mt19937 rng(9);
   std::uniform_real_distribution<double> draw(-0.02, 0.02);
@@ -310,7 +313,7 @@ TEST(HyperelasticAssembly, AnInvertedElementIsNamedWithItsNodes) {
   const mesh::TetMesh mesh = mesh::structured_box_mesh(1, 1, 1, 1.0, 1.0, 1.0);
   Constraints constraints(mesh.num_nodes());
   const DofMap dofs(constraints);
-  const MaterialMap materials(tissue);
+  const MaterialMap materials(neo_hookean_tissue);
   const HyperelasticAssembler assembler(mesh, dofs, materials);
   Vector u = Vector::Zero(3 * mesh.num_nodes());
   for (int n = 0; n < mesh.num_nodes(); ++n) u[3 * n] = -2.0 * mesh.node(n).x();  // x -> -x: every element inverts
