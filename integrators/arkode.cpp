@@ -55,7 +55,11 @@ void Arkode::check(int flag, const char* call) const {
 
 int Arkode::rhs(double t, N_Vector y, N_Vector ydot, void* self) {
   auto* me = static_cast<Arkode*>(self);
-  return guarded_callback(me->pending_, -1, [&] { me->form_->evaluate(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot)); });
+  const auto evaluate = [&] { me->form_->evaluate(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot)); };
+  // An implicit method's Newton iterate may be inadmissible (an element inverted) where the step's
+  // answer is not: ARKODE may retry it smaller.
+  return me->method_.implicit ? guarded_recoverable_callback(me->pending_, me->inadmissible_, -1, evaluate)
+                              : guarded_callback(me->pending_, -1, evaluate);
 }
 
 int Arkode::unit_weights(N_Vector, N_Vector ewt, void*) {
@@ -63,10 +67,27 @@ int Arkode::unit_weights(N_Vector, N_Vector ewt, void*) {
   return 0;
 }
 
-int Arkode::jacobian(double, N_Vector, N_Vector, SUNMatrix J, void* self, N_Vector, N_Vector, N_Vector) {
+int Arkode::jacobian(double, N_Vector y, N_Vector, SUNMatrix J, void* self, N_Vector, N_Vector, N_Vector) {
   auto* me = static_cast<Arkode*>(self);
-  sundials::copy_into(me->jacobian_, J);  // constant: the problem is linear
-  return 0;
+  return guarded_callback(me->pending_, -1, [&] {
+    // A linear problem's Jacobian is constant; a nonlinear one's holds the tangent at y's u, on
+    // the first Jacobian's pattern, so that KLU refactors on its one symbolic analysis.
+    if (me->system_->is_nonlinear())
+      me->jacobian_ = me->newton_jacobian(me->form_->stiffness(N_VGetArrayPointer(y)), &me->jacobian_pattern_);
+    sundials::copy_into(me->jacobian_, J);
+  });
+}
+
+SparseMatrix Arkode::newton_jacobian(const SparseMatrix& K, const SparseMatrix* pattern_of) const {
+  const Index n = system_->size();
+  const SparseMatrix I = model::diagonal_matrix(Vector::Ones(n));
+  if (method_.mass_matrix) return assemble_blocks({n, n}, {{0, 1, &I}, {1, 0, &K, -1.0}, {1, 1, &system_->C, -1.0}}, pattern_of);
+  if (method_.schur)  // the Schur solver reads only gamma from the Newton matrix (its top-right block, -gamma I)
+    return assemble_blocks({n, n}, {{0, 1, &I}}, pattern_of);
+  // Sparse for a lumped M, and for a reduced model's block-diagonal one too (dense only in the
+  // interface and modal rows; see MassInverse::apply).
+  const SparseMatrix minus_MinvK = form_->lower_left(K), minus_MinvC = form_->lower_right();
+  return assemble_blocks({n, n}, {{0, 1, &I}, {1, 0, &minus_MinvK}, {1, 1, &minus_MinvC}}, pattern_of);
 }
 
 int Arkode::mass(double, SUNMatrix M, void* self, N_Vector, N_Vector, N_Vector) {
@@ -85,6 +106,7 @@ void Arkode::prepare(const model::SecondOrderSystem& system, const model::State&
   J_.reset();
   M_.reset();
   pending_ = nullptr;
+  inadmissible_.clear();
   form_ =
       std::make_unique<FirstOrderForm>(system, method_.mass_matrix ? FirstOrderForm::Mass::kept : FirstOrderForm::Mass::inverted);
   create_memory(initial);
@@ -113,10 +135,15 @@ void Arkode::set_steps() {
     check(ARKStepSetInitStep(memory_.get(), control_.dt), "ARKStepSetInitStep");
   } else {
     check(ARKStepSetFixedStep(memory_.get(), control_.dt), "ARKStepSetFixedStep");
-    // At a fixed step the error weights steer nothing (no error test, and a linear problem's one
-    // Newton iteration skips the convergence test): unit weights, set in one pass instead of the
-    // five of ARKODE's tolerance-based weights at every step.
-    check(ARKStepWFtolerances(memory_.get(), unit_weights), "ARKStepWFtolerances");
+    if (method_.implicit && system_->is_nonlinear()) {
+      // The weights are Newton's convergence test: rtol and atol, as with adaptive steps.
+      check(ARKStepSStolerances(memory_.get(), control_.rtol, control_.atol), "ARKStepSStolerances");
+    } else {
+      // At a fixed step the error weights steer nothing (no error test, and a linear problem's one
+      // Newton iteration skips the convergence test): unit weights, set in one pass instead of the
+      // five of ARKODE's tolerance-based weights at every step.
+      check(ARKStepWFtolerances(memory_.get(), unit_weights), "ARKStepWFtolerances");
+    }
   }
   // Lagrange interpolation keeps past solutions only; Hermite would also keep f at every step.
   check(ARKStepSetInterpolantType(memory_.get(), ARK_INTERP_LAGRANGE), "ARKStepSetInterpolantType");
@@ -142,23 +169,16 @@ void Arkode::attach_linear_solvers() {
   const model::SecondOrderSystem& system = *system_;
   const Index n = system.size();
   void* memory = memory_.get();
-  const SparseMatrix I = model::diagonal_matrix(Vector::Ones(n));
   if (method_.mass_matrix) {
-    jacobian_ = assemble_blocks({n, n}, {{0, 1, &I}, {1, 0, &system.K, -1.0}, {1, 1, &system.C, -1.0}});
+    const SparseMatrix I = model::diagonal_matrix(Vector::Ones(n));
     mass_matrix_ = assemble_blocks({n, n}, {{0, 0, &I}, {1, 1, &system.M}});
     M_ = sundials::make_sparse(mass_matrix_, context_.get());
     mass_solver_ = std::make_unique<sundials::KluSolver>(y_.get(), M_.get(), context_.get(), method_.klu_ordering);
     check(ARKStepSetMassLinearSolver(memory, mass_solver_->get(), M_.get(), SUNFALSE), "ARKStepSetMassLinearSolver");
     check(ARKStepSetMassFn(memory, mass), "ARKStepSetMassFn");
-  } else if (method_.schur) {
-    // The Schur solver reads only gamma from the Newton matrix (its top-right block, -gamma I).
-    jacobian_ = assemble_blocks({n, n}, {{0, 1, &I}});
-  } else {
-    // Sparse for a lumped M, and for a reduced model's block-diagonal one too (dense only in the
-    // interface and modal rows; see MassInverse::apply).
-    const SparseMatrix minus_MinvK = form_->lower_left(), minus_MinvC = form_->lower_right();
-    jacobian_ = assemble_blocks({n, n}, {{0, 1, &I}, {1, 0, &minus_MinvK}, {1, 1, &minus_MinvC}});
   }
+  jacobian_ = newton_jacobian(system.K);
+  if (system.is_nonlinear()) jacobian_pattern_ = jacobian_;
   J_ = sundials::make_sparse(jacobian_, context_.get());
   SUNLinearSolver linear_solver = nullptr;
   if (method_.schur) {
@@ -170,6 +190,15 @@ void Arkode::attach_linear_solvers() {
   }
   check(ARKStepSetLinearSolver(memory, linear_solver, J_.get()), "ARKStepSetLinearSolver");
   check(ARKStepSetJacFn(memory, jacobian), "ARKStepSetJacFn");
+  // A nonlinear problem: ARKODE's modified Newton with its own policy for when to rebuild the
+  // Jacobian (from the tangent) and refactor; what follows is for the linear problem alone.
+  if (system.is_nonlinear()) {
+    // At a fixed step a failed Newton solve cannot be retried smaller: give it more iterations
+    // than ARKODE's 3, which presume that it can.
+    if (!control_.adaptive) check(ARKStepSetMaxNonlinIters(memory, 10), "ARKStepSetMaxNonlinIters");
+    check(ARKStepSetPredictorMethod(memory, 1), "ARKStepSetPredictorMethod");
+    return;
+  }
   check(ARKStepSetLinear(memory, 0), "ARKStepSetLinear");  // linear, constant Jacobian
   // f_i at each stage follows from the stage solution (z - predictor) / (h a_ii): saves one
   // right-hand side (a K product) per implicit stage.
@@ -187,9 +216,16 @@ void Arkode::advance(double t_out, model::State& state) {
   check(ARKStepSetStopTime(memory_.get(), t_out), "ARKStepSetStopTime");
   double t_reached = state.t;
   const int flag = ARKStepEvolve(memory_.get(), t_out, y_.get(), &t_reached, ARK_NORMAL);
-  if (pending_) std::rethrow_exception(std::exchange(pending_, nullptr));
   long steps = 0;
   ARKStepGetNumSteps(memory_.get(), &steps);
+  if (pending_) {
+    try {
+      std::rethrow_exception(std::exchange(pending_, nullptr));
+    } catch (const ModelError& e) {  // an explicit stage that inverts an element
+      throw ModelError(method_.name + ": step " + std::to_string(steps + 1) + ", after t = " + number_text(t_reached) +
+                       " s: " + e.what());
+    }
+  }
   // At a fixed step the error weights are 1 (see reset), so ARKODE's "too much accuracy" test
   // (eps ||y|| > 1) is what a diverging solution trips first: report it as the divergence it is.
   if (flag == ARK_TOO_MUCH_ACC && !control_.adaptive)
@@ -197,7 +233,8 @@ void Arkode::advance(double t_out, model::State& state) {
                       std::to_string(steps) + "; the step is beyond the method's stability limit");
   if (flag < 0)
     throw SolverError(method_.name + ": failed at t = " + number_text(t_reached) + " s (step " + std::to_string(steps) +
-                      "): " + sundials::flag_name(ARKStepGetReturnFlagName(flag)) + last_error_.detail());
+                      "): " + sundials::flag_name(ARKStepGetReturnFlagName(flag)) + last_error_.detail() +
+                      (inadmissible_.empty() ? "" : "; the last Newton iterate rejected: " + inadmissible_));
   const Index n = system_->size();
   const auto y = sundials::view(y_.get());
   state.t = t_reached;
@@ -219,6 +256,7 @@ Stats Arkode::stats() const {
     ARKStepGetNumLinSolvSetups(memory_.get(), &s.lin_setups);
     ARKStepGetNumNonlinSolvIters(memory_.get(), &value);  // one linear solve per Newton iteration
     s.lin_solves = value;
+    if (system_ && system_->is_nonlinear()) s.nonlinear_iterations = value;
   }
   if (solver_) s.factorization_s += solver_->setup_seconds();
   if (mass_solver_) s.factorization_s += mass_solver_->setup_seconds();
@@ -260,7 +298,8 @@ void add_implicit(std::vector<IntegratorInfo>& rows, const std::string& name, in
                     .linear_solver = v.solver,
                     .method_id = table,
                     .make = make_arkode,
-                    .summary = summary + " (" + v.how + ")"});
+                    .summary = summary + " (" + v.how + ")",
+                    .nonlinear = v.solver == LinearSolver::klu || v.solver == LinearSolver::klu_mass});
 }
 
 }  // namespace

@@ -4,7 +4,7 @@
 ///   u' = v,   M v' = f(t) - C v - K u.
 /// Explicit (ERK) methods use y' = [v; M^-1 (f - C v - K u)], M^-1 a product for the lumped M and
 /// a Cholesky solve for the full M of a Guyan, Craig-Bampton or POD model.
-/// Implicit (DIRK/ESDIRK) methods solve with the constant Jacobian J = [[0, I], [-M^-1 K, -M^-1 C]]
+/// Implicit (DIRK/ESDIRK) methods solve with the Jacobian J = [[0, I], [-M^-1 K, -M^-1 C]]
 /// held as a SUNSparseMatrix (sparse for a reduced model too: its M is block diagonal, and M^-1 K is
 /// dense only in the block's rows), factored by KLU with AMD ordering (KLU's default COLAMD is
 /// slower on 3D meshes), the problem declared linear so that at a fixed step one factorization
@@ -14,6 +14,9 @@
 /// b = [1/2, 1/2] (an ESDIRK; equals the hand-written Newmark average-acceleration rule).
 /// With `schur`, the Newton systems are solved by sundials::SchurSolver (one SPD Cholesky solve of
 /// size n per stage) instead of KLU on the 2n system.
+/// A nonlinear system (model/internal_force.hpp), with KLU: f_int(u) replaces K u, K_t(u) replaces K
+/// in J, and ARKODE's modified Newton decides when to rebuild J and refactor (KLU refactors on
+/// the first analysis); at a fixed step, rtol and atol weigh Newton's convergence test.
 #include <exception>
 #include <memory>
 #include <string>
@@ -55,8 +58,9 @@ class Arkode final : public Integrator {
   Arkode(ArkodeMethod method, StepControl control);
   std::string_view name() const override { return method_.name; }
   Stats stats() const override;
-  /// The explicit methods: they need f_int(u) alone (FirstOrderForm::evaluate), no Jacobian.
-  bool takes_nonlinear() const override { return !method_.implicit; }
+  /// The explicit methods (f_int(u) alone, FirstOrderForm::evaluate) and the implicit ones on KLU
+  /// (the Jacobian from the tangent K_t(u)); the Schur solver factors K itself and does not.
+  bool takes_nonlinear() const override { return !method_.schur; }
 
  private:
   void prepare(const model::SecondOrderSystem& system, const model::State& initial) override;
@@ -70,6 +74,9 @@ class Arkode final : public Integrator {
   void set_steps();
   void set_butcher_table();
   void attach_linear_solvers();
+  /// The Newton matrix's Jacobian for the stiffness K (the system's, or a tangent) in this
+  /// method's variant, with every entry of `pattern_of` present.
+  SparseMatrix newton_jacobian(const SparseMatrix& K, const SparseMatrix* pattern_of = nullptr) const;
 
   ArkodeMethod method_;
   StepControl control_;
@@ -83,7 +90,9 @@ class Arkode final : public Integrator {
   std::unique_ptr<FirstOrderForm> form_;
   double t0_ = 0;  // of the last reset, for messages
   SparseMatrix jacobian_, mass_matrix_;
-  std::exception_ptr pending_;  // an exception from a callback, rethrown after the C call
+  SparseMatrix jacobian_pattern_;  ///< a nonlinear problem's first Jacobian: every later one in its pattern
+  std::exception_ptr pending_;     // an exception from a callback, rethrown after the C call
+  std::string inadmissible_;       // the last Newton iterate the model refused (guarded_recoverable_callback)
   sundials::LastError last_error_;
 };
 

@@ -9,6 +9,7 @@
 /// can take a minute).
 #include <exception>
 #include <string>
+#include <utility>
 
 #include "common/errors.hpp"
 #include "common/interrupt.hpp"
@@ -27,6 +28,25 @@ int guarded_callback(std::exception_ptr& pending, int failure, Body&& body) noex
     pending = std::current_exception();
     return failure;
   }
+}
+
+/// As guarded_callback, for a callback whose library can retry with a smaller step: a ModelError
+/// (a state the model does not admit, such as a Newton iterate that inverts an element) returns 1,
+/// recoverable, and its message is kept in `inadmissible` for the report should the library give
+/// up. A linear model never throws one.
+template <class Body>
+int guarded_recoverable_callback(std::exception_ptr& pending, std::string& inadmissible, int failure, Body&& body) noexcept {
+  const int flag = guarded_callback(pending, failure, std::forward<Body>(body));
+  if (flag == 0) return 0;
+  try {
+    std::rethrow_exception(pending);
+  } catch (const ModelError& e) {
+    inadmissible = e.what();
+    pending = nullptr;
+    return 1;
+  } catch (...) {
+  }
+  return flag;
 }
 
 }  // namespace roifem::integrators

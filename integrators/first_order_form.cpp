@@ -35,7 +35,17 @@ void FirstOrderForm::evaluate(double t, const double* y, double* ydot) {
     mass_inverse_->apply(work_, dv);
 }
 
-SparseMatrix FirstOrderForm::lower_left() const { return -mass_inverse_->apply(system_.K); }
+const SparseMatrix& FirstOrderForm::stiffness(const double* y) {
+  if (!system_.internal_force) return system_.K;
+  const Index n = system_.size();
+  tangent_u_ = Eigen::Map<const Vector>(y, n);
+  tangent_force_.resize(n);
+  if (tangent_.nonZeros() != system_.K.nonZeros()) tangent_ = system_.K;  // the pattern, once
+  system_.internal_force->force_and_tangent(tangent_u_, tangent_force_, tangent_);
+  return tangent_;
+}
+
+SparseMatrix FirstOrderForm::lower_left(const SparseMatrix& K) const { return -mass_inverse_->apply(K); }
 SparseMatrix FirstOrderForm::lower_right() const { return -mass_inverse_->apply(system_.C); }
 
 Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> FirstOrderForm::dense_jacobian() const {

@@ -3,10 +3,10 @@
 /// The first-order form y = [u; v] of M u'' + C u' + K u = f(t) that ARKODE and GSL integrate:
 ///   u' = v,   v' = M^-1 (f(t) - C v - K u)          (or, with M kept as a mass matrix,
 ///   u' = v,   M v' = f(t) - C v - K u),
-/// with its constant Jacobian J = [[0, I], [-M^-1 K, -M^-1 C]]. A nonlinear system's f_int(u)
-/// takes K u's place in evaluate() (model/internal_force.hpp); its Jacobian is then not constant,
-/// and only the methods that need no Jacobian (the explicit ones) take it. M^-1 is a product for a lumped M
-/// and a Cholesky solve for the full M of a Guyan, Craig-Bampton or POD model (MassInverse).
+/// with its Jacobian J = [[0, I], [-M^-1 K, -M^-1 C]]. A nonlinear system's f_int(u) takes K u's
+/// place in evaluate() (model/internal_force.hpp), and its tangent K_t(u) K's place in the
+/// Jacobian, which then moves with u (stiffness()). M^-1 is a product for a lumped M and a Cholesky
+/// solve for the full M of a Guyan, Craig-Bampton or POD model (MassInverse).
 #include <memory>
 
 #include "model/mass_inverse.hpp"
@@ -23,8 +23,13 @@ class FirstOrderForm {
   /// ydot = y'(t, y). K u, the costly part, is kept keyed by u's exact values: a stage often
   /// evaluates at the u of the evaluation before.
   void evaluate(double t, const double* y, double* ydot);
-  /// -M^-1 K and -M^-1 C, the Jacobian's lower blocks (sparse: see MassInverse::apply).
-  SparseMatrix lower_left() const;
+  /// The stiffness at y's u: the system's K, or a nonlinear system's tangent K_t(u) (in K's
+  /// pattern; valid until the next call).
+  const SparseMatrix& stiffness(const double* y);
+  /// -M^-1 K (of the system's K, or of a tangent) and -M^-1 C, the Jacobian's lower blocks
+  /// (sparse: see MassInverse::apply).
+  SparseMatrix lower_left(const SparseMatrix& K) const;
+  SparseMatrix lower_left() const { return lower_left(system_.K); }
   SparseMatrix lower_right() const;
   /// The whole Jacobian, dense (row-major), for GSL.
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> dense_jacobian() const;
@@ -34,6 +39,8 @@ class FirstOrderForm {
   Mass mass_;
   std::unique_ptr<model::MassInverse> mass_inverse_;  // with Mass::inverted
   Vector force_, work_, cached_u_, cached_Ku_;
+  Vector tangent_u_, tangent_force_;  // stiffness()'s
+  SparseMatrix tangent_;
 };
 
 }  // namespace roifem::integrators

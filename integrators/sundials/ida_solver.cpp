@@ -35,17 +35,27 @@ void IdaSolver::check(int flag, const char* call) const {
 
 int IdaSolver::residual_callback(double t, N_Vector y, N_Vector yp, N_Vector r, void* self) {
   auto* me = static_cast<IdaSolver*>(self);
-  return guarded_callback(me->pending_, -1, [&] { me->residual_(t, view(y), view(yp), view(r)); });
+  // A Newton iterate may be inadmissible (an element inverted) where the step's answer is not: IDA
+  // may retry it smaller.
+  return guarded_recoverable_callback(me->pending_, me->inadmissible_, -1, [&] { me->residual_(t, view(y), view(yp), view(r)); });
 }
 
-int IdaSolver::jacobian_callback(double, double c_j, N_Vector, N_Vector, N_Vector, SUNMatrix J, void* self, N_Vector, N_Vector,
+int IdaSolver::jacobian_callback(double, double c_j, N_Vector y, N_Vector, N_Vector, SUNMatrix J, void* self, N_Vector, N_Vector,
                                  N_Vector) {
   auto* me = static_cast<IdaSolver*>(self);
-  return guarded_callback(me->pending_, -1, [&] { write_newton_matrix(me->dF_dy_, me->dF_dyp_, c_j, J); });
+  return guarded_callback(me->pending_, -1, [&] {
+    if (me->settings_.update_dF_dy) {
+      me->settings_.update_dF_dy(view(y));
+      if (me->dF_dy_.nonZeros() != me->dF_dyp_.nonZeros())
+        throw Error("internal: " + me->settings_.name + ": the updated dF/dy left the Newton matrix's pattern");
+    }
+    write_newton_matrix(me->dF_dy_, me->dF_dyp_, c_j, J);
+  });
 }
 
 void IdaSolver::start(double t0) {
   pending_ = nullptr;
+  inadmissible_.clear();
   if (memory_) {  // a restart: the same memory, linear solver and pattern
     before_ = stats();
     before_.factorization_s = 0;
@@ -90,7 +100,8 @@ double IdaSolver::advance_to(double t_out) {
     IDAGetNumSteps(memory_.get(), &steps);
     throw SolverError(settings_.name + ": failed at t = " + number_text(t_reached) + " s (step " +
                       std::to_string(before_.steps + steps) + "): " + flag_name(IDAGetReturnFlagName(flag)) +
-                      last_error_.detail());
+                      last_error_.detail() +
+                      (inadmissible_.empty() ? "" : "; the last Newton iterate rejected: " + inadmissible_));
   }
   return t_reached;
 }

@@ -3,8 +3,7 @@
 // against independent expectations: Newton converges quadratically; a damped run settles on the
 // static neo-Hookean answer (fem/hyperelastic_static.hpp, itself checked against CalculiX); an
 // explicit ARKODE run at tight tolerance on the same ODE agrees with it, and the gap shrinks as dt^2;
-// at small load the linear trajectory is recovered; the energy ledger balances with W(u). Methods
-// that take no nonlinear model refuse it by name, and the table says the same as the methods.
+// at small load the linear trajectory is recovered; the energy ledger balances with W(u).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,52 +12,26 @@
 #include "fem/hyperelastic_static.hpp"
 #include "integrators/factory.hpp"
 #include "integrators/integrator_table.hpp"
+#include "integrators/neo_hookean_cantilever.hpp"
 #include "integrators/trapezoid.hpp"
-#include "mesh/box_mesh.hpp"
 #include "model/energy.hpp"
-#include "model/fem_model.hpp"
 #include "model/internal_force.hpp"
 
 namespace roifem::integrators {
 namespace {
 
-/// A cantilever block (fixed at x = 0) bent by a downward force on its free end, ramped over
-/// `ramp` s.
-struct Cantilever {
-  mesh::TetMesh mesh = mesh::structured_box_mesh(6, 2, 2, 0.06, 0.02, 0.02);
-  model::FemModel model;
-  Cantilever(double alpha, double force, double ramp, fem::MaterialModel law = fem::MaterialModel::neo_hookean,
-             model::Ramp::Shape shape = model::Ramp::Shape::linear) {
-    fem::Material m = fem::Material::from_young_poisson(3000, 0.45, 1000, alpha);
-    m.model = law;
-    model = model::build_fem_model(mesh, m, {"x0"}, {{"x1", Vec3(0, 0, -force), model::Ramp{ramp, shape}}});
-  }
-  const model::SecondOrderSystem& sys() const { return model.system; }
-  double tip_drop(const model::State& s) const {  // the largest downward displacement (m)
-    double drop = 0;
-    for (Index i = 2; i < s.u.size(); i += 3) drop = std::max(drop, -s.u[i]);
-    return drop;
-  }
-};
-
-constexpr double full_force = 0.03;  // N: a tip drop of about a third of the length
-
-model::State run(const model::SecondOrderSystem& sys, Integrator& method, double t_end, double dt) {
-  model::State s = model::State::at_rest(sys.size());
-  method.reset(sys, s);
-  const long steps = std::lround(t_end / dt);
-  for (long k = 1; k <= steps; ++k) method.advance_to(static_cast<double>(k) * dt, s);
-  return s;
-}
+using testing::bending_force;
+using testing::NeoHookeanCantilever;
+using testing::run_until;
 
 TEST(NonlinearTrapezoid, IsAGenuinelyNonlinearProblem) {
-  const Cantilever c(5.0, full_force, 0.5);
+  const NeoHookeanCantilever c(5.0, bending_force, 0.5);
   ASSERT_TRUE(c.sys().is_nonlinear());
   Trapezoid trapezoid(0.01);
-  const model::State s = run(c.sys(), trapezoid, 1.0, 0.01);
-  const Cantilever linear(5.0, full_force, 0.5, fem::MaterialModel::linear);
+  const model::State s = run_until(c.sys(), trapezoid, 1.0, 0.01);
+  const NeoHookeanCantilever linear(5.0, bending_force, 0.5, fem::MaterialModel::linear);
   Trapezoid linear_trapezoid(0.01);
-  const model::State s_lin = run(linear.sys(), linear_trapezoid, 1.0, 0.01);
+  const model::State s_lin = run_until(linear.sys(), linear_trapezoid, 1.0, 0.01);
   std::printf("tip drop at 1 s: neo-Hookean %.3f mm, linear %.3f mm (beam length 60 mm)\n", 1e3 * c.tip_drop(s),
               1e3 * linear.tip_drop(s_lin));
   EXPECT_GT(c.tip_drop(s), 0.1 * 0.06);
@@ -66,7 +39,7 @@ TEST(NonlinearTrapezoid, IsAGenuinelyNonlinearProblem) {
 }
 
 TEST(NonlinearTrapezoid, NewtonConvergesQuadratically) {
-  const Cantilever c(5.0, full_force, 0.0);  // the whole load at once: a hard first step
+  const NeoHookeanCantilever c(5.0, bending_force, 0.0);  // the whole load at once: a hard first step
   Trapezoid trapezoid(0.02);
   model::State s = model::State::at_rest(c.sys().size());
   trapezoid.reset(c.sys(), s);
@@ -99,9 +72,9 @@ TEST(NonlinearTrapezoid, NewtonConvergesQuadratically) {
 }
 
 TEST(NonlinearTrapezoid, ADampedRunSettlesOnTheStaticNeoHookeanAnswer) {
-  const Cantilever c(20.0, full_force, 0.5);
+  const NeoHookeanCantilever c(20.0, bending_force, 0.5);
   Trapezoid trapezoid(0.02);
-  const model::State s = run(c.sys(), trapezoid, 4.0, 0.02);
+  const model::State s = run_until(c.sys(), trapezoid, 4.0, 0.02);
   const fem::HyperelasticAssembler assembler(c.mesh, *c.model.dofs, c.model.materials);
   const Vector u_static = fem::solve_hyperelastic_static(assembler, *c.model.dofs, c.sys().load.at(10.0), {1.0}).back().u_free;
   const double difference = (s.u - u_static).lpNorm<Eigen::Infinity>() / u_static.lpNorm<Eigen::Infinity>();
@@ -114,17 +87,17 @@ TEST(NonlinearTrapezoid, ADampedRunSettlesOnTheStaticNeoHookeanAnswer) {
 TEST(NonlinearTrapezoid, AgreesWithATightExplicitArkodeRunToSecondOrder) {
   // A smooth ramp: a linear one's kinks excite modes with omega dt > 1, where no rule is in its
   // asymptotic range.
-  const Cantilever c(2.0, full_force, 0.3, fem::MaterialModel::neo_hookean, model::Ramp::Shape::smooth);
+  const NeoHookeanCantilever c(2.0, bending_force, 0.3, fem::MaterialModel::neo_hookean, model::Ramp::Shape::smooth);
   const double t_end = 0.5;
   // Its first step is its output interval: 1 ms keeps the first stages' elements upright.
   auto reference_method =
       make_integrator("arkode-erk5", StepControl{.dt = 0.001, .adaptive = true, .rtol = 1e-10, .atol = 1e-14});
   ASSERT_TRUE(reference_method->takes_nonlinear());
-  const model::State reference = run(c.sys(), *reference_method, t_end, 0.001);
+  const model::State reference = run_until(c.sys(), *reference_method, t_end, 0.001);
   std::vector<double> errors;
   for (const double dt : {0.01, 0.005, 0.0025}) {
     Trapezoid trapezoid(dt);
-    const model::State s = run(c.sys(), trapezoid, t_end, dt);
+    const model::State s = run_until(c.sys(), trapezoid, t_end, dt);
     errors.push_back((s.u - reference.u).lpNorm<Eigen::Infinity>() / reference.u.lpNorm<Eigen::Infinity>());
     std::printf("dt = %.4f s: max |u - u_erk5| / max |u_erk5| = %.3e\n", dt, errors.back());
   }
@@ -136,17 +109,17 @@ TEST(NonlinearTrapezoid, AgreesWithATightExplicitArkodeRunToSecondOrder) {
 }
 
 TEST(NonlinearTrapezoid, SmallLoadFollowsTheLinearTrajectory) {
-  const double small = full_force * 1e-4;
-  const Cantilever c(2.0, small, 0.3), linear(2.0, small, 0.3, fem::MaterialModel::linear);
+  const double small = bending_force * 1e-4;
+  const NeoHookeanCantilever c(2.0, small, 0.3), linear(2.0, small, 0.3, fem::MaterialModel::linear);
   Trapezoid a(0.01), b(0.01);
-  const model::State s = run(c.sys(), a, 0.5, 0.01), s_lin = run(linear.sys(), b, 0.5, 0.01);
+  const model::State s = run_until(c.sys(), a, 0.5, 0.01), s_lin = run_until(linear.sys(), b, 0.5, 0.01);
   const double difference = (s.u - s_lin.u).lpNorm<Eigen::Infinity>() / s_lin.u.lpNorm<Eigen::Infinity>();
   std::printf("load 1e-4 of full: |u_nl - u_lin| / |u_lin| = %.2e\n", difference);
   EXPECT_LT(difference, 1e-3);
 }
 
 TEST(NonlinearTrapezoid, EnergyLedgerBalancesWithTheStrainEnergyW) {
-  const Cantilever c(2.0, full_force, 0.3);
+  const NeoHookeanCantilever c(2.0, bending_force, 0.3);
   Trapezoid trapezoid(0.005);
   model::State s = model::State::at_rest(c.sys().size());
   trapezoid.reset(c.sys(), s);
@@ -165,10 +138,10 @@ TEST(NonlinearTrapezoid, EnergyLedgerBalancesWithTheStrainEnergyW) {
 }
 
 TEST(NonlinearTrapezoid, AnInvertingStepIsNamedWithItsStepAndTime) {
-  const Cantilever c(0.0, 50.0, 0.0);  // 2500 times the load, all at once
+  const NeoHookeanCantilever c(0.0, 50.0, 0.0);  // 2500 times the load, all at once
   Trapezoid trapezoid(0.05);
   try {
-    run(c.sys(), trapezoid, 0.1, 0.05);
+    run_until(c.sys(), trapezoid, 0.1, 0.05);
     FAIL() << "no error";
   } catch (const Error& e) {
     const std::string what = e.what();
@@ -177,31 +150,6 @@ TEST(NonlinearTrapezoid, AnInvertingStepIsNamedWithItsStepAndTime) {
                 what.find("not positive definite") != std::string::npos)
         << what;
   }
-}
-
-TEST(NonlinearIntegrators, AMethodThatTakesNoNonlinearModelRefusesItByName) {
-  const Cantilever c(2.0, full_force, 0.3);
-  for (const char* name : {"arkode-sdirk2", "ida-bdf5", "gsl-rk4imp", "trapezoid-cg"}) {
-    auto method = make_integrator(name, 0.01);
-    try {
-      method->reset(c.sys(), model::State::at_rest(c.sys().size()));
-      FAIL() << name << " took it";
-    } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find(std::string(name) + " does not take a nonlinear model (neo-hookean, every element)"),
-                std::string::npos)
-          << e.what();
-    }
-  }
-}
-
-TEST(NonlinearIntegrators, TheTablesNonlinearColumnIsWhatEachMethodTakes) {
-  int nonlinear = 0;
-  for (const IntegratorInfo& row : integrator_table()) {
-    const auto method = make_integrator(row, StepControl{.dt = 0.01});
-    EXPECT_EQ(row.nonlinear, method->takes_nonlinear()) << row.name;
-    nonlinear += row.nonlinear;
-  }
-  EXPECT_GE(nonlinear, 5);  // the trapezoid and the explicit methods
 }
 
 }  // namespace
