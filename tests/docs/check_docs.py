@@ -195,7 +195,10 @@ class Checker:
         self.helps += 1
         quoted = "\n".join(l.rstrip() for l in body).strip("\n")
         actual = "\n".join(l.rstrip() for l in run.stdout.split("\n")).strip("\n")
-        if run.returncode != 0 or quoted != actual:
+        if os.path.abspath(self.root) in actual:
+            self.fail(f"{name}:{first}", f"`{program} {' '.join(args)}` prints this checkout's path "
+                                         f"({self.root}), which no other checkout shares")
+        elif run.returncode != 0 or quoted != actual:
             self.fail(f"{name}:{first}", f"the quoted `{program} {' '.join(args)}` is not the CLI's; "
                                          f"regenerate it with scripts/docs-help.sh")
 
