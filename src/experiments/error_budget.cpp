@@ -127,6 +127,7 @@ SpaceReference space_reference(const BudgetInput& in, const ErrorBudgetOptions& 
   const std::unique_ptr<FinerReference> reference = build_reference(in, o, out, log);
   const mesh::PointLocator locator(reference->mesh);
   std::vector<mesh::PointLocation> located;
+  located.reserve(probed.size());
   for (const int n : probed) located.push_back(locator.locate(in.full->mesh->node(n)));
   SpaceReference r{.nodes = reference->mesh.num_vertices(), .opening_mm = static_opening_mm(reference->full), .slope = {}};
   r.slope = unit_slope_run(

@@ -2,7 +2,10 @@
 #include "model/fem_model.hpp"
 
 #include <algorithm>
+#include <initializer_list>
 #include <map>
+#include <string>
+#include <string_view>
 
 #include "common/errors.hpp"
 #include "fem/assembly.hpp"
@@ -87,16 +90,21 @@ std::vector<Tool> attach_tools(const mesh::TetMesh& mesh, const fem::Constraints
     // Where the scenario says it (file:line of its [[tool]] table), else the mesh.
     const std::string at = t.where.empty() ? mesh.source : t.where;
     const std::string of_mesh = t.where.empty() ? "" : " of " + mesh.source;
+    const auto refusal = [&](std::initializer_list<std::string_view> parts) {
+      std::string message = at;
+      message.append(": ").append(t.describe());
+      for (const std::string_view part : parts) message.append(part);
+      return InputError(message);
+    };
     if (tool.nodes.empty())
-      throw InputError(at + ": " + t.describe() + " holds no node" + of_mesh +
-                       (t.set.empty() ? " (no boundary node within its radius: widen it or move its centre)" : ""));
+      throw refusal(
+          {" holds no node", of_mesh, t.set.empty() ? " (no boundary node within its radius: widen it or move its centre)" : ""});
     for (const int n : tool.nodes) {
+      const std::string node = std::to_string(n);
       if (fixed.is_constrained(3 * n) || fixed.is_constrained(3 * n + 1) || fixed.is_constrained(3 * n + 2))
-        throw InputError(at + ": " + t.describe() + " holds node " + std::to_string(n) + of_mesh +
-                         ", which [boundary] fixes: a tool moves free nodes only");
+        throw refusal({" holds node ", node, of_mesh, ", which [boundary] fixes: a tool moves free nodes only"});
       if (const auto [it, fresh] = holder.emplace(n, a); !fresh)
-        throw InputError(at + ": " + t.describe() + " and " + tools[it->second].describe() + " both hold node " +
-                         std::to_string(n) + of_mesh + ": tools must not overlap");
+        throw refusal({" and ", tools[it->second].describe(), " both hold node ", node, of_mesh, ": tools must not overlap"});
     }
     warn_of_a_tool_below_the_mesh(mesh, t, tool, warnings);
     attached.push_back(std::move(tool));
