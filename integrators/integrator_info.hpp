@@ -20,7 +20,7 @@ enum class LinearSolver {
   none,        ///< explicit: no linear system (a lumped M is inverted by a product)
   cholmod,     ///< K_eff = K + 2/dt C + 4/dt^2 M by a sparse Cholesky factor (CHOLMOD)
   jacobi_cg,   ///< K_eff by Jacobi-preconditioned conjugate gradients (no factor)
-  klu,         ///< the sparse Newton matrix of the first-order form by KLU
+  klu,         ///< a sparse Newton matrix by KLU (the first-order form's; energy-momentum's, unsymmetric)
   klu_mass,    ///< the same with M given to the library as a mass matrix (a second KLU)
   schur,       ///< the Newton matrix's Schur complement by one SPD Cholesky solve of size n
   schur_mass,  ///< the same with M as a mass matrix
@@ -52,6 +52,9 @@ struct IntegratorInfo {
   bool needs_tools = false;        ///< a DAE formulation of a model with tools: runs only where there are some
   bool needs_uncondensed = false;  ///< integrates a static condensation's full system: runs only on one
   bool nonlinear = false;  ///< takes a nonlinear model (model/internal_force.hpp); Integrator::takes_nonlinear says the same
+  /// a method for nonlinear models (energy-momentum): it runs on a linear one when named, but
+  /// `compare` lists it only on nonlinear ones, where it differs from the rest
+  bool needs_nonlinear = false;
 };
 
 }  // namespace roifem::integrators

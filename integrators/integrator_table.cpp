@@ -6,6 +6,7 @@
 #include "common/did_you_mean.hpp"
 #include "common/errors.hpp"
 #include "integrators/arkode.hpp"
+#include "integrators/energy_momentum.hpp"
 #include "integrators/gsl_odeiv2.hpp"
 #include "integrators/ida.hpp"
 #include "integrators/roi_dae.hpp"
@@ -20,7 +21,7 @@ namespace {
 /// one more line here.
 std::vector<IntegratorInfo> build_table() {
   std::vector<IntegratorInfo> rows;
-  for (auto* family_rows : {trapezoid_rows, arkode_rows, ida_rows, roi_dae_rows, tool_dae_rows, gsl_rows})
+  for (auto* family_rows : {trapezoid_rows, energy_momentum_rows, arkode_rows, ida_rows, roi_dae_rows, tool_dae_rows, gsl_rows})
     for (IntegratorInfo& row : family_rows()) rows.push_back(std::move(row));
   return rows;
 }

@@ -344,7 +344,8 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
   if (outputs < 1) throw InputError("compare: --t-end must cover at least one output step of " + number_text(sc.dt) + " s");
   std::vector<std::string> names = o.integrators;
   auto applies = [&](const integrators::IntegratorInfo& info) {
-    return (!info.needs_tools || system.constrained) && (!info.needs_uncondensed || system.uncondensed);
+    return (!info.needs_tools || system.constrained) && (!info.needs_uncondensed || system.uncondensed) &&
+           (!info.needs_nonlinear || system.is_nonlinear());
   };
   if (names.empty())  // every integrator that applies: the tools' DAE forms where there are tools, ...
     for (const auto& info : integrators::integrator_table())

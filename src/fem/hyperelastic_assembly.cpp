@@ -5,6 +5,7 @@
 #include <array>
 #include <numeric>
 #include <span>
+#include <type_traits>
 
 #include "common/errors.hpp"
 #include "fem/assembly.hpp"
@@ -73,40 +74,63 @@ void HyperelasticAssembler::cache_positions() {
   }
 }
 
-/// Calls visit(nodes, response) for every element, with the element's nodes (corners, then
-/// midpoints) and its HyperelasticResponse; an inverted one is a ModelError.
-template <class Visit>
-void HyperelasticAssembler::for_each_element(const Vector& u_full, bool tangent, Visit&& visit) const {
-  if (u_full.size() != 3 * mesh_.num_nodes())
-    throw InputError(io::format("hyperelastic assembly: %lld displacement values for %lld nodes",
-                                static_cast<long long>(u_full.size()), static_cast<long long>(mesh_.num_nodes())));
-  const Evaluate what = tangent ? Evaluate::force_and_tangent : Evaluate::force;
+/// Calls visit(slot, nodes, response) for every element, with the element's nodes (corners, then
+/// midpoints) and the response that evaluate(geometry, law, gather) returns, gather(u_full) being
+/// the element's values of a full displacement; an inverted element is a ModelError.
+template <class Evaluator, class Visit>
+void HyperelasticAssembler::for_each_element(Evaluator&& evaluate, Visit&& visit) const {
   std::array<int, 10> buffer{};
   for (std::size_t slot = 0; slot < elements_.size(); ++slot) {
     const Index e = elements_[slot];
     const auto& c = mesh_.tets[as_size(e)];
     const NeoHookean law = NeoHookean::of(materials_.of(e));
     const auto nodes = nodes_of(slot, buffer);
-    auto inverted = [&](double min_J) {
-      return ModelError(io::format("tetrahedron %lld (nodes %d %d %d %d) has inverted: det F = %.4g <= 0",
-                                   static_cast<long long>(e), c[0], c[1], c[2], c[3], min_J));
+    auto check = [&](const auto& r) {
+      if (!(r.min_J > 0))
+        throw ModelError(io::format("tetrahedron %lld (nodes %d %d %d %d) has inverted: det F = %.4g <= 0",
+                                    static_cast<long long>(e), c[0], c[1], c[2], c[3], r.min_J));
     };
     if (nodes.size() == 4) {
-      Eigen::Matrix<double, 12, 1> ue;
-      for (int a = 0; a < 4; ++a) ue.segment<3>(3 * a) = u_full.segment<3>(3 * nodes[as_size(a)]);
-      const auto r =
-          tet4_hyperelastic(tet4_geometry(mesh_.node(c[0]), mesh_.node(c[1]), mesh_.node(c[2]), mesh_.node(c[3])), law, ue, what);
-      if (!(r.min_J > 0)) throw inverted(r.min_J);
+      auto gather = [&](const Vector& u_full) {
+        Eigen::Matrix<double, 12, 1> ue;
+        for (int a = 0; a < 4; ++a) ue.segment<3>(3 * a) = u_full.segment<3>(3 * nodes[as_size(a)]);
+        return ue;
+      };
+      const auto r = evaluate(tet4_geometry(mesh_.node(c[0]), mesh_.node(c[1]), mesh_.node(c[2]), mesh_.node(c[3])), law, gather);
+      check(r);
       visit(slot, nodes, r);
     } else {
-      Eigen::Matrix<double, 30, 1> ue;
-      for (int a = 0; a < 10; ++a) ue.segment<3>(3 * a) = u_full.segment<3>(3 * nodes[as_size(a)]);
-      const auto r = tet10_hyperelastic(tet10_geometry(mesh_.node(c[0]), mesh_.node(c[1]), mesh_.node(c[2]), mesh_.node(c[3])),
-                                        law, ue, what);
-      if (!(r.min_J > 0)) throw inverted(r.min_J);
+      auto gather = [&](const Vector& u_full) {
+        Eigen::Matrix<double, 30, 1> ue;
+        for (int a = 0; a < 10; ++a) ue.segment<3>(3 * a) = u_full.segment<3>(3 * nodes[as_size(a)]);
+        return ue;
+      };
+      const auto r =
+          evaluate(tet10_geometry(mesh_.node(c[0]), mesh_.node(c[1]), mesh_.node(c[2]), mesh_.node(c[3])), law, gather);
+      check(r);
       visit(slot, nodes, r);
     }
   }
+}
+
+template <class Visit>
+void HyperelasticAssembler::for_each_element(const Vector& u_full, bool tangent, Visit&& visit) const {
+  check_size(u_full);
+  const Evaluate what = tangent ? Evaluate::force_and_tangent : Evaluate::force;
+  for_each_element(
+      [&](const auto& geometry, const NeoHookean& law, const auto& gather) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(geometry)>, Tet4Geometry>)
+          return tet4_hyperelastic(geometry, law, gather(u_full), what);
+        else
+          return tet10_hyperelastic(geometry, law, gather(u_full), what);
+      },
+      visit);
+}
+
+void HyperelasticAssembler::check_size(const Vector& u_full) const {
+  if (u_full.size() != 3 * mesh_.num_nodes())
+    throw InputError(io::format("hyperelastic assembly: %lld displacement values for %lld nodes",
+                                static_cast<long long>(u_full.size()), static_cast<long long>(mesh_.num_nodes())));
 }
 
 void HyperelasticAssembler::scatter(std::size_t slot, std::span<const int> nodes, const Eigen::Ref<const DenseMatrix>& K_e,
@@ -162,6 +186,40 @@ void HyperelasticAssembler::force_and_tangent(const Vector& u_full, Eigen::Ref<V
         if (const int row = dofs_.free_dof(nodes[a], i); row >= 0) f_int[row] += r.force[3 * static_cast<Index>(a) + i];
     scatter(slot, nodes, r.tangent, K_t);
   });
+}
+
+void HyperelasticAssembler::discrete_gradient(const Vector& u_a_full, const Vector& u_b_full, Eigen::Ref<Vector> f_alg,
+                                              SparseMatrix* K_alg) const {
+  check_size(u_a_full);
+  check_size(u_b_full);
+  const Evaluate what = K_alg ? Evaluate::force_and_tangent : Evaluate::force;
+  if (K_alg) {
+    if (K_alg->nonZeros() != pattern_.nonZeros() || K_alg->rows() != pattern_.rows()) *K_alg = pattern_;
+    std::fill(K_alg->valuePtr(), K_alg->valuePtr() + K_alg->nonZeros(), 0.0);
+  }
+  f_alg.setZero();
+  for_each_element(
+      [&](const auto& geometry, const NeoHookean& law, const auto& gather) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(geometry)>, Tet4Geometry>)
+          return tet4_discrete_gradient(geometry, law, gather(u_a_full), gather(u_b_full), what);
+        else
+          return tet10_discrete_gradient(geometry, law, gather(u_a_full), gather(u_b_full), what);
+      },
+      [&](std::size_t slot, std::span<const int> nodes, const auto& r) {
+        for (std::size_t a = 0; a < nodes.size(); ++a)
+          for (int i = 0; i < 3; ++i)
+            if (const int row = dofs_.free_dof(nodes[a], i); row >= 0) f_alg[row] += r.force[3 * static_cast<Index>(a) + i];
+        if (K_alg) scatter(slot, nodes, r.tangent, *K_alg);
+      });
+}
+
+void HyperelasticAssembler::discrete_gradient(const Vector& u_a_full, const Vector& u_b_full, Eigen::Ref<Vector> f_alg) const {
+  discrete_gradient(u_a_full, u_b_full, f_alg, nullptr);
+}
+
+void HyperelasticAssembler::discrete_gradient_and_tangent(const Vector& u_a_full, const Vector& u_b_full,
+                                                          Eigen::Ref<Vector> f_alg, SparseMatrix& K_alg) const {
+  discrete_gradient(u_a_full, u_b_full, f_alg, &K_alg);
 }
 
 double HyperelasticAssembler::energy(const Vector& u_full) const {

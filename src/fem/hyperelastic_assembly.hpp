@@ -31,6 +31,13 @@ class HyperelasticAssembler {
   void force(const Vector& u_full, Eigen::Ref<Vector> f_int) const;
   /// f_int and K_t at u_full; K_t's values are overwritten in pattern()'s pattern.
   void force_and_tangent(const Vector& u_full, Eigen::Ref<Vector> f_int, SparseMatrix& K_t) const;
+  /// Gonzalez's algorithmic force between the full displacements u_a and u_b
+  /// (fem/discrete_gradient.hpp): f_alg . (u_b - u_a) = energy(u_b) - energy(u_a) over the free
+  /// dofs, when the prescribed values are the same in both. An inverted element as in force().
+  void discrete_gradient(const Vector& u_a_full, const Vector& u_b_full, Eigen::Ref<Vector> f_alg) const;
+  /// The same and K_alg = df_alg/du_b (not symmetric), in pattern()'s pattern as force_and_tangent.
+  void discrete_gradient_and_tangent(const Vector& u_a_full, const Vector& u_b_full, Eigen::Ref<Vector> f_alg,
+                                     SparseMatrix& K_alg) const;
   /// The strain energy sum_e int W(F) dV (J).
   double energy(const Vector& u_full) const;
   /// The pattern of K_t (the linear K_ff's), values zero.
@@ -38,8 +45,12 @@ class HyperelasticAssembler {
   const std::vector<Index>& elements() const { return elements_; }
 
  private:
+  template <class Evaluator, class Visit>
+  void for_each_element(Evaluator&& evaluate, Visit&& visit) const;
   template <class Visit>
   void for_each_element(const Vector& u_full, bool tangent, Visit&& visit) const;
+  void discrete_gradient(const Vector& u_a_full, const Vector& u_b_full, Eigen::Ref<Vector> f_alg, SparseMatrix* K_alg) const;
+  void check_size(const Vector& u_full) const;
   /// The nodes of the `slot`-th element listed (corners, then midpoints on a quadratic mesh).
   std::span<const int> nodes_of(std::size_t slot, std::array<int, 10>& nodes) const;
   /// Where each entry of an element's matrix lands among the pattern's values (-1: a constrained

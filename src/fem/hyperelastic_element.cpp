@@ -8,6 +8,23 @@ namespace roifem::fem {
 
 namespace {
 
+/// K_ab(i, k) += w sum_{J,L} A(3i+J, 3k+L) g_aJ g_bL: a quadrature point's share of the element
+/// matrix, for A = dP/dF over the flattened F (row-major).
+template <int Nodes>
+void add_tangent(const Mat9& A, const Eigen::Matrix<double, Nodes, 3>& g, double weight,
+                 Eigen::Matrix<double, 3 * Nodes, 3 * Nodes>& K) {
+  // First Ag_a(i, 3k+L) = sum_J A(3i+J, 3k+L) g_aJ.
+  for (int a = 0; a < Nodes; ++a) {
+    Eigen::Matrix<double, 3, 9> Ag;
+    for (int i = 0; i < 3; ++i) Ag.row(i) = g(a, 0) * A.row(3 * i) + g(a, 1) * A.row(3 * i + 1) + g(a, 2) * A.row(3 * i + 2);
+    for (int b = 0; b < Nodes; ++b)
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector3d gb = g.row(b).transpose();
+        K.template block<3, 1>(3 * a, 3 * b + k) += weight * Ag.template middleCols<3>(3 * k) * gb;
+      }
+  }
+}
+
 /// The quadrature over `points` points, each with its gradients (Nodes x 3) and weight.
 template <int Nodes, int Points>
 HyperelasticResponse<Nodes> integrate_element(const std::array<Eigen::Matrix<double, Nodes, 3>, Points>& grads, double weight,
@@ -39,22 +56,87 @@ HyperelasticResponse<Nodes> integrate_element(const std::array<Eigen::Matrix<dou
     // f_a = w P g_a: the 3 x Nodes block P G^T.
     const Eigen::Matrix<double, 3, Nodes> PG = weight * P * g.transpose();
     for (int a = 0; a < Nodes; ++a) r.force.template segment<3>(3 * a) += PG.col(a);
-    if (!tangent) continue;
-    // K_ab(i, k) = w sum_{J,L} A(3i+J, 3k+L) g_aJ g_bL. First H_a(i, 3k+L) = sum_J A(3i+J, 3k+L) g_aJ.
-    for (int a = 0; a < Nodes; ++a) {
-      Eigen::Matrix<double, 3, 9> H;
-      for (int i = 0; i < 3; ++i) H.row(i) = g(a, 0) * A.row(3 * i) + g(a, 1) * A.row(3 * i + 1) + g(a, 2) * A.row(3 * i + 2);
-      for (int b = 0; b < Nodes; ++b)
-        for (int k = 0; k < 3; ++k) {
-          const Eigen::Vector3d gb = g.row(b).transpose();
-          r.tangent.template block<3, 1>(3 * a, 3 * b + k) += weight * H.template middleCols<3>(3 * k) * gb;
-        }
-    }
+    if (tangent) add_tangent<Nodes>(A, g, weight, r.tangent);
+  }
+  return r;
+}
+
+/// The displacement gradient sum_a u_a g_a^T at one quadrature point.
+template <int Nodes>
+Mat3 gradient_of(const Eigen::Matrix<double, Nodes, 3>& g, const Eigen::Matrix<double, 3 * Nodes, 1>& u_e) {
+  Mat3 H = Mat3::Zero();
+  for (int a = 0; a < Nodes; ++a) H += u_e.template segment<3>(3 * a) * g.row(a);
+  return H;
+}
+
+/// d(F_mid S_alg)/dF_b over the flattened F_b (row-major), with D = dS_alg/dE_b:
+///   dP = dF S_alg / 2 + F_mid (D . vec(sym(F_b^T dF))).
+Mat9 discrete_gradient_tangent(const Mat3& F_mid, const Mat3& F_b, const Mat3& S_alg, const Mat9& D) {
+  // DF(3M+J, 3k+L) = sum_{P,Q} D(3M+J, 3P+Q) (F_b(k,P) d_QL + F_b(k,Q) d_PL) / 2.
+  Mat9 DF;
+  for (int row = 0; row < 9; ++row)
+    for (int k = 0; k < 3; ++k)
+      for (int L = 0; L < 3; ++L) {
+        double v = 0;
+        for (int P = 0; P < 3; ++P) v += (D(row, 3 * P + L) + D(row, 3 * L + P)) * F_b(k, P);
+        DF(row, 3 * k + L) = 0.5 * v;
+      }
+  Mat9 A;
+  for (int i = 0; i < 3; ++i)
+    for (int J = 0; J < 3; ++J)
+      for (int col = 0; col < 9; ++col) {
+        double v = 0;
+        for (int M = 0; M < 3; ++M) v += F_mid(i, M) * DF(3 * M + J, col);
+        A(3 * i + J, col) = v;
+      }
+  for (int i = 0; i < 3; ++i)
+    for (int J = 0; J < 3; ++J)
+      for (int L = 0; L < 3; ++L) A(3 * i + J, 3 * i + L) += 0.5 * S_alg(L, J);
+  return A;
+}
+
+template <int Nodes, int Points>
+HyperelasticResponse<Nodes> integrate_discrete_gradient(const std::array<Eigen::Matrix<double, Nodes, 3>, Points>& grads,
+                                                        double weight, const NeoHookean& law,
+                                                        const Eigen::Matrix<double, 3 * Nodes, 1>& u_a,
+                                                        const Eigen::Matrix<double, 3 * Nodes, 1>& u_b, Evaluate what) {
+  HyperelasticResponse<Nodes> r;
+  std::array<Mat3, Points> H_a, H_b;
+  for (int q = 0; q < Points; ++q) {
+    H_a[q] = gradient_of<Nodes>(grads[q], u_a);
+    H_b[q] = gradient_of<Nodes>(grads[q], u_b);
+    r.min_J = std::min({r.min_J, 1 + NeoHookean::J_minus_1(H_a[q]), 1 + NeoHookean::J_minus_1(H_b[q])});
+  }
+  if (!(r.min_J > 0)) return r;
+  r.force.setZero();
+  const bool tangent = what == Evaluate::force_and_tangent;
+  if (tangent) r.tangent.setZero();
+  Mat9 D;
+  for (int q = 0; q < Points; ++q) {
+    r.energy += weight * law.energy(H_b[q]);
+    const Mat3 F_mid = Mat3::Identity() + 0.5 * (H_a[q] + H_b[q]);
+    const Mat3 S_alg = tangent ? discrete_gradient_stress(law, H_a[q], H_b[q], D) : discrete_gradient_stress(law, H_a[q], H_b[q]);
+    const Eigen::Matrix<double, 3, Nodes> PG = weight * F_mid * S_alg * grads[q].transpose();
+    for (int a = 0; a < Nodes; ++a) r.force.template segment<3>(3 * a) += PG.col(a);
+    if (tangent)
+      add_tangent<Nodes>(discrete_gradient_tangent(F_mid, Mat3::Identity() + H_b[q], S_alg, D), grads[q], weight, r.tangent);
   }
   return r;
 }
 
 }  // namespace
+
+HyperelasticResponse<4> tet4_discrete_gradient(const Tet4Geometry& g, const NeoHookean& law,
+                                               const Eigen::Matrix<double, 12, 1>& u_a, const Eigen::Matrix<double, 12, 1>& u_b,
+                                               Evaluate what) {
+  return integrate_discrete_gradient<4, 1>({g.grad}, std::abs(g.volume), law, u_a, u_b, what);
+}
+
+HyperelasticResponse<10> tet10_discrete_gradient(const Tet10Geometry& g, const NeoHookean& law,
+                                                 const Eigen::Matrix<double, 30, 1>& u_a, const Eigen::Matrix<double, 30, 1>& u_b,
+                                                 Evaluate what) {
+  return integrate_discrete_gradient<10, 4>(g.grad, std::abs(g.volume) / 4, law, u_a, u_b, what);
+}
 
 HyperelasticResponse<4> tet4_hyperelastic(const Tet4Geometry& g, const NeoHookean& law, const Eigen::Matrix<double, 12, 1>& u_e,
                                           Evaluate what) {

@@ -9,6 +9,7 @@
 /// The energy is sum_q w_q W(F_q), so f = dE/du_e and K = df/du_e (the tests check both by
 /// finite differences). Dof order: node a, component i -> 3a + i, as the linear elements'.
 #include "common/types.hpp"
+#include "fem/discrete_gradient.hpp"
 #include "fem/neo_hookean.hpp"
 #include "fem/tet10.hpp"
 #include "fem/tet4.hpp"
@@ -32,5 +33,17 @@ HyperelasticResponse<4> tet4_hyperelastic(const Tet4Geometry& g, const NeoHookea
                                           Evaluate what);
 HyperelasticResponse<10> tet10_hyperelastic(const Tet10Geometry& g, const NeoHookean& law,
                                             const Eigen::Matrix<double, 30, 1>& u_e, Evaluate what);
+
+/// The algorithmic force between the nodal displacements u_a and u_b (fem/discrete_gradient.hpp),
+/// by the same quadrature: f = sum_q w_q F_mid S_alg g_a, so that f . (u_b - u_a) equals the
+/// energy at u_b less that at u_a. `energy` is the energy at u_b, `min_J` the smaller over both
+/// states (C_mid, a mean of two positive definite C, is one too); the tangent, when asked for, is
+/// df/du_b (not symmetric: fem/discrete_gradient.hpp's D, and dF_mid = dF_b/2 against dE_b's F_b).
+HyperelasticResponse<4> tet4_discrete_gradient(const Tet4Geometry& g, const NeoHookean& law,
+                                               const Eigen::Matrix<double, 12, 1>& u_a, const Eigen::Matrix<double, 12, 1>& u_b,
+                                               Evaluate what = Evaluate::force);
+HyperelasticResponse<10> tet10_discrete_gradient(const Tet10Geometry& g, const NeoHookean& law,
+                                                 const Eigen::Matrix<double, 30, 1>& u_a, const Eigen::Matrix<double, 30, 1>& u_b,
+                                                 Evaluate what = Evaluate::force);
 
 }  // namespace roifem::fem

@@ -92,4 +92,57 @@ void NeoHookean::stress_and_tangent(const Mat3& H, Mat3& P, Mat9& A) const {
         }
 }
 
+namespace {
+
+/// The measures of C = I + 2E that stress_of_strain and strain_tangent share.
+struct StrainOfC {
+  double J = 1, J_minus_1 = 0, tr2E = 0;
+  Mat3 C_inverse;
+};
+
+StrainOfC strain_of_C(const Mat3& E) {
+  const Mat3 twice_E = 2 * E;
+  StrainOfC s;
+  s.tr2E = twice_E.trace();
+  // det C - 1 = J^2 - 1 with C = I + 2E, as J_minus_1 forms det(I + H) - 1.
+  const double delta = s.tr2E + 0.5 * (s.tr2E * s.tr2E - (twice_E * twice_E).trace()) + twice_E.determinant();
+  s.J = std::sqrt(1 + delta);
+  s.J_minus_1 = delta / (s.J + 1);
+  s.C_inverse = (Mat3::Identity() + twice_E).inverse();
+  return s;
+}
+
+}  // namespace
+
+Mat9 NeoHookean::strain_tangent(const Mat3& E) const {
+  const StrainOfC s = strain_of_C(E);
+  const Mat3& G = s.C_inverse;
+  const double I1 = 3 + s.tr2E;
+  const double shear = 2.0 / 3.0 * 2 * C10 * std::pow(s.J, -2.0 / 3.0), bulk = 2 / D1;
+  Mat9 D;
+  for (int I = 0; I < 3; ++I)
+    for (int Jc = 0; Jc < 3; ++Jc)
+      for (int K = 0; K < 3; ++K)
+        for (int L = 0; L < 3; ++L) {
+          const double GoG = 0.5 * (G(I, K) * G(Jc, L) + G(I, L) * G(Jc, K));
+          const double GxG = G(I, Jc) * G(K, L);
+          const double GxI = K == L ? G(I, Jc) : 0.0, IxG = I == Jc ? G(K, L) : 0.0;
+          D(3 * I + Jc, 3 * K + L) =
+              shear * (I1 * GoG - GxI - IxG + I1 / 3 * GxG) + bulk * ((2 * s.J - 1) * s.J * GxG - 2 * s.J_minus_1 * s.J * GoG);
+        }
+  return D;
+}
+
+Mat3 NeoHookean::stress_of_strain(const Mat3& E) const {
+  const Mat3 twice_E = 2 * E;
+  const double tr2E = twice_E.trace();
+  // det C - 1 = J^2 - 1 with C = I + 2E, as J_minus_1 forms det(I + H) - 1.
+  const double delta = tr2E + 0.5 * (tr2E * tr2E - (twice_E * twice_E).trace()) + twice_E.determinant();
+  const double J = std::sqrt(1 + delta), J_minus_1 = delta / (J + 1);
+  const Mat3 C_inverse = (Mat3::Identity() + twice_E).inverse();
+  const Mat3 dev_C = twice_E - tr2E / 3 * Mat3::Identity();
+  const Mat3 S = C_inverse * (2 * C10 * std::pow(J, -2.0 / 3.0) * dev_C + 2 / D1 * J_minus_1 * J * Mat3::Identity());
+  return 0.5 * (S + S.transpose());  // C^-1 dev C = I - I1/3 C^-1 is symmetric; rounding is not
+}
+
 }  // namespace roifem::fem

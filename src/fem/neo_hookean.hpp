@@ -36,6 +36,16 @@ struct NeoHookean {
   Mat3 stress(const Mat3& H) const;
   /// P and its derivative A = dP/dF in one pass.
   void stress_and_tangent(const Mat3& H, Mat3& P, Mat9& A) const;
+  /// The second Piola-Kirchhoff stress S = 2 dW/dC = C^-1 [mu J^(-2/3) dev C + kappa (J - 1) J I] (Pa)
+  /// as a function of the Green-Lagrange strain E = (C - I)/2 (symmetric), formed without
+  /// cancellation: at E = (H + H^T + H^T H)/2 it is F^-1 P(H). The discrete gradient
+  /// (fem/discrete_gradient.hpp) evaluates it at a strain between two states, where no F is at hand.
+  Mat3 stress_of_strain(const Mat3& E) const;
+  /// Its derivative dS/dE (Pa), a 9x9 matrix over the flattened E (entry (I, J) at 3 I + J): with
+  /// G = C^-1, a = J^(-2/3), I1 = tr C and (G o G)_IJKL = (G_IK G_JL + G_IL G_JK)/2,
+  ///   dS/dE = 2/3 mu a [I1 G o G - G x I - I x G + I1/3 G x G] + kappa [(2J - 1) J G x G - 2 (J - 1) J G o G];
+  /// symmetric, and minor-symmetric, so dS = dS/dE . vec(dE) for a symmetric dE.
+  Mat9 strain_tangent(const Mat3& E) const;
 };
 
 }  // namespace roifem::fem

@@ -30,11 +30,11 @@ std::string description_of(std::size_t nonlinear, Index all, const char* where) 
 }  // namespace
 
 HyperelasticForce::HyperelasticForce(std::shared_ptr<const fem::DofMap> dofs, const mesh::TetMesh& mesh,
-                                     const fem::MaterialMap& materials, std::vector<Index> elements, SparseMatrix K_lin,
+                                     const fem::MaterialMap& materials, std::vector<Index> elements, const SparseMatrix& K_lin,
                                      bool K_lin_is_zero, std::string description)
     : dofs_(std::move(dofs)),
       assembler_(mesh, *dofs_, materials, std::move(elements)),
-      K_lin_(std::move(K_lin)),
+      K_lin_(K_lin),
       K_lin_is_zero_(K_lin_is_zero),
       assembler_in_K_(solvers::positions_in(assembler_.pattern(), K_lin_)),
       element_tangent_(assembler_.pattern()),
@@ -48,12 +48,31 @@ void HyperelasticForce::force(const Vector& u, Vector& f) const {
 void HyperelasticForce::force_and_tangent(const Vector& u, Vector& f, SparseMatrix& K_t) const {
   assembler_.force_and_tangent(dofs_->expand(u), f, element_tangent_);
   if (!K_lin_is_zero_) f.noalias() += K_lin_ * u;
-  // K_t = K_lin + the elements' tangent, in K_lin's pattern, value by value (no allocation).
-  if (K_t.nonZeros() != K_lin_.nonZeros() || K_t.rows() != K_lin_.rows()) K_t = K_lin_;
-  std::copy(K_lin_.valuePtr(), K_lin_.valuePtr() + K_lin_.nonZeros(), K_t.valuePtr());
-  double* t = K_t.valuePtr();
+  add_elements_to_K_lin(1.0, K_t);
+}
+
+void HyperelasticForce::add_elements_to_K_lin(double share_of_K_lin, SparseMatrix& K) const {
+  // K = share K_lin + the elements' matrix, in K_lin's pattern, value by value (no allocation).
+  if (K.nonZeros() != K_lin_.nonZeros() || K.rows() != K_lin_.rows()) K = K_lin_;
+  double* t = K.valuePtr();
+  const double* lin = K_lin_.valuePtr();
+  for (Index i = 0; i < K_lin_.nonZeros(); ++i) t[i] = share_of_K_lin * lin[i];
   const double* e = element_tangent_.valuePtr();
   for (std::size_t i = 0; i < assembler_in_K_.size(); ++i) t[assembler_in_K_[i]] += e[i];
+}
+
+void HyperelasticForce::discrete_gradient(const Vector& u_a, const Vector& u_b, Vector& f_alg) const {
+  f_alg.resize(u_a.size());
+  assembler_.discrete_gradient(dofs_->expand(u_a), dofs_->expand(u_b), f_alg);
+  if (!K_lin_is_zero_) f_alg.noalias() += K_lin_ * (0.5 * (u_a + u_b));
+}
+
+void HyperelasticForce::discrete_gradient_and_tangent(const Vector& u_a, const Vector& u_b, Vector& f_alg,
+                                                      SparseMatrix& K_alg) const {
+  f_alg.resize(u_a.size());
+  assembler_.discrete_gradient_and_tangent(dofs_->expand(u_a), dofs_->expand(u_b), f_alg, element_tangent_);
+  if (!K_lin_is_zero_) f_alg.noalias() += K_lin_ * (0.5 * (u_a + u_b));
+  add_elements_to_K_lin(0.5, K_alg);
 }
 
 double HyperelasticForce::energy(const Vector& u) const {

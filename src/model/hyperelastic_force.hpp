@@ -28,9 +28,13 @@ class HyperelasticForce final : public InternalForce {
   /// contain the linear stiffness's over `dofs`. `dofs` is shared: the force may own it (the
   /// hybrid's) or borrow it (a FemModel's, through a non-owning pointer).
   HyperelasticForce(std::shared_ptr<const fem::DofMap> dofs, const mesh::TetMesh& mesh, const fem::MaterialMap& materials,
-                    std::vector<Index> elements, SparseMatrix K_lin, bool K_lin_is_zero, std::string description);
+                    std::vector<Index> elements, const SparseMatrix& K_lin, bool K_lin_is_zero, std::string description);
   void force(const Vector& u, Vector& f) const override;
   void force_and_tangent(const Vector& u, Vector& f, SparseMatrix& K_t) const override;
+  /// The elements' discrete gradient plus K_lin (u_a + u_b)/2 (exact for the quadratic K_lin part).
+  void discrete_gradient(const Vector& u_a, const Vector& u_b, Vector& f_alg) const override;
+  /// K_alg = K_lin / 2 + the elements' df_alg/du_b.
+  void discrete_gradient_and_tangent(const Vector& u_a, const Vector& u_b, Vector& f_alg, SparseMatrix& K_alg) const override;
   double energy(const Vector& u) const override;
   std::string describe() const override { return description_; }
   /// The elements that follow the law.
@@ -39,6 +43,8 @@ class HyperelasticForce final : public InternalForce {
  private:
   std::shared_ptr<const fem::DofMap> dofs_;  // before the assembler, which keeps a reference to it
   fem::HyperelasticAssembler assembler_;
+  /// K = share_of_K_lin K_lin + element_tangent_, in K_lin's pattern.
+  void add_elements_to_K_lin(double share_of_K_lin, SparseMatrix& K) const;
   SparseMatrix K_lin_;
   bool K_lin_is_zero_;
   std::vector<int> assembler_in_K_;       ///< where the assembler's pattern's values land in K_lin's

@@ -21,6 +21,13 @@ class InternalForce {
   virtual void force(const Vector& u, Vector& f) const = 0;
   /// f_int(u) and K_t(u) (K_t's values overwritten in the system's K pattern).
   virtual void force_and_tangent(const Vector& u, Vector& f, SparseMatrix& K_t) const = 0;
+  /// Gonzalez's discrete gradient between two states (fem/discrete_gradient.hpp): a force f_alg
+  /// with f_alg . (u_b - u_a) = W(u_b) - W(u_a) exactly, f_alg(u, u) = f_int(u), and second-order
+  /// close to f_int((u_a + u_b)/2). What integrators/energy_momentum.hpp conserves energy by.
+  virtual void discrete_gradient(const Vector& u_a, const Vector& u_b, Vector& f_alg) const = 0;
+  /// f_alg and its derivative in the second state, K_alg = df_alg/du_b (not symmetric; at u_a = u_b
+  /// it is K_t / 2), in the system's K pattern.
+  virtual void discrete_gradient_and_tangent(const Vector& u_a, const Vector& u_b, Vector& f_alg, SparseMatrix& K_alg) const = 0;
   /// W(u), J.
   virtual double energy(const Vector& u) const = 0;
   /// One line for reports: the law and where it holds ("neo-hookean, every element").

@@ -8,10 +8,12 @@
 
 namespace roifem::solvers {
 
-NewtonReport newton_solve(const NonlinearSystem& system, Vector& x, double force_scale, Cholesky& solver,
-                          const NewtonOptions& o) {
+namespace {
+
+template <class LinearSolver>
+NewtonReport newton(const NonlinearSystem& system, Vector& x, double force_scale, LinearSolver& solver, const NewtonOptions& o) {
   NewtonReport report;
-  Vector r(x.size()), dx(x.size());
+  Vector r(x.size()), dx(x.size()), trial;
   SparseMatrix J;
   const double residual_target = o.residual_tolerance * force_scale;
   for (int k = 0;; ++k) {
@@ -40,11 +42,40 @@ NewtonReport newton_solve(const NonlinearSystem& system, Vector& x, double force
           io::format("Newton: the tangent is singular or not positive definite at iteration %d%s: the "
                      "structure is unstable at this load, or the iterate far from the solution",
                      k, e.column >= 0 ? io::format(" (column %lld)", static_cast<long long>(e.column)).c_str() : ""));
+    } catch (const SolverError& e) {  // SparseLu: singular
+      throw SolverError(io::format("Newton: the Jacobian at iteration %d: %s", k, e.what()));
     }
     solver.solve(-r, dx);
+    if (o.line_search) {
+      // ||r(x + s dx)||_2 <= (1 - 1e-4 s) ||r(x)||_2, s = 1, 1/2, ... 1/256; the last tried is taken.
+      const double r0 = r.norm();
+      double step = 1;
+      for (int halving = 0; halving < 8; ++halving, step *= 0.5) {
+        trial = x + step * dx;
+        try {
+          system.residual(trial, r);
+        } catch (const ModelError&) {  // an element inverted at the trial point: shorter
+          continue;
+        }
+        if (std::isfinite(r.norm()) && r.norm() <= (1 - 1e-4 * step) * r0) break;
+      }
+      dx *= step;
+    }
     x += dx;
     report.history.back().increment = dx.lpNorm<Eigen::Infinity>();
   }
+}
+
+}  // namespace
+
+NewtonReport newton_solve(const NonlinearSystem& system, Vector& x, double force_scale, Cholesky& solver,
+                          const NewtonOptions& options) {
+  return newton(system, x, force_scale, solver, options);
+}
+
+NewtonReport newton_solve(const NonlinearSystem& system, Vector& x, double force_scale, SparseLu& solver,
+                          const NewtonOptions& options) {
+  return newton(system, x, force_scale, solver, options);
 }
 
 }  // namespace roifem::solvers

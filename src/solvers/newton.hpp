@@ -16,6 +16,7 @@
 
 #include "common/types.hpp"
 #include "solvers/cholesky.hpp"
+#include "solvers/sparse_lu.hpp"
 
 namespace roifem::solvers {
 
@@ -26,6 +27,9 @@ struct NewtonOptions {
   double increment_tolerance = 1e-8;
   double increment_floor = 1e-12;  ///< m: below this ||x|| the increment test is absolute
   int max_iterations = 25;
+  /// Backtracking (Armijo on ||r||_2, halving up to 8 times): a correction that does not lower the
+  /// residual is shortened. Off by default: it costs a residual per iteration.
+  bool line_search = false;
 };
 
 /// One iteration's figures (iteration 0: the residual before the first solve).
@@ -50,6 +54,9 @@ struct NonlinearSystem {
 /// analysis between calls (the pattern does not change). Throws SolverError with the history's
 /// last figures when it does not converge.
 NewtonReport newton_solve(const NonlinearSystem& system, Vector& x, double force_scale, Cholesky& solver,
+                          const NewtonOptions& options = {});
+/// The same with an unsymmetric Jacobian, by LU.
+NewtonReport newton_solve(const NonlinearSystem& system, Vector& x, double force_scale, SparseLu& solver,
                           const NewtonOptions& options = {});
 
 }  // namespace roifem::solvers
