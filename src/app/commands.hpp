@@ -14,6 +14,7 @@ void add_info_command(CLI::App& app, Action& action);
 void add_paper_command(CLI::App& app, Action& action);
 void add_run_command(CLI::App& app, Action& action);
 void add_compare_command(CLI::App& app, Action& action);
+void add_energy_command(CLI::App& app, Action& action);
 void add_roi_size_command(CLI::App& app, Action& action);
 void add_convergence_command(CLI::App& app, Action& action);
 void add_model_error_command(CLI::App& app, Action& action);

@@ -32,6 +32,7 @@ int run_cli(int argc, char** argv) {
   roifem::app::add_info_command(app, action);
   roifem::app::add_run_command(app, action);
   roifem::app::add_compare_command(app, action);
+  roifem::app::add_energy_command(app, action);
   roifem::app::add_paper_command(app, action);
   roifem::app::add_roi_size_command(app, action);
   roifem::app::add_convergence_command(app, action);

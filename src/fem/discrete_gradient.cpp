@@ -21,7 +21,7 @@ Mat3 discrete_gradient(const NeoHookean& law, const Mat3& H_a, const Mat3& H_b, 
   const Mat3 E_a = green_lagrange(H_a), E_b = green_lagrange(H_b);
   const Mat3 dE = E_b - E_a;
   const Mat3 E_mid = 0.5 * (E_a + E_b);
-  const Mat3 S_mid = law.stress_of_strain(E_mid);
+  Mat3 S_mid = law.stress_of_strain(E_mid);  // not const: returned below where dE is negligible
   Mat9 C_mid;
   if (D) C_mid = law.strain_tangent(E_mid);
   const double dE2 = dE.squaredNorm();
