@@ -87,8 +87,11 @@ std::vector<std::string> methods_of(const scenario::Scenario& sc, const EnergySt
   }
   for (const auto& name : o.integrators) {
     const auto& info = integrators::integrator_info(name);  // InputError with "did you mean" on an unknown name
-    if (const std::string why = refusal(info); !why.empty())
-      throw InputError("energy: " + name + " " + why + " (" + sc.file.string() + ")");
+    if (const std::string why = refusal(info); !why.empty()) {
+      std::string message = "energy: ";
+      message.append(name).append(" ").append(why).append(" (").append(sc.file.string()).append(")");
+      throw InputError(message);
+    }
     names.push_back(name);
   }
   return names;
