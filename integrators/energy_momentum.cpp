@@ -35,15 +35,12 @@ void EnergyMomentum::prepare(const model::SecondOrderSystem& system, const model
   inertia_.makeCompressed();
   K_alg_ = 0.5 * system.K;
   K_alg_.makeCompressed();
-  J_ = system.K + inertia_;  // the union of the two patterns
-  J_.makeCompressed();
-  K_in_J_ = solvers::positions_in(K_alg_, J_);
-  inertia_in_J_ = solvers::positions_in(inertia_, J_);
+  jacobian_pattern_ = solvers::PatternSum(K_alg_, inertia_);
   jacobian_ = solvers::SparseLu();
   grid_ = model::TimeGrid(initial.t, dt_, name());
   k_ = 0;
   f_now_ = system.load.at(initial.t);
-  for (Vector* v : {&f_next_, &b_, &u_next_, &work_}) v->resize(n);
+  for (Vector* v : {&f_next_, &b_, &u_next_, &work_, &inertia_u_}) v->resize(n);
   stats_ = {};
   stats_.factorization_s = clock.seconds();
 }
@@ -59,6 +56,10 @@ void EnergyMomentum::algorithmic_force(const Vector& u_a, const Vector& u_b, Vec
 
 void EnergyMomentum::residual(const Vector& u_n, const Vector& u, Vector& r) {
   algorithmic_force(u_n, u, r);
+  residual_of_force(u, r);
+}
+
+void EnergyMomentum::residual_of_force(const Vector& u, Vector& r) const {
   r *= 2;
   r.noalias() += inertia_ * u;
   r -= b_;
@@ -70,20 +71,8 @@ void EnergyMomentum::residual_and_jacobian(const Vector& u_n, const Vector& u, V
   } else {
     algorithmic_force(u_n, u, r);  // K_alg_ is K / 2 throughout
   }
-  r *= 2;
-  r.noalias() += inertia_ * u;
-  r -= b_;
-  // J = 2 K_alg + inertia, in the union of their patterns, value by value.
-  double* values = J_.valuePtr();
-  std::fill(values, values + J_.nonZeros(), 0.0);
-  const double* k = K_alg_.valuePtr();
-  for (std::size_t i = 0; i < K_in_J_.size(); ++i) values[K_in_J_[i]] += 2 * k[i];
-  const double* m = inertia_.valuePtr();
-  for (std::size_t i = 0; i < inertia_in_J_.size(); ++i) values[inertia_in_J_[i]] += m[i];
-  if (J.nonZeros() != J_.nonZeros())
-    J = J_;  // the first call: the pattern; later ones copy values only
-  else
-    std::copy(values, values + J_.nonZeros(), J.valuePtr());
+  residual_of_force(u, r);
+  jacobian_pattern_.assign(2.0, K_alg_, inertia_, J);  // J = 2 K_alg + inertia
 }
 
 void EnergyMomentum::step(model::State& s) {
@@ -93,8 +82,9 @@ void EnergyMomentum::step(model::State& s) {
   // b = f_n + f_{n+1} + 4/dt M v_n + inertia u_n: R(u) = inertia u + 2 f_alg(u_n, u) - b.
   system_->apply_mass(s.v, work_);
   b_ = f_now_ + f_next_ + (4.0 / dt_) * work_;
-  b_.noalias() += inertia_ * s.u;
-  const double scale = std::max(b_.lpNorm<Eigen::Infinity>(), (inertia_ * s.u).lpNorm<Eigen::Infinity>());
+  inertia_u_.noalias() = inertia_ * s.u;
+  b_ += inertia_u_;
+  const double scale = std::max(b_.lpNorm<Eigen::Infinity>(), inertia_u_.lpNorm<Eigen::Infinity>());
   const Vector& u_n = s.u;
   const solvers::NonlinearSystem equation{
       .residual = [&](const Vector& u, Vector& r) { residual(u_n, u, r); },

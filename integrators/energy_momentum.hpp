@@ -32,6 +32,7 @@
 #include "model/time_grid.hpp"
 #include "solvers/newton.hpp"
 #include "solvers/sparse_lu.hpp"
+#include "solvers/sparse_positions.hpp"
 
 namespace roifem::integrators {
 
@@ -54,18 +55,19 @@ class EnergyMomentum final : public Integrator {
   /// R(u), and R with its Jacobian (above), with b_ the step's right-hand side.
   void residual(const Vector& u_n, const Vector& u, Vector& r);
   void residual_and_jacobian(const Vector& u_n, const Vector& u, Vector& r, SparseMatrix& J);
+  /// r = 2 r + inertia u - b_, with r holding f_alg on entry.
+  void residual_of_force(const Vector& u, Vector& r) const;
 
   double dt_;
   solvers::NewtonOptions options_;
   const model::SecondOrderSystem* system_ = nullptr;
   model::TimeGrid grid_{0.0, 1.0, "energy-momentum"};
   long k_ = 0;
-  SparseMatrix inertia_;                    ///< 4/dt^2 M + 2/dt C
-  SparseMatrix K_alg_;                      ///< d f_alg / du_{n+1}, in K's pattern
-  SparseMatrix J_;                          ///< K_t + inertia, in the union of their patterns
-  std::vector<int> K_in_J_, inertia_in_J_;  ///< where each value of K_alg_ and inertia_ lands in J_
+  SparseMatrix inertia_;                  ///< 4/dt^2 M + 2/dt C
+  SparseMatrix K_alg_;                    ///< d f_alg / du_{n+1}, in K's pattern
+  solvers::PatternSum jacobian_pattern_;  ///< 2 K_alg + inertia, in the union of their patterns
   solvers::SparseLu jacobian_;
-  Vector f_now_, f_next_, b_, u_next_, work_;
+  Vector f_now_, f_next_, b_, u_next_, work_, inertia_u_;
   Stats stats_;
 };
 

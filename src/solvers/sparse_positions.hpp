@@ -29,4 +29,31 @@ inline std::vector<int> positions_in(const SparseMatrix& A, const SparseMatrix& 
   return at;
 }
 
+/// s A + B in the union of A's and B's patterns, value by value: a Newton matrix from a tangent and
+/// an inertia (the trapezoid's, energy-momentum's) without a sparse sum's allocation per iteration.
+class PatternSum {
+ public:
+  PatternSum() = default;
+  /// The patterns of A and B (compressed), which every later call's A and B keep.
+  PatternSum(const SparseMatrix& A, const SparseMatrix& B) : pattern_(A + B) {
+    pattern_.makeCompressed();
+    A_in_ = positions_in(A, pattern_);
+    B_in_ = positions_in(B, pattern_);
+  }
+  /// out = s A + B; out takes the union's pattern on the first call, later ones write values only.
+  void assign(double s, const SparseMatrix& A, const SparseMatrix& B, SparseMatrix& out) const {
+    if (out.nonZeros() != pattern_.nonZeros() || out.rows() != pattern_.rows()) out = pattern_;
+    double* values = out.valuePtr();
+    std::fill(values, values + out.nonZeros(), 0.0);
+    const double* a = A.valuePtr();
+    for (std::size_t i = 0; i < A_in_.size(); ++i) values[A_in_[i]] += s * a[i];
+    const double* b = B.valuePtr();
+    for (std::size_t i = 0; i < B_in_.size(); ++i) values[B_in_[i]] += b[i];
+  }
+
+ private:
+  SparseMatrix pattern_;
+  std::vector<int> A_in_, B_in_;
+};
+
 }  // namespace roifem::solvers
