@@ -67,13 +67,13 @@ int Arkode::unit_weights(N_Vector, N_Vector ewt, void*) {
   return 0;
 }
 
-int Arkode::jacobian(double, N_Vector y, N_Vector, SUNMatrix J, void* self, N_Vector, N_Vector, N_Vector) {
+int Arkode::jacobian(double t, N_Vector y, N_Vector, SUNMatrix J, void* self, N_Vector, N_Vector, N_Vector) {
   auto* me = static_cast<Arkode*>(self);
   return guarded_callback(me->pending_, -1, [&] {
     // A linear problem's Jacobian is constant; a nonlinear one's holds the tangent at y's u, on
     // the first Jacobian's pattern, so that KLU refactors on its one symbolic analysis.
     if (me->system_->is_nonlinear())
-      me->jacobian_ = me->newton_jacobian(me->form_->stiffness(N_VGetArrayPointer(y)), &me->jacobian_pattern_);
+      me->jacobian_ = me->newton_jacobian(me->form_->stiffness(t, N_VGetArrayPointer(y)), &me->jacobian_pattern_);
     sundials::copy_into(me->jacobian_, J);
   });
 }

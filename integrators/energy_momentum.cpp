@@ -29,6 +29,10 @@ EnergyMomentum::EnergyMomentum(double dt, solvers::NewtonOptions options) : dt_(
 void EnergyMomentum::prepare(const model::SecondOrderSystem& system, const model::State& initial) {
   const Index n = system.size();
   if (initial.u.size() != n || initial.v.size() != n) throw Error("internal: energy-momentum: state size mismatch");
+  if (system.internal_force && system.internal_force->has_motion())
+    throw InputError(std::string(name()) +
+                     " does not take tools on a nonlinear model: their work would need a discrete gradient of its own; "
+                     "run trapezoid, or drive the model by [[load]]s");
   system_ = &system;
   const Stopwatch clock;
   inertia_ = (4.0 / (dt_ * dt_)) * system.M + (2.0 / dt_) * system.C;

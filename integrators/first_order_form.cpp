@@ -17,11 +17,13 @@ void FirstOrderForm::evaluate(double t, const double* y, double* ydot) {
   const Eigen::Map<const Vector> u(y, n), v(y + n, n);
   Eigen::Map<Vector> du(ydot, n), dv(ydot + n, n);
   system_.load.evaluate(t, force_);
-  if (!(cached_u_.size() == n && std::memcmp(cached_u_.data(), y, sizeof(double) * static_cast<std::size_t>(n)) == 0)) {
+  const bool same_t = cached_t_ == t || !(system_.internal_force && system_.internal_force->has_motion());
+  if (!(same_t && cached_u_.size() == n && std::memcmp(cached_u_.data(), y, sizeof(double) * static_cast<std::size_t>(n)) == 0)) {
     cached_u_ = u;
+    cached_t_ = t;
     if (system_.internal_force) {
       cached_Ku_.resize(n);
-      system_.internal_force->force(cached_u_, cached_Ku_);  // f_int(u) in place of K u
+      system_.internal_force->force(t, cached_u_, cached_Ku_);  // f_int(t, u) in place of K u
     } else {
       system_.apply_stiffness(u, cached_Ku_);
     }
@@ -35,13 +37,13 @@ void FirstOrderForm::evaluate(double t, const double* y, double* ydot) {
     mass_inverse_->apply(work_, dv);
 }
 
-const SparseMatrix& FirstOrderForm::stiffness(const double* y) {
+const SparseMatrix& FirstOrderForm::stiffness(double t, const double* y) {
   if (!system_.internal_force) return system_.K;
   const Index n = system_.size();
   tangent_u_ = Eigen::Map<const Vector>(y, n);
   tangent_force_.resize(n);
   if (tangent_.nonZeros() != system_.K.nonZeros()) tangent_ = system_.K;  // the pattern, once
-  system_.internal_force->force_and_tangent(tangent_u_, tangent_force_, tangent_);
+  system_.internal_force->force_and_tangent(t, tangent_u_, tangent_force_, tangent_);
   return tangent_;
 }
 

@@ -20,12 +20,12 @@ class FirstOrderForm {
   /// The system must outlive the form.
   FirstOrderForm(const model::SecondOrderSystem& system, Mass mass);
   Index size() const { return 2 * system_.size(); }
-  /// ydot = y'(t, y). K u, the costly part, is kept keyed by u's exact values: a stage often
-  /// evaluates at the u of the evaluation before.
+  /// ydot = y'(t, y). K u, the costly part, is kept keyed by u's exact values (and t's, where
+  /// tools move a nonlinear law's nodes): a stage often evaluates at the u of the evaluation before.
   void evaluate(double t, const double* y, double* ydot);
-  /// The stiffness at y's u: the system's K, or a nonlinear system's tangent K_t(u) (in K's
-  /// pattern; valid until the next call).
-  const SparseMatrix& stiffness(const double* y);
+  /// The stiffness at (t, y's u): the system's K, or a nonlinear system's tangent K_t(t, u) (in
+  /// K's pattern; valid until the next call).
+  const SparseMatrix& stiffness(double t, const double* y);
   /// -M^-1 K (of the system's K, or of a tangent) and -M^-1 C, the Jacobian's lower blocks
   /// (sparse: see MassInverse::apply).
   SparseMatrix lower_left(const SparseMatrix& K) const;
@@ -39,6 +39,7 @@ class FirstOrderForm {
   Mass mass_;
   std::unique_ptr<model::MassInverse> mass_inverse_;  // with Mass::inverted
   Vector force_, work_, cached_u_, cached_Ku_;
+  double cached_t_ = 0;
   Vector tangent_u_, tangent_force_;  // stiffness()'s
   SparseMatrix tangent_;
 };

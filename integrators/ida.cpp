@@ -26,7 +26,7 @@ void Ida::residual(double t, const Eigen::Ref<const Vector>& y, const Eigen::Ref
   r.head(n) = yp.head(n) - y.tail(n);
   if (system_->internal_force) {
     u_ = y.head(n);
-    system_->internal_force->force(u_, f_int_);
+    system_->internal_force->force(t, u_, f_int_);
     r.tail(n) = f_int_;
   } else {
     system_->apply_stiffness(y.head(n), r.tail(n));
@@ -40,9 +40,9 @@ SparseMatrix Ida::dF_dy(const SparseMatrix& K, const SparseMatrix* pattern_of) c
   return assemble_blocks({n, n}, {{0, 1, &I, -1.0}, {1, 0, &K}, {1, 1, &system_->C}}, pattern_of);
 }
 
-void Ida::update_dF_dy(const Eigen::Ref<const Vector>& y) {
+void Ida::update_dF_dy(double t, const Eigen::Ref<const Vector>& y) {
   u_ = y.head(system_->size());
-  system_->internal_force->force_and_tangent(u_, f_int_, K_t_);
+  system_->internal_force->force_and_tangent(t, u_, f_int_, K_t_);
   dF_dy_ = dF_dy(K_t_, &dF_dyp_);  // dF/dy''s pattern already holds dF/dy's: the union is unchanged
 }
 
@@ -68,7 +68,7 @@ void Ida::prepare(const model::SecondOrderSystem& system, const model::State& in
     u_.resize(n);
     f_int_.resize(n);
     K_t_ = system.K;
-    settings.update_dF_dy = [this](const Eigen::Ref<const Vector>& y) { update_dF_dy(y); };
+    settings.update_dF_dy = [this](double t, const Eigen::Ref<const Vector>& y) { update_dF_dy(t, y); };
   }
   ida_ = std::make_unique<sundials::IdaSolver>(
       std::move(settings), [this](double t, const auto& y, const auto& yp, auto r) { residual(t, y, yp, r); }, dF_dy_, dF_dyp_);
@@ -80,7 +80,7 @@ void Ida::prepare(const model::SecondOrderSystem& system, const model::State& in
   mass.compute(system.M);
   yp.head(n) = initial.v;
   Vector internal = system.K * initial.u;
-  if (system.internal_force) system.internal_force->force(initial.u, internal);
+  if (system.internal_force) system.internal_force->force(initial.t, initial.u, internal);
   yp.tail(n) = mass.solve(system.load.at(initial.t) - system.C * initial.v - internal);
   ida_->start(initial.t);
 }

@@ -38,8 +38,8 @@ class Ida final : public Integrator {
   void residual(double t, const Eigen::Ref<const Vector>& y, const Eigen::Ref<const Vector>& yp, Eigen::Ref<Vector> r);
   /// dF/dy = [[0, -I], [K, C]] with K the stiffness at u: the system's, or the tangent K_t(u).
   SparseMatrix dF_dy(const SparseMatrix& K, const SparseMatrix* pattern_of) const;
-  /// dF/dy at y's u on a nonlinear system (IdaSolver::Settings::update_dF_dy).
-  void update_dF_dy(const Eigen::Ref<const Vector>& y);
+  /// dF/dy at (t, y's u) on a nonlinear system (IdaSolver::Settings::update_dF_dy).
+  void update_dF_dy(double t, const Eigen::Ref<const Vector>& y);
 
   std::string name_;
   int max_order_;

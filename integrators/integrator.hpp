@@ -23,6 +23,7 @@ struct Stats {
   long steps = 0, rhs_evals = 0, jac_evals = 0, lin_setups = 0, lin_solves = 0, failed_steps = 0;
   long lin_iterations = 0;        ///< iterations of an iterative linear solver (trapezoid-cg)
   long nonlinear_iterations = 0;  ///< Newton iterations on a nonlinear system
+  long indefinite_steps = 0;      ///< steps whose Newton matrix was indefinite (solved by LU, not Cholesky)
   double factorization_s = 0;     ///< seconds in linear-solver setups: orderings, analyses, factorizations
 };
 

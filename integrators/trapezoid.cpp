@@ -8,6 +8,7 @@
 #include "common/timer.hpp"
 #include "integrators/integrator_info.hpp"
 #include "integrators/modal_elimination.hpp"
+#include "solvers/newton.hpp"
 
 namespace roifem::integrators {
 
@@ -52,23 +53,29 @@ void Trapezoid::prepare(const model::SecondOrderSystem& system, const model::Sta
 }
 
 void Trapezoid::solve_nonlinear(const model::State& s) {
-  const double dt = rule_.dt();
   // b = f + M w; the tolerance's scale: the largest of the load, the history's inertia and the
   // internal force it balances.
   system_->apply_mass(work_, u_next_);
   f_ += u_next_;
   const double scale = std::max(f_.lpNorm<Eigen::Infinity>(), (system_->M * a_).lpNorm<Eigen::Infinity>());
-  u_next_ = s.u + dt * s.v + (0.5 * dt * dt) * a_;  // the rule with a_{n+1} = a_n
+  // The predictor: u_n, where the last step converged. The rule's own (u_n + dt v_n + dt^2/2 a_n)
+  // carries the acceleration of the modes it leaves undamped, and on the paper brain it landed
+  // where the tangent was indefinite in 181 of 200 steps (each then retried from u_n): from u_n
+  // the same run takes 661 Newton iterations in all against 669 + 181 wasted first tries.
+  u_next_ = s.u;
   const Stopwatch clock;
   solvers::NewtonReport report;
   try {
-    report = newton_->solve(f_, u_next_, scale);
+    report = newton_->solve(s.t, f_, u_next_, scale);
   } catch (const Error&) {
-    // The predictor can land where the tangent is indefinite (a soft material compressed by the
-    // step's inertia) or an element inverts: start once more from u_n, where the last step converged.
+    // An iterate can land where the tangent is indefinite (a soft material compressed by the step's
+    // inertia) or an element inverts: start once more from u_n, with a line search, and by LU where
+    // the Jacobian is indefinite there too.
     ++stats_.failed_steps;
     u_next_ = s.u;
-    report = newton_->solve(f_, u_next_, scale);
+    bool indefinite = false;
+    report = newton_->solve_carefully(s.t, f_, u_next_, scale, indefinite);
+    stats_.indefinite_steps += indefinite ? 1 : 0;
   }
   stats_.factorization_s += clock.seconds();
   stats_.nonlinear_iterations += report.iterations();

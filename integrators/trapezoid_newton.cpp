@@ -17,22 +17,40 @@ TrapezoidNewton::TrapezoidNewton(const model::SecondOrderSystem& system, const m
   inertia_.makeCompressed();
 }
 
-solvers::NewtonReport TrapezoidNewton::solve(const Vector& b, Vector& u, double force_scale) {
+solvers::NonlinearSystem TrapezoidNewton::equation(double t, const Vector& b) {
   const model::InternalForce& f_int = *system_.internal_force;
-  const solvers::NonlinearSystem equation{.residual =
-                                              [&](const Vector& x, Vector& r) {
-                                                f_int.force(x, r);
-                                                inertia_u_.noalias() = inertia_ * x;
-                                                r += inertia_u_ - b;
-                                              },
-                                          .residual_and_jacobian =
-                                              [&](const Vector& x, Vector& r, SparseMatrix& J) {
-                                                f_int.force_and_tangent(x, r, K_t_);
-                                                inertia_u_.noalias() = inertia_ * x;
-                                                r += inertia_u_ - b;
-                                                jacobian_pattern_.assign(1.0, K_t_, inertia_, J);
-                                              }};
-  return solvers::newton_solve(equation, u, force_scale, jacobian_, options_);
+  return {.residual =
+              [&f_int, &b, t, this](const Vector& x, Vector& r) {
+                f_int.force(t, x, r);
+                inertia_u_.noalias() = inertia_ * x;
+                r += inertia_u_ - b;
+              },
+          .residual_and_jacobian =
+              [&f_int, &b, t, this](const Vector& x, Vector& r, SparseMatrix& J) {
+                f_int.force_and_tangent(t, x, r, K_t_);
+                inertia_u_.noalias() = inertia_ * x;
+                r += inertia_u_ - b;
+                jacobian_pattern_.assign(1.0, K_t_, inertia_, J);
+              }};
+}
+
+solvers::NewtonReport TrapezoidNewton::solve(double t, const Vector& b, Vector& u, double force_scale) {
+  return solvers::newton_solve(equation(t, b), u, force_scale, jacobian_, options_);
+}
+
+solvers::NewtonReport TrapezoidNewton::solve_carefully(double t, const Vector& b, Vector& u, double force_scale,
+                                                       bool& indefinite) {
+  solvers::NewtonOptions careful = options_;
+  careful.line_search = true;
+  const Vector start = u;
+  indefinite = false;
+  try {
+    return solvers::newton_solve(equation(t, b), u, force_scale, jacobian_, careful);
+  } catch (const solvers::IndefiniteJacobian&) {
+    indefinite = true;
+    u = start;
+    return solvers::newton_solve(equation(t, b), u, force_scale, indefinite_jacobian_, careful);
+  }
 }
 
 }  // namespace roifem::integrators

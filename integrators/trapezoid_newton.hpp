@@ -6,7 +6,11 @@
 ///   R(u) = (4/dt^2 M + 2/dt C) u + f_int(u) - b = 0
 /// by Newton (solvers/newton.hpp), its Jacobian 4/dt^2 M + 2/dt C + K_t(u) refactorized by CHOLMOD
 /// on the symbolic analysis of the first step (the pattern never changes). With f_int = K u it is
-/// the linear rule, solved in one iteration. An iteration allocates nothing: the Jacobian's pattern
+/// the linear rule, solved in one iteration. Where the Jacobian is not positive definite (a
+/// compressed element of a nearly incompressible law turns its tangent indefinite long before it
+/// inverts: mu = 12 Pa against kappa (J - 1) at 0.3% compression on the paper brain), the caller
+/// may solve the step again on KLU's LU factorization of the same matrix (solve_indefinite, on its
+/// own analysis): Newton needs a nonsingular Jacobian, not a definite one. An iteration allocates nothing: the Jacobian's pattern
 /// (K's and the inertia's) is built once, and each iteration adds K_t's and the inertia's values
 /// into it through index maps.
 #include <vector>
@@ -24,10 +28,13 @@ class TrapezoidNewton {
   /// The system must outlive this.
   TrapezoidNewton(const model::SecondOrderSystem& system, const model::AverageAcceleration& rule,
                   solvers::NewtonOptions options = {});
-  /// u: the predictor on entry, u_{n+1} on return. `force_scale`: the residual tolerance's scale (N).
-  /// Throws SolverError (no convergence) or ModelError (an inverted element) for the caller to
-  /// name its step.
-  solvers::NewtonReport solve(const Vector& b, Vector& u, double force_scale);
+  /// u: the predictor on entry, u_{n+1} on return, at t = t_{n+1}. `force_scale`: the residual
+  /// tolerance's scale (N). Throws SolverError (no convergence) or ModelError (an inverted element)
+  /// for the caller to name its step.
+  solvers::NewtonReport solve(double t, const Vector& b, Vector& u, double force_scale);
+  /// A retry after solve() failed: from u (the last converged state), with a line search, and by
+  /// LU where the Jacobian is not positive definite (solvers::IndefiniteJacobian). Sets `indefinite`.
+  solvers::NewtonReport solve_carefully(double t, const Vector& b, Vector& u, double force_scale, bool& indefinite);
   const solvers::NewtonOptions& options() const { return options_; }
 
  private:
@@ -39,6 +46,9 @@ class TrapezoidNewton {
   /// CHOLMOD's choice (supernodal on the brains): on the paper brain it took 3.35 Newton iterations
   /// per step and 63 ms, where a simplicial factor took 6.04 and 110 ms.
   solvers::Cholesky jacobian_;
+  solvers::SparseLu indefinite_jacobian_;
+  /// The step's equation: R(u) = inertia u + f_int(t, u) - b, and its Jacobian.
+  solvers::NonlinearSystem equation(double t, const Vector& b);
   Vector inertia_u_;
 };
 

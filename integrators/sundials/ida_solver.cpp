@@ -40,12 +40,12 @@ int IdaSolver::residual_callback(double t, N_Vector y, N_Vector yp, N_Vector r, 
   return guarded_recoverable_callback(me->pending_, me->inadmissible_, -1, [&] { me->residual_(t, view(y), view(yp), view(r)); });
 }
 
-int IdaSolver::jacobian_callback(double, double c_j, N_Vector y, N_Vector, N_Vector, SUNMatrix J, void* self, N_Vector, N_Vector,
-                                 N_Vector) {
+int IdaSolver::jacobian_callback(double t, double c_j, N_Vector y, N_Vector, N_Vector, SUNMatrix J, void* self, N_Vector,
+                                 N_Vector, N_Vector) {
   auto* me = static_cast<IdaSolver*>(self);
   return guarded_callback(me->pending_, -1, [&] {
     if (me->settings_.update_dF_dy) {
-      me->settings_.update_dF_dy(view(y));
+      me->settings_.update_dF_dy(t, view(y));
       if (me->dF_dy_.nonZeros() != me->dF_dyp_.nonZeros())
         throw Error("internal: " + me->settings_.name + ": the updated dF/dy left the Newton matrix's pattern");
     }

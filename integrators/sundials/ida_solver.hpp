@@ -33,9 +33,9 @@ class IdaSolver {
     /// 1 for a differential entry, 0 for an algebraic one (IDASetId); none: every entry differential.
     std::optional<Eigen::VectorXd> differential;
     bool suppress_algebraic = false;  ///< leave the algebraic entries out of the error test (index 2 and 3)
-    /// Called with y before each Newton matrix is formed, where dF/dy depends on y (a nonlinear
-    /// system): it rewrites dF_dy's values, its pattern unchanged.
-    std::function<void(const Eigen::Ref<const Eigen::VectorXd>& y)> update_dF_dy;
+    /// Called with t and y before each Newton matrix is formed, where dF/dy depends on them (a
+    /// nonlinear system): it rewrites dF_dy's values, its pattern unchanged.
+    std::function<void(double t, const Eigen::Ref<const Eigen::VectorXd>& y)> update_dF_dy;
   };
   /// dF_dy and dF_dyp on one pattern (assemble_blocks' pattern_of), kept by reference.
   IdaSolver(Settings settings, Residual residual, const SparseMatrix& dF_dy, const SparseMatrix& dF_dyp);

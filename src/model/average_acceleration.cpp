@@ -39,7 +39,7 @@ Vector AverageAcceleration::consistent_acceleration(const SecondOrderSystem& sys
   Vector r = system.load.at(s.t) - system.C * s.v;
   if (system.internal_force) {
     Vector f_int(s.u.size());
-    system.internal_force->force(s.u, f_int);
+    system.internal_force->force(s.t, s.u, f_int);
     r -= f_int;
   } else {
     r -= system.K * s.u;

@@ -11,13 +11,13 @@ EnergyLedger::ToolTerms EnergyLedger::tool_terms(const State& s) const {
   // One product with the coupling per state: F and the coupling energy both follow from it.
   ToolTerms terms{.g = tools_->positions(s.t), .coupled = tools_->coupling_times(s.u), .loads = tools_->loads_at_tools(s.t)};
   const Vector self_g = tools_->self_times(terms.g);
-  terms.forces = terms.coupled + self_g - terms.loads;
+  terms.forces = tools_->forces(terms.coupled, self_g, s.u, s.t);
   terms.coupling_energy = terms.g.dot(terms.coupled) + 0.5 * terms.g.dot(self_g);
   return terms;
 }
 
-double EnergyLedger::strain(const Vector& u) {
-  if (system_.internal_force) return system_.internal_force->energy(u);  // W(u)
+double EnergyLedger::strain(double t, const Vector& u) {
+  if (system_.internal_force) return system_.internal_force->energy(t, u);  // W(t, u)
   system_.apply_stiffness(u, Ku_);
   return 0.5 * u.dot(Ku_);
 }
@@ -33,7 +33,7 @@ EnergyLedger::EnergyLedger(const SecondOrderSystem& system, const State& initial
       Ku_(initial.u.size()) {
   system_.apply_mass(initial.v, Mv_previous_);
   kinetic_ = 0.5 * initial.v.dot(Mv_previous_);
-  strain_ = strain(initial.u);
+  strain_ = strain(initial.t, initial.u);
   if (tools_ != nullptr) {
     tools_previous_ = tool_terms(initial);
     coupling_ = tools_previous_.coupling_energy;
@@ -54,7 +54,7 @@ void EnergyLedger::record(const State& next) {
   else
     dissipated_ += dt * v_mid.dot(system_.C * v_mid);
   kinetic_ = 0.5 * next.v.dot(Mv_next_);
-  strain_ = strain(next.u);
+  strain_ = strain(next.t, next.u);
   if (tools_ != nullptr) {
     ToolTerms now = tool_terms(next);
     const ToolTerms& was = tools_previous_;

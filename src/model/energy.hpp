@@ -9,7 +9,9 @@
 /// With tools (tools.hpp, eliminated from the system), E also holds the coupling energy, W only the
 /// loads' work (on the tissue and on the tools' nodes), and the tools' work is kept apart,
 ///   W_tools += (g_{n+1} - g_n) . (F_n + F_{n+1}) / 2,
-/// so that E + D = E_0 + W + W_tools, again exactly for the trapezoidal rule.
+/// so that E + D = E_0 + W + W_tools, again exactly for the trapezoidal rule. A nonlinear system's
+/// strain energy is its W(t, u) (model/internal_force.hpp), the same ledger then holding to the
+/// rule's O(dt^2) error.
 #include "model/second_order_system.hpp"
 #include "model/tools.hpp"
 
@@ -40,8 +42,8 @@ class EnergyLedger {
     double coupling_energy = 0;
   };
   ToolTerms tool_terms(const State& s) const;
-  /// The strain energy u^T K u / 2, or a nonlinear system's W(u).
-  double strain(const Vector& u);
+  /// The strain energy u^T K u / 2, or a nonlinear system's W(t, u).
+  double strain(double t, const Vector& u);
 
   const SecondOrderSystem& system_;
   const ToolSet* tools_;  ///< null or empty: none

@@ -33,7 +33,7 @@ EnergyBound::EnergyBound(const SecondOrderSystem& system, const State& initial)
   // 2 E_strain: u^T K u, or a nonlinear system's 2 W(u) (the bound's argument holds for any W >= 0).
   double strain = 0;
   if (system.internal_force) {
-    strain = std::max(0.0, 2 * system.internal_force->energy(initial.u));
+    strain = std::max(0.0, 2 * system.internal_force->energy(initial.t, initial.u));
   } else {
     system.apply_stiffness(initial.u, work_);
     strain = std::max(0.0, initial.u.dot(work_));

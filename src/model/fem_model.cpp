@@ -219,11 +219,6 @@ FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::MaterialMap& mate
     model.system.internal_force = hyperelastic_force(mesh, *model.dofs, materials, element);
     return model;
   }
-  if (materials.nonlinear())
-    throw InputError(
-        (tools.front().where.empty() ? mesh.source : tools.front().where) +
-        ": tools on a nonlinear material (neo-hookean) are not built yet: drive it with [[load]]s, or give [material] "
-        "model = \"linear\"");
   // With tools: the model over every unfixed dof, then the tools' dofs eliminated.
   SecondOrderSystem all = assemble(mesh, materials, element, fixed_only);
   // Over these dofs only the fixed nodes take a load's share (one on tools' nodes is theirs to carry).
@@ -241,7 +236,9 @@ FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::MaterialMap& mate
   model.dofs = std::make_unique<fem::DofMap>(constraints);
   model.dofs_with_tools = std::make_unique<fem::DofMap>(fixed_only);
   model.system = std::move(eliminated.system);
-  model.tools = std::move(eliminated.tools);
+  // A nonlinear law reads the tools' paths where they hold its elements' nodes (hyperelastic_force.hpp).
+  model.system.internal_force = hyperelastic_force(mesh, *model.dofs, materials, element, attached);
+  model.tools = eliminated.tools.with_law(model.system.internal_force);
   return model;
 }
 

@@ -59,6 +59,13 @@ double mass_proportional_damping(const SecondOrderSystem& system, double toleran
   return (system.C - alpha * system.M).norm() <= tolerance * system.C.norm() ? alpha : NAN;
 }
 
+SecondOrderSystem with_ramp(const SecondOrderSystem& system, const Ramp& ramp) {
+  SecondOrderSystem ramped = system;
+  ramped.load = system.load.with_ramp(ramp);
+  if (system.internal_force) ramped.internal_force = system.internal_force->with_ramp(ramp);
+  return ramped;
+}
+
 double kinetic_energy(const SecondOrderSystem& sys, const State& s) {
   Vector Mv(s.v.size());
   sys.apply_mass(s.v, Mv);
@@ -66,7 +73,7 @@ double kinetic_energy(const SecondOrderSystem& sys, const State& s) {
 }
 
 double strain_energy(const SecondOrderSystem& sys, const State& s) {
-  if (sys.internal_force) return sys.internal_force->energy(s.u);
+  if (sys.internal_force) return sys.internal_force->energy(s.t, s.u);
   Vector Ku(s.u.size());
   sys.apply_stiffness(s.u, Ku);
   return 0.5 * s.u.dot(Ku);

@@ -87,6 +87,10 @@ struct State {
 /// alpha when C = alpha M (mass-proportional damping, to `tolerance` relative), else NaN.
 double mass_proportional_damping(const SecondOrderSystem& system, double tolerance = 1e-12);
 
+/// The same system with every load term, and a nonlinear law's tools' paths, on `ramp`
+/// (LoadHistory::with_ramp, InternalForce::with_ramp).
+SecondOrderSystem with_ramp(const SecondOrderSystem& system, const Ramp& ramp);
+
 /// A diagonal as a sparse matrix.
 SparseMatrix diagonal_matrix(const Vector& d);
 

@@ -2,6 +2,7 @@
 #include "model/tools.hpp"
 
 #include "common/errors.hpp"
+#include "model/internal_force.hpp"
 
 namespace roifem::model {
 
@@ -29,7 +30,19 @@ Vector ToolSet::positions(double t) const {
 }
 
 Vector ToolSet::forces(const Eigen::Ref<const Vector>& u, double t) const {
-  return coupling_ * u + self_ * positions(t) - load_at_tools_.at(t);
+  return forces(coupling_ * u, self_ * positions(t), u, t);
+}
+
+Vector ToolSet::forces(const Vector& coupled, const Vector& self_g, const Eigen::Ref<const Vector>& u, double t) const {
+  Vector F = coupled + self_g - load_at_tools_.at(t);
+  if (law_ && law_->has_motion()) F += law_->tool_force_correction(t, u);
+  return F;
+}
+
+ToolSet ToolSet::with_law(std::shared_ptr<const InternalForce> law) const {
+  ToolSet out = *this;
+  out.law_ = std::move(law);
+  return out;
 }
 
 double ToolSet::coupling_energy(const Eigen::Ref<const Vector>& u, double t) const {
@@ -58,6 +71,7 @@ ToolSet ToolSet::with_ramp(const Ramp& ramp) const {
     tool.path.ramp = ramp;
   }
   out.load_at_tools_ = load_at_tools_.with_ramp(ramp);
+  if (law_) out.law_ = law_->with_ramp(ramp);
   return out;
 }
 

@@ -10,8 +10,11 @@
 /// of the tissue obeys, exactly for the trapezoidal rule,
 ///   E + D = W_loads + W_tools,   W_tools = integral of F . dg/dt,
 /// with the coupling energy g . coupling u + g . self g / 2 counted in the strain energy.
+/// On a nonlinear model the set holds its law (model/internal_force.hpp), and F gains what the
+/// law's elements at the tools' nodes give beyond their linear stiffness.
 /// Vectors over the tools stack each tool's x, y, z (3 T entries).
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -21,6 +24,8 @@
 #include "model/load_history.hpp"
 
 namespace roifem::model {
+
+class InternalForce;  // internal_force.hpp
 
 /// The tool's rigid translation g(t) (m): displacement ramp(t), or a trajectory, piecewise linear
 /// through sampled points (one sampled ramp per component, in metres).
@@ -65,6 +70,10 @@ class ToolSet {
   Vector positions(double t) const;
   /// F(t) of every tool (3T) for the unknowns u.
   Vector forces(const Eigen::Ref<const Vector>& u, double t) const;
+  /// The same from the products the caller has formed: coupling u and self g (the energy ledger's).
+  Vector forces(const Vector& coupled, const Vector& self_g, const Eigen::Ref<const Vector>& u, double t) const;
+  /// The same tools on a nonlinear model whose law (over the same unknowns) moves their nodes.
+  ToolSet with_law(std::shared_ptr<const InternalForce> law) const;
   /// The loads on the attached nodes, summed per tool (3T): f_tools(t).
   Vector loads_at_tools(double t) const { return load_at_tools_.at(t); }
   /// coupling x (3T): how the unknowns pull on the tools.
@@ -73,10 +82,12 @@ class ToolSet {
   Vector self_times(const Eigen::Ref<const Vector>& g) const { return self_ * g; }
   /// The strain energy stored between the tools and the unknowns: g . coupling u + g . self g / 2.
   double coupling_energy(const Eigen::Ref<const Vector>& u, double t) const;
-  /// The same tools for a system whose unknown new_index[i] is this one's unknown i (all mapped).
+  /// The same tools for a system whose unknown new_index[i] is this one's unknown i (all mapped),
+  /// without a law (that system's is another: with_law).
   ToolSet renumbered(Index new_size, const std::vector<Index>& new_index) const;
   /// The same tools with every path's ramp, and every load at the tools, on `ramp` (as
-  /// LoadHistory::with_ramp does for the system the tools drive). Throws Error for a trajectory.
+  /// LoadHistory::with_ramp does for the system the tools drive), the law's too. Throws Error for a
+  /// trajectory.
   ToolSet with_ramp(const Ramp& ramp) const;
   const SparseMatrix& coupling() const { return coupling_; }
 
@@ -85,6 +96,7 @@ class ToolSet {
   SparseMatrix coupling_;
   DenseMatrix self_;
   LoadHistory load_at_tools_;
+  std::shared_ptr<const InternalForce> law_;  ///< null: the linear model
 };
 
 }  // namespace roifem::model

@@ -63,6 +63,32 @@ model::ToolSet tools_in_reduced(const model::FemModel& full, const roi::Partitio
   return full.tools.renumbered(reduced_size, position);
 }
 
+std::unique_ptr<condensation::ReducedModel> reduce_full_model(model::FemModel& full, const roi::Partition& partition,
+                                                              const condensation::Reduction& reduction,
+                                                              const std::string& where) {
+  // A neo-Hookean model's ROI is the hybrid: the linear model condensed as always, the law set
+  // aside meanwhile (condensation takes a linear model) and given back after.
+  std::shared_ptr<const model::InternalForce> law = std::exchange(full.system.internal_force, nullptr);
+  if (law && !reduction.is_static_condensation()) {
+    full.system.internal_force = law;
+    throw InputError(where + ": [roi] reduction = \"" + reduction.label() +
+                     "\" with a neo-hookean material: a reduction by modes linearizes the ROI's motion; the nonlinear "
+                     "ROI takes static condensation (reduction = \"static\"), or give [material] model = \"linear\"");
+  }
+  std::unique_ptr<condensation::ReducedModel> reduced;
+  try {
+    reduced = std::make_unique<condensation::ReducedModel>(full.system, partition, *full.dofs, reduction);
+  } catch (const ModelError& e) {  // a singular static part: name the mesh whose nodes it names
+    full.system.internal_force = law;
+    throw ModelError(full.mesh->source + ": " + e.what());
+  }
+  full.system.internal_force = law;
+  if (law)
+    reduced->attach_internal_force(model::hybrid_roi_force(*full.mesh, *full.dofs, full.materials, full.element,
+                                                           reduced->partition(), reduced->system().K, full.tools.tools()));
+  return reduced;
+}
+
 std::unique_ptr<ScenarioModel> build_scenario_model(const scenario::Scenario& sc) {
   auto m = std::make_unique<ScenarioModel>();
   m->mesh = mesh::read_mesh(sc.mesh);
@@ -73,27 +99,12 @@ std::unique_ptr<ScenarioModel> build_scenario_model(const scenario::Scenario& sc
   const fem::DofMap& dofs = *m->full.dofs;
   if (sc.roi) {
     m->roi_nodes = roi::select_roi_nodes(m->mesh, dofs, *sc.roi);
-    // A neo-Hookean model's ROI is the hybrid: the linear model condensed as always, the law set
-    // aside meanwhile (condensation takes a linear model) and given back after.
-    std::shared_ptr<const model::InternalForce> law = std::exchange(m->full.system.internal_force, nullptr);
-    if (law && !sc.reduction.is_static_condensation())
-      throw InputError(sc.file.string() + ": [roi] reduction = \"" + sc.reduction.label() +
-                       "\" with a neo-hookean material: a reduction by modes linearizes the ROI's motion; the nonlinear "
-                       "ROI takes static condensation (reduction = \"static\"), or give [material] model = \"linear\"");
-    try {
-      m->condensation = std::make_unique<condensation::ReducedModel>(
-          m->full.system, roi::partition_dofs(m->full.system.K, dofs, m->roi_nodes), dofs, sc.reduction);
-    } catch (const ModelError& e) {  // a singular static part: name the mesh whose nodes it names
-      m->full.system.internal_force = law;
-      throw ModelError(m->mesh.source + ": " + e.what());
-    }
-    m->full.system.internal_force = law;
-    if (law)
-      m->condensation->attach_internal_force(model::hybrid_roi_force(m->mesh, dofs, m->full.materials, sc.element,
-                                                                     m->condensation->partition(), m->condensation->system().K));
+    m->condensation =
+        reduce_full_model(m->full, roi::partition_dofs(m->full.system.K, dofs, m->roi_nodes), sc.reduction, sc.file.string());
   }
   if (!m->full.tools.empty())
     m->tools = m->condensation ? tools_in_reduced(m->full, m->condensation->partition(), m->condensation->system().size())
+                                     .with_law(m->condensation->system().internal_force)
                                : m->full.tools;
   // (Not for a basis learnt from the loads: the tool-kept model has other loads, so another basis.)
   if (m->condensation && !m->full.tools.empty() && !sc.reduction.kind->learns_from_loads)

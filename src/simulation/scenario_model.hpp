@@ -34,6 +34,14 @@ struct ScenarioModel {
 /// node of the static part: its force and its motion must reach the tissue through the ROI alone.
 model::ToolSet tools_in_reduced(const model::FemModel& full, const roi::Partition& partition, Index reduced_size);
 
+/// The ROI model of `full` on `partition`: the reduction of the linear model (a neo-Hookean
+/// model's K is its tangent at rest), and with a neo-Hookean material the hybrid ROI's law
+/// (model/hyperelastic_force.hpp) over it, the tools' motion included. A reduction by modes
+/// linearizes the ROI's motion: InputError naming it (`where`: the scenario file, for the message).
+/// The full model's law is set aside while it condenses and given back (hence non-const).
+std::unique_ptr<condensation::ReducedModel> reduce_full_model(model::FemModel& full, const roi::Partition& partition,
+                                                              const condensation::Reduction& reduction, const std::string& where);
+
 /// The integrator the scenario names, with its steps: fixed dt, or error-controlled at its rtol and
 /// atol with dt as the output interval. InputError for an unknown name (before any work).
 std::unique_ptr<integrators::Integrator> scenario_integrator(const scenario::Scenario& scenario);

@@ -180,10 +180,15 @@ ScenarioRunSummary run_scenario(const scenario::Scenario& sc, const std::filesys
                 summary.steps, summary.step_s_median * 1e3, ledger.kinetic(), ledger.strain(), ledger.external_work(),
                 ledger.dissipated());
   if (system.is_nonlinear())
-    log << format("Newton (%s): %ld iterations, %.2f per step, %ld tangents factorized\n",
+    log << format("Newton (%s): %ld iterations, %.2f per step, %ld tangents factorized%s\n",
                   system.internal_force->describe().c_str(), summary.stats.nonlinear_iterations,
                   static_cast<double>(summary.stats.nonlinear_iterations) / static_cast<double>(std::max(1L, summary.steps)),
-                  summary.stats.lin_setups);
+                  summary.stats.lin_setups,
+                  summary.stats.failed_steps == 0
+                      ? ""
+                      : format(" (%ld steps solved again with a line search, %ld of them by LU: their Newton matrix indefinite)",
+                               summary.stats.failed_steps, summary.stats.indefinite_steps)
+                            .c_str());
   print_tool_forces(*built, state, ledger, log);
   if (const auto held = stepper.integrator().constraints())
     log << format("%s: the multipliers' tool forces differ from the residual's by at most %.1e of their peak; drift %.1e mm\n",

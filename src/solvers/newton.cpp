@@ -38,7 +38,7 @@ NewtonReport newton(const NonlinearSystem& system, Vector& x, double force_scale
       if (k == 0 && solver.size() != J.rows()) solver.analyze(J);
       solver.factorize(J);
     } catch (const NotPositiveDefinite& e) {
-      throw SolverError(
+      throw IndefiniteJacobian(
           io::format("Newton: the tangent is singular or not positive definite at iteration %d%s: the "
                      "structure is unstable at this load, or the iterate far from the solution",
                      k, e.column >= 0 ? io::format(" (column %lld)", static_cast<long long>(e.column)).c_str() : ""));

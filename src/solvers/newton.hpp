@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "common/errors.hpp"
 #include "common/types.hpp"
 #include "solvers/cholesky.hpp"
 #include "solvers/sparse_lu.hpp"
@@ -42,6 +43,13 @@ struct NewtonIterate {
 struct NewtonReport {
   std::vector<NewtonIterate> history;
   int iterations() const { return history.empty() ? 0 : static_cast<int>(history.size()) - 1; }
+};
+
+/// The Cholesky form's failure when a Jacobian is not positive definite: a symmetric indefinite
+/// Jacobian, which an LU factorization still solves (newton_solve with SparseLu).
+class IndefiniteJacobian : public SolverError {
+ public:
+  explicit IndefiniteJacobian(const std::string& what) : SolverError(what) {}
 };
 
 /// What Newton solves: the residual, and the residual with its Jacobian (pattern fixed).
