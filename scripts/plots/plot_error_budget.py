@@ -4,8 +4,9 @@
 
 usage: /usr/bin/python3 plot_error_budget.py DIR
 reads DIR/error_budget.csv; writes DIR/error_budget.png: the largest error over the ROI from space,
-time and reduction per setup (rows) and ramp (columns) over the run, log scale, the model error as
-a level; written to a temporary name, then renamed.
+time and reduction (and, from `roifem paper --material-model neo-hookean`, the dynamic model error
+and the hybrid's) per setup (rows) and ramp (columns) over the run, log scale, the model error as a
+level; written to a temporary name, then renamed.
 """
 import csv
 import os
@@ -31,8 +32,9 @@ def plot_error_budget(directory, path):
     for i, setup in enumerate(setups):
         for j, ramp in enumerate(ramps):
             ax, c = axes[i][j], curves[(setup, ramp)]
-            for key, label in (("space_max_mm", "space"), ("time_max_mm", "time"), ("reduction_max_mm", "reduction")):
-                if any(v == v and v > 0 for v in c[key]):
+            for key, label in (("space_max_mm", "space"), ("time_max_mm", "time"), ("reduction_max_mm", "reduction"),
+                               ("model_dynamic_max_mm", "model (dynamic)"), ("hybrid_max_mm", "hybrid")):
+                if key in c and any(v == v and v > 0 for v in c[key]):
                     ax.semilogy(c["t_s"], c[key], label=label)
             model = [v for v in c["model_max_mm"] if v == v]
             if model:

@@ -5,6 +5,8 @@
 
 #include "app/commands.hpp"
 #include "experiments/paper_experiment.hpp"
+#include "experiments/paper_large_deformation.hpp"
+#include "fem/material_model.hpp"
 #include "io/result_cache.hpp"
 
 namespace roifem::app {
@@ -45,10 +47,20 @@ void add_paper_command(CLI::App& app, Action& action) {
                   "apart; also reports the error of the force each spatula feels, condensed against full)")
       ->check(CLI::IsMember({"forces", "spatulas"}))
       ->capture_default_str();
+  auto law = std::make_shared<std::string>("linear");
+  cmd->add_option("--material-model", *law,
+                  "The material's law: 'linear' (the paper's) or 'neo-hookean' (large deformation: the full neo-Hookean "
+                  "model is the reference for the hybrid ROI, the linear condensed and the full linear model, under both "
+                  "drives unless --drive names one; prints the findings, Table 2 with Newton, the force errors and the budget)")
+      ->capture_default_str();
+  auto* drive_option = cmd->get_option("--drive");
   cmd->add_option("--opening-mm", o->opening_mm,
                   "Static widening of the opening (mm): the forces are chosen for it, or the spatulas impose it")
       ->capture_default_str();
   cmd->add_option("--steps", o->steps, "Time steps per run")->capture_default_str();
+  cmd->add_option("--ramps", o->ramps_s, "The load ramps' times (s), fastest first: the paper's 0.5 1 2")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->add_option("--timing-steps", o->timing_steps, "Steps timed per model for Table 2 (medians)")->capture_default_str();
   auto reductions = std::make_shared<std::vector<std::string>>();
   for (const auto& r : o->reductions) reductions->push_back(r.label());
@@ -75,13 +87,20 @@ void add_paper_command(CLI::App& app, Action& action) {
   cmd->add_flag_callback(
          "--no-cache", [o] { o->budget.cache.clear(); }, "Compute the budget's reference afresh and keep nothing")
       ->excludes(cache);
-  cmd->callback([&action, o, reductions, drive, budget_element, target] {
-    action = [o, reductions, drive, budget_element, target] {
+  cmd->callback([&action, o, reductions, drive, budget_element, target, law, drive_option] {
+    const bool drive_named = drive_option->count() > 0;
+    action = [o, reductions, drive, budget_element, target, law, drive_named] {
       o->roi_target_mm = Vec3((*target)[0], (*target)[1], (*target)[2]);
       o->budget.reference_element = fem::parse_element(*budget_element);
       o->drive = *drive == "spatulas" ? experiments::PaperDrive::spatulas : experiments::PaperDrive::forces;
       o->reductions.clear();
       for (const auto& label : *reductions) o->reductions.push_back(condensation::parse_reduction(label));
+      if (fem::parse_material_model(*law) == fem::MaterialModel::neo_hookean) {
+        std::vector<experiments::PaperDrive> drives{experiments::PaperDrive::forces, experiments::PaperDrive::spatulas};
+        if (drive_named) drives = {o->drive};
+        experiments::run_paper_large_deformation(*o, drives, std::cout);
+        return;
+      }
       experiments::run_paper_experiment(*o, std::cout);
     };
   });

@@ -10,6 +10,10 @@
 ///   reduction  condensed against full: the paper's own error
 ///   model      small strain against geometrically nonlinear (CalculiX NLGEOM,
 ///              experiments/model_error.hpp), static at the full load
+/// and, where the large-deformation paper supplies them (paper_large_deformation.hpp):
+///   model (dynamic)  the full linear model against the full neo-Hookean one, in time
+///   hybrid           the hybrid ROI against the full neo-Hookean model: what is left of the model
+///                    error and the reduction's when the ROI takes the law (not a source: not ranked)
 /// Both models run once, from rest under the load rising at unit slope; every ramp's response
 /// follows by superposition, exactly for the trapezoidal rule's linear recurrence (ramps that are
 /// multiples of dt). Each as the peak over the run of the largest nodal distance over the ROI, and the steady mean
@@ -47,6 +51,7 @@ struct BudgetEntry {  ///< one setup, one ramp
   double ramp_s = 0;
   ErrorCurve space, time, reduction;
   std::optional<double> model_max_mm, model_mean_mm;  ///< static, full load
+  std::optional<ErrorCurve> model_dynamic, hybrid;    ///< the large-deformation paper's
   std::string dominant;                               ///< by peak
   double dominance = 0;                               ///< its peak over the next largest
 };
@@ -70,6 +75,8 @@ struct BudgetInput {
   std::vector<std::pair<std::string, std::vector<int>>> setups;  ///< name, ROI nodes
   /// Per setup (same order) and ramp: the reduction's error curve.
   std::vector<std::vector<ErrorCurve>> reduction;
+  /// The same for the dynamic model error and the hybrid's (empty: not measured).
+  std::vector<std::vector<ErrorCurve>> model_dynamic, hybrid;
 };
 
 /// The full model's trapezoidal run from rest under its loads rising at unit slope (f t): what

@@ -14,6 +14,7 @@
 #include "common/number_text.hpp"
 #include "common/timer.hpp"
 #include "condensation/reduced_model.hpp"
+#include "experiments/paper_model.hpp"
 #include "experiments/paper_report.hpp"
 #include "experiments/roi_error.hpp"
 #include "fem/static_solve.hpp"
@@ -34,14 +35,6 @@ namespace roifem::experiments {
 namespace {
 
 using io::format;
-
-/// Mean x-displacement of a set's nodes (m).
-double mean_x(const mesh::TetMesh& mesh, const Vector& u_full, const std::string& set) {
-  const auto& nodes = mesh.set(set).nodes;
-  double sum = 0;
-  for (int n : nodes) sum += u_full[3 * n];
-  return sum / static_cast<double>(nodes.size());
-}
 
 struct Setup {
   std::string name;
@@ -82,55 +75,6 @@ std::vector<std::vector<double>> time_steps(const std::vector<const model::Secon
   return seconds;
 }
 
-/// The full model with the opening's forces, scaled so that the static opening widens by
-/// opening_mm; or with two spatulas that move the walls apart by opening_mm.
-struct PaperModel {
-  mesh::TetMesh mesh;
-  model::FemModel full;
-};
-
-/// The forces' model: unit forces (1 N per wall, opposite directions), scaled to the opening.
-void add_opening_forces(const PaperOptions& o, PaperModel& m, PaperResults& results) {
-  m.full = model::build_fem_model(
-      m.mesh, fem::material_preset(o.material), {o.fixed_set},
-      {{"opening_left", Vec3(-1, 0, 0), model::Ramp{0}}, {"opening_right", Vec3(1, 0, 0), model::Ramp{0}}});
-  const fem::DofMap& dofs = *m.full.dofs;
-  solvers::Cholesky K;
-  fem::factorize_stiffness(K, m.full.system.K, dofs);
-  const Vector u = dofs.expand(K.solve(m.full.system.load.at(1.0)));
-  const double opening_per_newton = mean_x(m.mesh, u, "opening_right") - mean_x(m.mesh, u, "opening_left");
-  results.force_N = o.opening_mm * mm / opening_per_newton;
-  m.full.system.load = m.full.system.load.mapped(dofs.num_free(), [&](const Vector& p) { return Vector(results.force_N * p); });
-}
-
-/// The spatulas' model: each wall's nodes held by a rigid tool that moves it opening_mm / 2
-/// outwards; the force each spatula holds at rest.
-void add_spatulas(const PaperOptions& o, PaperModel& m, PaperResults& results) {
-  const double half = o.opening_mm * mm / 2;
-  auto spatula = [&](const char* name, const char* set, double direction) {
-    return model::SetTool{.name = name,
-                          .set = set,
-                          .center = Vec3::Zero(),
-                          .radius = 0,
-                          .path = {.displacement = Vec3(direction * half, 0, 0), .ramp = model::Ramp{0}}};
-  };
-  m.full = model::build_fem_model(m.mesh, fem::material_preset(o.material), {o.fixed_set}, {},
-                                  {spatula("left", "opening_left", -1), spatula("right", "opening_right", 1)});
-  solvers::Cholesky K;
-  fem::factorize_stiffness(K, m.full.system.K, *m.full.dofs);
-  const Vector forces = m.full.tools.forces(K.solve(m.full.system.load.at(1.0)), 1.0);
-  results.force_N = std::max(forces.segment<3>(0).norm(), forces.segment<3>(3).norm());
-}
-/// The setup's ROI: the same nodes whichever the drive, chosen among the nodes the base leaves free
-/// (the walls' included); those a spatula holds then leave the unknowns and move with it.
-std::vector<int> select_setup_nodes(const PaperModel& m, const roi::RoiSpec& spec) {
-  const fem::DofMap& choose_among = m.full.dofs_with_tools ? *m.full.dofs_with_tools : *m.full.dofs;
-  std::vector<int> nodes = roi::select_roi_nodes(m.mesh, choose_among, spec);
-  const std::vector<int> free = roi::free_nodes(m.mesh, *m.full.dofs);
-  std::erase_if(nodes, [&](int n) { return !std::binary_search(free.begin(), free.end(), n); });
-  return nodes;
-}
-
 /// Displacement fields for results.h5 and the XDMF series that play them (full, and setup 1 with
 /// the paper's reduction), every field_every steps of the first ramp.
 struct FieldRecord {
@@ -147,16 +91,6 @@ struct FieldRecord {
 std::vector<double> field_mm(const PaperModel& m, const model::ToolSet& tools, const Vector& u_free, double t) {
   const Vector u = m.full.displacement(u_free, tools, t) / mm;
   return {u.data(), u.data() + u.size()};
-}
-
-/// The largest of the tools' forces' differences and the largest reference force (mN), at one step.
-std::pair<double, double> force_error_mN(const Vector& forces, const Vector& reference) {
-  double error = 0, largest = 0;
-  for (Index a = 0; 3 * a < forces.size(); ++a) {
-    error = std::max(error, (forces.segment<3>(3 * a) - reference.segment<3>(3 * a)).norm() / 1e-3);
-    largest = std::max(largest, reference.segment<3>(3 * a).norm() / 1e-3);
-  }
-  return {error, largest};
 }
 
 /// The full model's run under one ramp: displacements and (spatulas) tool forces per step.
@@ -237,14 +171,13 @@ void PaperExperiment::build_model() {
   const PaperOptions& o = o_;
   PaperResults& results = results_;
   std::ostream& log = log_;
-  auto m = std::make_unique<PaperModel>();
-  m->mesh = mesh::read_mesh(o.mesh);
-  mesh::check_mesh(m->mesh);
+  mesh::TetMesh mesh = mesh::read_mesh(o.mesh);
+  mesh::check_mesh(mesh);
   if (o.drive == PaperDrive::forces && o.error_budget && o.budget.reference_nodes > 0) {
     // The budget's space error regenerates the ellipsoid brain finer: refuse another shape now,
     // not after the whole run.
     const mesh::BrainShape shape;
-    const Vec3 hi = m->mesh.nodes.rowwise().maxCoeff() / mm, lo = m->mesh.nodes.rowwise().minCoeff() / mm;
+    const Vec3 hi = mesh.nodes.rowwise().maxCoeff() / mm, lo = mesh.nodes.rowwise().minCoeff() / mm;
     const Vec3 expected(shape.semi_axis_x, shape.semi_axis_y, shape.semi_axis_z);
     if (((hi - expected).cwiseAbs().array() > 0.05 * expected.array()).any() ||
         ((lo + expected).cwiseAbs().array() > 0.05 * expected.array()).any())
@@ -255,10 +188,8 @@ void PaperExperiment::build_model() {
   }
   results.drive = o.drive;
   results.opening_mm = o.opening_mm;
-  if (o.drive == PaperDrive::forces)
-    add_opening_forces(o, *m, results);
-  else
-    add_spatulas(o, *m, results);
+  auto m = build_paper_model(mesh, fem::material_preset(o.material), o.fixed_set, o.drive, o.opening_mm);
+  results.force_N = m->force_N;
   const fem::DofMap& dofs = *m->full.dofs;
   log << format("paper experiment: %s, %lld nodes (%lld free dofs), material '%s'\n", o.mesh.c_str(),
                 static_cast<long long>(m->mesh.num_nodes()), static_cast<long long>(dofs.num_free()), o.material.c_str());

@@ -37,28 +37,9 @@ void print_reductions(const PaperResults& r, std::ostream& log) {
 void print_findings(const PaperResults& r, std::ostream& log) {
   log << "\nFindings (Hansen & Larsen 1998, Section 5), checked on this run"
       << (r.drive == PaperDrive::spatulas ? ", driven by spatulas:\n" : ":\n");
-  bool steady_ok = true;
-  for (const auto& c : r.curves) {
-    const double steady = steady_mean(c);
-    steady_ok = steady_ok && steady < 0.2;
-    log << format(
-        "  %-8s ramp %.1f s: peak max error %6.3f mm, peak mean error %6.3f mm, steady mean error (steps > 100) %.4f mm\n",
-        c.setup.c_str(), c.ramp_s, peak(c.max_mm), peak(c.mean_mm), steady);
-  }
-  log << format("  [%s] steady-state mean error below 0.2 mm for every ramp and setup\n", steady_ok ? "yes" : "NO");
-  bool ramp_order = true, setup_order = true;
-  const std::size_t n_ramps = r.ramps_s.size(), n_setups = n_ramps ? r.curves.size() / n_ramps : 0;
-  for (std::size_t s = 0; s < n_setups; ++s)
-    for (std::size_t k = 0; k + 1 < n_ramps; ++k)
-      ramp_order = ramp_order && peak(r.curves[s * n_ramps + k].max_mm) > peak(r.curves[s * n_ramps + k + 1].max_mm);
-  for (std::size_t k = 0; k < n_ramps && n_setups > 1; ++k)
-    setup_order = setup_order && peak(r.curves[n_ramps + k].max_mm) > peak(r.curves[k].max_mm);
-  log << format("  [%s] the faster the ramp, the higher the max-error peak (0.5 s highest, 2 s lowest)\n",
-                ramp_order ? "yes" : "NO");
-  log << format("  [%s] setup 2 (smaller ROI) peaks above setup 1\n", setup_order ? "yes" : "NO");
-  bool faster = true;
-  for (std::size_t k = 1; k < r.timing.size(); ++k) faster = faster && r.timing[k].step_s_median < r.timing[0].step_s_median;
-  log << format("  [%s] the condensed models step faster than the full model\n", faster ? "yes" : "NO");
+  std::vector<double> step_s;
+  for (const auto& t : r.timing) step_s.push_back(t.step_s_median);
+  print_findings(r.curves, r.ramps_s.size(), step_s, log);
   // The model is linear: every error scales with the force. Say at which scale this run is.
   if (!r.curves.empty() && r.opening_mm > 0) {
     const double scale = paper_peak_max_error_mm / peak(r.curves.front().max_mm);
@@ -108,6 +89,35 @@ void print_table2(const PaperResults& r, std::ostream& log) {
 }
 
 }  // namespace
+
+PaperFindings check_findings(const std::vector<PaperCurve>& curves, std::size_t n_ramps, const std::vector<double>& step_s) {
+  PaperFindings f;
+  for (const auto& c : curves) f.steady_below_0_2_mm = f.steady_below_0_2_mm && steady_mean(c) < 0.2;
+  const std::size_t n_setups = n_ramps ? curves.size() / n_ramps : 0;
+  for (std::size_t s = 0; s < n_setups; ++s)
+    for (std::size_t k = 0; k + 1 < n_ramps; ++k)
+      f.faster_ramp_peaks_higher =
+          f.faster_ramp_peaks_higher && peak(curves[s * n_ramps + k].max_mm) > peak(curves[s * n_ramps + k + 1].max_mm);
+  for (std::size_t k = 0; k < n_ramps && n_setups > 1; ++k)
+    f.smaller_roi_peaks_higher = f.smaller_roi_peaks_higher && peak(curves[n_ramps + k].max_mm) > peak(curves[k].max_mm);
+  for (std::size_t k = 1; k < step_s.size(); ++k) f.condensed_step_faster = f.condensed_step_faster && step_s[k] < step_s[0];
+  return f;
+}
+
+void print_findings(const std::vector<PaperCurve>& curves, std::size_t n_ramps, const std::vector<double>& step_s,
+                    std::ostream& log) {
+  for (const auto& c : curves)
+    log << format(
+        "  %-8s ramp %.1f s: peak max error %6.3f mm, peak mean error %6.3f mm, steady mean error (steps > 100) %.4f mm\n",
+        c.setup.c_str(), c.ramp_s, peak(c.max_mm), peak(c.mean_mm), steady_mean(c));
+  const PaperFindings f = check_findings(curves, n_ramps, step_s);
+  auto mark = [](bool holds) { return holds ? "yes" : "NO"; };
+  log << format("  [%s] steady-state mean error below 0.2 mm for every ramp and setup\n", mark(f.steady_below_0_2_mm));
+  log << format("  [%s] the faster the ramp, the higher the max-error peak (0.5 s highest, 2 s lowest)\n",
+                mark(f.faster_ramp_peaks_higher));
+  log << format("  [%s] setup 2 (smaller ROI) peaks above setup 1\n", mark(f.smaller_roi_peaks_higher));
+  log << format("  [%s] the condensed models step faster than the full model\n", mark(f.condensed_step_faster));
+}
 
 void print_paper_report(const PaperResults& r, std::ostream& log) {
   print_findings(r, log);

@@ -15,6 +15,7 @@
 #include "experiments/roi_error.hpp"
 #include "integrators/factory.hpp"
 #include "io/result_table.hpp"
+#include "model/hyperelastic_force.hpp"
 #include "simulation/progress.hpp"
 #include "simulation/run_loop.hpp"
 #include "simulation/scenario_model.hpp"
@@ -28,7 +29,7 @@ using io::format;
 /// The full model's run, and the peak error of reduced models against it at the evaluated nodes.
 class ErrorProbe {
  public:
-  ErrorProbe(const scenario::Scenario& sc, std::string integrator, const simulation::ScenarioModel& full)
+  ErrorProbe(const scenario::Scenario& sc, std::string integrator, simulation::ScenarioModel& full)
       : sc_(sc),
         integrator_(std::move(integrator)),
         full_(full),
@@ -43,25 +44,29 @@ class ErrorProbe {
   }
 
   /// Peak over steps and the evaluated nodes of the distance to the full model (mm).
-  double peak_error_mm(condensation::ReducedModel& reduced) const {
-    auto integrator = integrators::make_integrator(integrator_, sc_.dt);
-    const auto& system = reduced.system();
-    model::State state = model::State::at_rest(system.size());
-    integrator->reset(system, state);
-    double peak = 0;
-    for (long k = 1; k <= sc_.steps; ++k) {
-      integrator->advance_to(static_cast<double>(k) * sc_.dt, state);
-      peak = std::max(peak,
-                      roi_error(evaluated_, reduced.expand(state.u, state.t), reference_[static_cast<std::size_t>(k - 1)]).max);
-    }
-    return peak / mm;
+  double peak_error_mm(condensation::ReducedModel& reduced) const { return peak_distance_mm(run(reduced), reference_); }
+
+  /// A neo-Hookean model's hybrid ROI, its error split: the full model with the hybrid's law but
+  /// uncondensed (the linear remainder's error alone, against the full neo-Hookean model), and the
+  /// hybrid against that model (the condensation's error alone).
+  RoiSizeProbe probe_hybrid(Index nodes, condensation::ReducedModel& hybrid) const {
+    const std::vector<Vector> h = run(hybrid);
+    model::SecondOrderSystem uncondensed = full_.system();
+    const model::FemModel& f = full_.full;
+    uncondensed.internal_force =
+        model::hybrid_law_uncondensed(*f.mesh, *f.dofs, f.materials, f.element, hybrid.partition(), f.system.K, f.tools.tools());
+    const std::vector<Vector> m = run(uncondensed);
+    return {.nodes = nodes,
+            .peak_max_mm = peak_distance_mm(h, reference_),
+            .remainder_mm = peak_distance_mm(m, reference_),
+            .condensation_mm = peak_distance_mm(h, m)};
   }
 
   /// The reduced model of the ROI `spec` (a POD basis learns from the scenario's own step and length).
   std::unique_ptr<condensation::ReducedModel> reduce(const roi::RoiSpec& spec, const condensation::Reduction& reduction) const {
     const fem::DofMap& dofs = *full_.full.dofs;
     const auto partition = roi::partition_dofs(full_.system().K, dofs, roi::select_roi_nodes(full_.mesh, dofs, spec));
-    return std::make_unique<condensation::ReducedModel>(full_.system(), partition, dofs, reduction.trained_on(sc_.dt, sc_.steps));
+    return simulation::reduce_full_model(full_.full, partition, reduction.trained_on(sc_.dt, sc_.steps), sc_.file.string());
   }
   std::unique_ptr<condensation::ReducedModel> reduce(Index nodes, const condensation::Reduction& reduction) const {
     return reduce({.kind = roi::RoiSpec::Kind::nearest, .center = sc_.roi->center, .radius = 0, .count = nodes, .set = {}},
@@ -82,9 +87,38 @@ class ErrorProbe {
   }
 
  private:
+  /// The reduced model's run, over every free dof (u_s recovered) at steps 1..steps.
+  std::vector<Vector> run(condensation::ReducedModel& reduced) const {
+    std::vector<Vector> u;
+    run(reduced.system(), [&](const model::State& s) { u.push_back(reduced.expand(s.u, s.t)); });
+    return u;
+  }
+  /// A full model's run.
+  std::vector<Vector> run(const model::SecondOrderSystem& full) const {
+    std::vector<Vector> u;
+    run(full, [&](const model::State& s) { u.push_back(s.u); });
+    return u;
+  }
+  template <class Record>
+  void run(const model::SecondOrderSystem& system, Record&& record) const {
+    auto integrator = integrators::make_integrator(integrator_, sc_.dt);
+    model::State state = model::State::at_rest(system.size());
+    integrator->reset(system, state);
+    for (long k = 1; k <= sc_.steps; ++k) {
+      integrator->advance_to(static_cast<double>(k) * sc_.dt, state);
+      record(state);
+    }
+  }
+  /// Peak over the steps of the largest distance at the evaluated nodes (mm).
+  double peak_distance_mm(const std::vector<Vector>& a, const std::vector<Vector>& b) const {
+    double peak = 0;
+    for (std::size_t k = 0; k < a.size(); ++k) peak = std::max(peak, roi_error(evaluated_, a[k], b[k]).max);
+    return peak / mm;
+  }
+
   const scenario::Scenario& sc_;
   std::string integrator_;
-  const simulation::ScenarioModel& full_;
+  simulation::ScenarioModel& full_;
   RoiNodeDofs evaluated_;  // the nodes where the error is measured
   std::vector<Vector> reference_;
 };
@@ -110,13 +144,21 @@ const std::array<Column<RoiSizeRow>, 11> roi_size_table{{
      [](const RoiSizeRow& r) -> Cell { return static_cast<long>(r.holds_below); }},
 }};
 
-const std::array<Column<RoiSizeRun>, 4> roi_size_run_table{{
+Cell optional_cell(const std::optional<double>& x) { return x ? Cell(*x) : Cell(); }
+
+const std::array<Column<RoiSizeRun>, 6> roi_size_run_table{{
     {"reduction", "the static part's reduction", [](const RoiSizeRun& r) -> Cell { return r.row->reduction; }},
     {"nodes", "the ROI's nodes", [](const RoiSizeRun& r) -> Cell { return static_cast<long>(r.probe.nodes); }},
     {"peak_max_mm", "the peak max error over the run (mm)", [](const RoiSizeRun& r) -> Cell { return r.probe.peak_max_mm; },
      "%.9g"},
     {"within_budget", "1: peak_max_mm <= the budget",
      [](const RoiSizeRun& r) -> Cell { return r.probe.holds(r.row->max_error_mm); }},
+    {"remainder_mm",
+     "neo-hookean: the peak error of the full model with the hybrid's law, uncondensed, against the full neo-Hookean "
+     "model: the linear remainder's error (mm)",
+     [](const RoiSizeRun& r) { return optional_cell(r.probe.remainder_mm); }, "%.9g"},
+    {"condensation_mm", "neo-hookean: the peak error of the hybrid against that uncondensed model: the condensation's (mm)",
+     [](const RoiSizeRun& r) { return optional_cell(r.probe.condensation_mm); }, "%.9g"},
 }};
 
 /// The two result tables, rewritten (atomically) after every run, so that a search stopped early
@@ -141,6 +183,13 @@ void conclude(RoiSizeRow& row, double budget) {
     row.nodes = answer->nodes;
     row.peak_max_mm = answer->peak_max_mm;
   }
+  // Neo-Hookean: from which size on the linear remainder errs no more than the condensation (both
+  // at rounding level, 1e-9 of the budget, count as equal: every node in the ROI leaves neither).
+  const auto remainder_over = std::find_if(sorted.rbegin(), sorted.rend(), [&](const auto& p) {
+    return p.remainder_mm && *p.remainder_mm > *p.condensation_mm + 1e-9 * budget;
+  });
+  if (remainder_over.base() != sorted.end() && sorted.front().remainder_mm)
+    row.remainder_below_condensation_from = remainder_over.base()->nodes;
   if (last_miss == sorted.rend()) return;
   row.missing_to = last_miss->nodes;
   const auto first_miss = std::find_if(sorted.begin(), sorted.end(), [&](const auto& p) { return !p.holds(budget); });
@@ -161,7 +210,9 @@ class Search {
     RoiSizeRow row{.reduction = reduction.label(), .max_error_mm = o_.max_error_mm};
     auto holds = [&](Index n) {
       const auto reduced = probe_.reduce(n, reduction);
-      row.probes.push_back({n, probe_.peak_error_mm(*reduced)});
+      row.probes.push_back(reduced->system().is_nonlinear()
+                               ? probe_.probe_hybrid(n, *reduced)
+                               : RoiSizeProbe{.nodes = n, .peak_max_mm = probe_.peak_error_mm(*reduced)});
       write_files(o_.out, results_, &row);
       progress_.update(++runs_, format("%s: %lld nodes %.4f mm", row.reduction.c_str(), static_cast<long long>(n),
                                        row.probes.back().peak_max_mm));
@@ -208,6 +259,18 @@ std::string row_text(const RoiSizeRow& r) {
   if (r.holds_below > 0)
     text += format("; holds again at %lld nodes and below (the error is not monotone in the ROI size)",
                    static_cast<long long>(r.holds_below));
+  if (!r.probes.empty() && r.probes.front().remainder_mm) {
+    if (r.remainder_below_condensation_from > 0) {
+      const auto& at = *std::find_if(r.probes.begin(), r.probes.end(),
+                                     [&](const RoiSizeProbe& p) { return p.nodes == r.remainder_below_condensation_from; });
+      text += format(
+          "\n  %-18s the linear remainder's error stays at or below the condensation's from %lld nodes on (%.4f mm against "
+          "%.4f mm there)",
+          "", static_cast<long long>(r.remainder_below_condensation_from), *at.remainder_mm, *at.condensation_mm);
+    } else {
+      text += format("\n  %-18s the linear remainder's error stays above the condensation's at every size tried", "");
+    }
+  }
   return text + "\n";
 }
 
@@ -267,6 +330,19 @@ RoiSizeResults run_roi_size(const RoiSizeOptions& o, std::ostream& log) {
       "scenario's ROI (%s) over %ld steps of %s at dt = %g s (full model and ROI models alike)\n",
       sc.file.c_str(), static_cast<long long>(results.free_nodes), results.target.x() / mm, results.target.y() / mm,
       results.target.z() / mm, o.max_error_mm, sc.roi->describe().c_str(), sc.steps, o.integrator.c_str(), sc.dt);
+  std::vector<condensation::Reduction> reductions = o.reductions;
+  if (full->system().is_nonlinear()) {  // the hybrid ROI: static condensation under a nonlinear ROI
+    std::string left_out;
+    std::erase_if(reductions, [&](const condensation::Reduction& r) {
+      if (r.is_static_condensation()) return false;
+      left_out += (left_out.empty() ? "" : ", ") + r.label();
+      return true;
+    });
+    if (!left_out.empty())
+      log << "a neo-hookean model: " << left_out
+          << " left out (a reduction by modes linearizes the ROI's motion); static condensation sizes the hybrid ROI\n";
+    if (reductions.empty()) reductions.push_back(condensation::parse_reduction("static"));
+  }
   const ErrorProbe probe(sc, o.integrator, *full);
   results.full_step_s_median = probe.step_median(full->system(), o.timing_steps);
   {  // the scenario's own ROI, as it stands
@@ -279,7 +355,7 @@ RoiSizeResults run_roi_size(const RoiSizeOptions& o, std::ostream& log) {
                   results.scenario_peak_max_mm <= o.max_error_mm ? "within" : "OVER", o.max_error_mm);
   }
   Search search(o, probe, results.free_nodes, results);
-  for (const auto& reduction : o.reductions) {
+  for (const auto& reduction : reductions) {
     results.rows.push_back(search.find(reduction));
     write_files(o.out, results, nullptr);
     log << row_text(results.rows.back()) << std::flush;

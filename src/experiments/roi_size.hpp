@@ -8,6 +8,11 @@
 /// it lies outside a smaller candidate ROI (so a 1-node ROI cannot pass by measuring itself only).
 /// Both models run one integrator (the trapezoidal rule unless told otherwise) at the scenario's dt,
 /// so that the difference is the reduction's alone; the target is the centre of the scenario's [roi].
+/// On a neo-Hookean scenario the reference is the full neo-Hookean model and the ROI model the
+/// hybrid (a nonlinear ROI over the linear condensed remainder: static condensation only), whose
+/// error is split at every size tried: the full model with the hybrid's law uncondensed against the
+/// reference (the linear remainder's error) and the hybrid against that model (the condensation's);
+/// the answer then also says from which size the remainder's error stays below the condensation's.
 ///
 /// The answer is the size from which every larger ROI stays within the budget. The error is not
 /// monotone in N (it jumps as the ROI boundary crosses the loaded walls or stiff regions: on a 5k
@@ -19,6 +24,7 @@
 /// answer that hold are reported as the non-monotone stretch.
 #include <filesystem>
 #include <iosfwd>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -46,6 +52,8 @@ struct RoiSizeOptions {
 struct RoiSizeProbe {
   Index nodes = 0;
   double peak_max_mm = 0;
+  /// A neo-Hookean scenario's split of the hybrid's error (mm): the linear remainder's and the condensation's.
+  std::optional<double> remainder_mm, condensation_mm;
   bool holds(double budget_mm) const { return peak_max_mm <= budget_mm; }
 };
 
@@ -57,7 +65,10 @@ struct RoiSizeRow {
   double peak_max_mm = 0, step_s_median = 0;
   Index missing_from = 0, missing_to = 0;  ///< the sizes tried that miss, smallest and largest (0: none)
   Index holds_below = 0;                   ///< largest size below the misses that holds (0: none): non-monotone
-  std::vector<RoiSizeProbe> probes;        ///< every size tried, in the order tried
+  /// Neo-Hookean: the size from which every size tried has the linear remainder's error at or below
+  /// the condensation's (0: none, or not measured).
+  Index remainder_below_condensation_from = 0;
+  std::vector<RoiSizeProbe> probes;  ///< every size tried, in the order tried
 };
 
 struct RoiSizeResults {
