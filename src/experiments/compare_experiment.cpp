@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <ostream>
 
 #include "common/atomic_file.hpp"
@@ -27,9 +28,10 @@ namespace {
 
 using io::format;
 
-/// The exact solution on the output grid, and what a run is measured against.
+/// The exact solution (or a tight run's) on the output grid, and what a run is measured against.
 struct Reference {
-  std::vector<Vector> u;  ///< at t_k = k * interval, k = 1..K
+  std::string description;  ///< "the exact modal solution", or the tight run's method and tolerances
+  std::vector<Vector> u;    ///< at t_k = k * interval, k = 1..K
   double final_energy = 0;
   double interval = 0;
   RoiNodeDofs nodes;                      ///< the integrated system's nodes, the same numbering in both
@@ -106,6 +108,8 @@ bool runs_stably(const integrators::IntegratorInfo& info, double dt, const model
     return true;
   } catch (const SolverError&) {
     return false;
+  } catch (const ModelError&) {  // a nonlinear model's element inverted by an unstable step
+    return false;
   }
 }
 
@@ -122,45 +126,102 @@ struct Sweep {
   Stopwatch clock;              ///< since the sweep began
 };
 
-/// The exact modal solution compare measures against; InputError naming what it cannot solve and
-/// what runs without it.
-model::ModalReference modal_reference_of(const scenario::Scenario& sc, const model::SecondOrderSystem& system) {
-  if (system.is_nonlinear())
-    throw InputError("compare: " + sc.file.string() + ": a nonlinear model (" + system.internal_force->describe() +
-                     ") has no exact modal solution, and compare measures every run against one; a reference from a "
-                     "tight run is not built yet. Give [material] model = \"linear\", or run one method: roifem run " +
-                     sc.file.string() + " --out DIR");
+/// The exact modal solution where there is one (a linear model under linear ramps), else none (the
+/// reason on `why_not`).
+std::optional<model::ModalReference> modal_reference_of(const model::SecondOrderSystem& system, std::string& why_not) {
+  if (system.is_nonlinear()) {
+    why_not = "a nonlinear model (" + system.internal_force->describe() + ") has no modal solution";
+    return std::nullopt;
+  }
   try {
     return model::ModalReference(system, model::State::at_rest(system.size()));
-  } catch (const InputError& e) {
-    throw InputError("compare: " + sc.file.string() + ": " + e.what() +
-                     ". compare measures every run against that exact solution; give the scenario linear ramps "
-                     "(ramp_shape = \"linear\", displacement_mm over ramp_s for a tool), or run one method without a "
-                     "reference: roifem run " +
-                     sc.file.string() + " --out DIR (its energy balance and the tools' forces)");
+  } catch (const InputError& e) {  // a smooth ramp, a sampled tool path
+    why_not = e.what();
+    return std::nullopt;
   }
+}
+
+/// The reference's displacements and tool forces from its states on the output grid.
+Reference reference_of(std::string description, const std::vector<Vector>& u, const model::State& end,
+                       const model::SecondOrderSystem& system, const simulation::ScenarioModel& built, double interval,
+                       double& peak) {
+  Reference ref;
+  ref.description = std::move(description);
+  ref.interval = interval;
+  ref.nodes = same_numbering(built.node_positions());
+  ref.u = u;
+  peak = 0;
+  for (const Vector& x : ref.u) peak = std::max(peak, x.lpNorm<Eigen::Infinity>());
+  if (!built.tools.empty()) {
+    ref.tools = &built.tools;
+    for (std::size_t k = 0; k < ref.u.size(); ++k) {
+      ref.tool_forces.push_back(built.tools.forces(ref.u[k], static_cast<double>(k + 1) * interval));
+      ref.tool_force_peak = std::max(ref.tool_force_peak, ref.tool_forces.back().lpNorm<Eigen::Infinity>());
+    }
+  }
+  ref.final_energy = kinetic_energy(system, end) + strain_energy(system, end);
+  return ref;
 }
 
 Reference exact_reference(const model::SecondOrderSystem& system, const model::ModalReference& modal,
                           const simulation::ScenarioModel& built, double interval, long outputs, double t_end, double& peak) {
-  Reference ref;
-  ref.interval = interval;
-  ref.nodes = same_numbering(built.node_positions());
-  peak = 0;
+  std::vector<Vector> u;
+  for (long k = 1; k <= outputs; ++k) u.push_back(modal.displacement(static_cast<double>(k) * interval));
+  const model::State exact_end{t_end, u.back(), modal.velocity(t_end)};
+  return reference_of("the exact modal solution", u, exact_end, system, built, interval, peak);
+}
+
+/// `name` error-controlled at rtol (atol rtol x 1 mm) over the output grid: its states there, and the last.
+std::vector<Vector> tight_run(const std::string& name, const model::SecondOrderSystem& system, double rtol, double interval,
+                              long outputs, model::State& end) {
+  const integrators::IntegratorInfo& info = integrators::integrator_info(name);
+  if (!info.adaptive)
+    throw InputError("compare: the reference method " + name + " has no error control: name an adaptive one (--reference)");
+  auto integrator = integrators::make_integrator(info, {.dt = interval, .adaptive = true, .rtol = rtol, .atol = rtol * 1e-3});
+  end = model::State::at_rest(system.size());
+  integrator->reset(system, end);
+  std::vector<Vector> u;
   for (long k = 1; k <= outputs; ++k) {
-    ref.u.push_back(modal.displacement(static_cast<double>(k) * interval));
-    peak = std::max(peak, ref.u.back().lpNorm<Eigen::Infinity>());
+    integrator->advance_to(static_cast<double>(k) * interval, end);
+    u.push_back(end.u);
   }
-  if (!built.tools.empty()) {
-    ref.tools = &built.tools;
-    for (long k = 1; k <= outputs; ++k) {
-      ref.tool_forces.push_back(built.tools.forces(ref.u[static_cast<std::size_t>(k - 1)], static_cast<double>(k) * interval));
-      ref.tool_force_peak = std::max(ref.tool_force_peak, ref.tool_forces.back().lpNorm<Eigen::Infinity>());
-    }
-  }
-  const model::State exact_end{t_end, ref.u.back(), modal.velocity(t_end)};
-  ref.final_energy = kinetic_energy(system, exact_end) + strain_energy(system, exact_end);
+  return u;
+}
+
+/// Without a modal solution: a tight run of the reference method, checked by a second one; their
+/// largest difference over the output grid and the ROI nodes is the reference's own error bound.
+Reference tight_reference(const CompareOptions& o, const model::SecondOrderSystem& system, const simulation::ScenarioModel& built,
+                          double interval, long outputs, double& peak, double& agreement_mm, std::ostream& log) {
+  const Stopwatch clock;
+  model::State end;
+  const std::vector<Vector> u = tight_run(o.reference, system, o.reference_rtol, interval, outputs, end);
+  const double reference_s = clock.seconds();
+  Reference ref = reference_of(format("%s at rtol %g, atol %g mm", o.reference.c_str(), o.reference_rtol, o.reference_rtol), u,
+                               end, system, built, interval, peak);
+  model::State check_end;
+  const std::vector<Vector> check = tight_run(o.reference_check, system, o.reference_rtol, interval, outputs, check_end);
+  agreement_mm = 0;
+  for (std::size_t k = 0; k < u.size(); ++k) agreement_mm = std::max(agreement_mm, roi_error(ref.nodes, check[k], u[k]).max / mm);
+  log << format(
+      "  reference: %s (%.1f s); checked by %s at the same tolerances (%.1f s in all): they differ by at most %.3e "
+      "mm, %.1e of the peak %.4g mm: errors below that are the reference's\n",
+      ref.description.c_str(), reference_s, o.reference_check.c_str(), clock.seconds(), agreement_mm, agreement_mm / (peak / mm),
+      peak / mm);
   return ref;
+}
+
+/// The highest frequency of the tangent over the reference's states (every tenth of the grid): on
+/// a nonlinear model what limits an explicit method's step where the run is stiffest.
+double highest_frequency_along(const model::SecondOrderSystem& system, const Reference& ref) {
+  double highest = model::highest_frequency(system);  // the tangent at rest
+  SparseMatrix K_t = system.K;
+  Vector f(system.size());
+  const std::size_t every = std::max<std::size_t>(1, ref.u.size() / 10);
+  for (std::size_t k = every - 1; k < ref.u.size(); k += every) {
+    system.internal_force->force_and_tangent(static_cast<double>(k + 1) * ref.interval, ref.u[k], f, K_t);
+    highest = std::max(highest, model::highest_frequency(system, K_t));
+  }
+  return highest;
 }
 
 void write_compare_files(const CompareOptions& o, const CompareResults& results);
@@ -185,6 +246,7 @@ void report_pace(const Sweep& w, const std::string& name, std::size_t done, doub
 bool record_run(Sweep& w, const std::string& name, const std::string& mode, double dt_or_tol,
                 std::unique_ptr<integrators::Integrator> integrator) {
   CompareRow row{.integrator = name, .mode = mode, .dt_or_tol = dt_or_tol, .theoretical_order = row_of(w.o, name).order};
+  const bool nonlinear = w.system.is_nonlinear();
   Stopwatch run_clock;
   try {
     const RunError e = measure(*integrator, w.system, w.ref, w.o.max_run_s);
@@ -200,6 +262,10 @@ bool record_run(Sweep& w, const std::string& name, const std::string& mode, doub
   } catch (const SolverError& err) {
     row.stable = false;
     row.status = std::string("diverged: ") + err.what();
+    w.log << "    " << err.what() << '\n';
+  } catch (const ModelError& err) {  // a nonlinear model's element inverted: the run could not go on
+    row.stable = false;
+    row.status = std::string("stopped: ") + err.what();
     w.log << "    " << err.what() << '\n';
   } catch (const OverBudget& stop) {
     row.stable = false;
@@ -217,14 +283,22 @@ bool record_run(Sweep& w, const std::string& name, const std::string& mode, doub
   row.jac_evals = st.jac_evals;
   row.lin_setups = st.lin_setups;
   row.lin_solves = st.lin_solves;
+  row.nonlinear_iterations = st.nonlinear_iterations;
+  const std::string newton =
+      nonlinear && st.nonlinear_iterations > 0
+          ? format("  %.2f Newton/step, %ld Jacobians, %ld setups",
+                   static_cast<double>(st.nonlinear_iterations) / static_cast<double>(std::max(1L, st.steps)), st.jac_evals,
+                   st.lin_setups)
+          : "";
   const std::string tool_figures =
       !w.ref.tool_forces.empty() && row.stable
           ? format("; tool force error %.3g mN (%.1e of the exact peak, %.4g mN), drift %.1e mm",
                    row.tools.force_error_rel * w.ref.tool_force_peak * 1e3, row.tools.force_error_rel,
                    w.ref.tool_force_peak * 1e3, row.tools.position_drift_mm)
           : "";
-  w.log << format("  %-20s %-8s %9.3g  %8ld steps  %9.3f s  max error %s mm%s\n", name.c_str(), mode.c_str(), dt_or_tol,
-                  row.steps, row.wall_s, row.stable ? format("%.3e", row.err_max_mm).c_str() : "(diverged)", tool_figures.c_str())
+  w.log << format("  %-20s %-8s %9.3g  %8ld steps  %9.3f s  max error %s mm%s%s\n", name.c_str(), mode.c_str(), dt_or_tol,
+                  row.steps, row.wall_s, row.stable ? format("%.3e", row.err_max_mm).c_str() : "(diverged)", newton.c_str(),
+                  tool_figures.c_str())
         << std::flush;  // a sweep runs for minutes: show each run as it ends
   w.results.rows.push_back(row);
   after_run(w);
@@ -297,7 +371,7 @@ void search_stability_limit(Sweep& w, const integrators::IntegratorInfo& info, d
 }
 
 void write_compare_files(const CompareOptions& o, const CompareResults& results) {
-  io::write_csv(o.out / "compare.csv", compare_columns(), results.rows);
+  io::write_csv(o.out / "compare.csv", compare_columns(results.nonlinear), results.rows);
   io::write_csv(o.out / "stability.csv", stability_columns(), results.stability);
 }
 
@@ -345,7 +419,7 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
   std::vector<std::string> names = o.integrators;
   auto applies = [&](const integrators::IntegratorInfo& info) {
     return (!info.needs_tools || system.constrained) && (!info.needs_uncondensed || system.uncondensed) &&
-           (!info.needs_nonlinear || system.is_nonlinear());
+           (!info.needs_nonlinear || system.is_nonlinear()) && (info.nonlinear || !system.is_nonlinear());
   };
   if (names.empty())  // every integrator that applies: the tools' DAE forms where there are tools, ...
     for (const auto& info : integrators::integrator_table())
@@ -362,10 +436,15 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
     if (info.needs_uncondensed && !system.uncondensed)
       throw InputError("compare: " + name + " integrates an ROI model with its static part uncondensed, and " + sc.file.string() +
                        (built->condensation ? " reduces it otherwise than by static condensation" : " has no [roi]"));
+    if (!info.nonlinear && system.is_nonlinear())
+      throw InputError("compare: " + name + " does not take a nonlinear model (" + system.internal_force->describe() + ") and " +
+                       sc.file.string() + " has one: the methods that do are marked 'nonlinear' in `roifem run --help`");
   }
+  for (const auto& name : {o.reference, o.reference_check}) integrators::integrator_info(name);  // named before any work
 
   const Stopwatch clock;
-  const model::ModalReference modal = modal_reference_of(sc, system);
+  std::string no_modal;
+  const std::optional<model::ModalReference> modal = modal_reference_of(system, no_modal);
   Sweep w{.sc = sc,
           .o = o,
           .system = system,
@@ -375,12 +454,30 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
           .results = {},
           .log = log,
           .integrators = names.size()};
-  w.ref = exact_reference(system, modal, *built, sc.dt, outputs, t_end, w.peak);
-  w.results.omega_max = model::highest_frequency(system);  // Lanczos: the same figure at any size
-  log << format("compare: %s, %lld dofs, t_end = %g s on an output grid of %g s; exact modal reference in %.1f s\n",
-                sc.file.c_str(), static_cast<long long>(system.size()), t_end, sc.dt, clock.seconds());
-  log << format("  lowest w = %.3f rad/s, highest w = %.1f rad/s, alpha = %g 1/s\n", modal.frequencies()[0], w.results.omega_max,
-                modal.alpha());
+  log << format("compare: %s, %lld dofs, t_end = %g s on an output grid of %g s\n", sc.file.c_str(),
+                static_cast<long long>(system.size()), t_end, sc.dt);
+  w.results.nonlinear = system.is_nonlinear();
+  // What the explicit methods' limits are predicted for: the modes, or (no modal solution) the
+  // highest frequency with the damping's real eigenvalue -alpha (w = 0).
+  Vector frequencies;
+  double alpha = 0;
+  if (modal) {
+    w.ref = exact_reference(system, *modal, *built, sc.dt, outputs, t_end, w.peak);
+    w.results.omega_max = model::highest_frequency(system);  // Lanczos: the same figure at any size
+    frequencies = modal->frequencies();
+    alpha = modal->alpha();
+    log << format("  exact modal reference in %.1f s; lowest w = %.3f rad/s, highest w = %.1f rad/s, alpha = %g 1/s\n",
+                  clock.seconds(), frequencies[0], w.results.omega_max, alpha);
+  } else {
+    log << "  no exact solution: " << no_modal << "; the reference is a tight run\n";
+    w.ref = tight_reference(o, system, *built, sc.dt, outputs, w.peak, w.results.reference_agreement_mm, log);
+    w.results.omega_max = system.is_nonlinear() ? highest_frequency_along(system, w.ref) : model::highest_frequency(system);
+    alpha = model::mass_proportional_damping(system);
+    if (!std::isfinite(alpha)) alpha = 0;
+    frequencies = Vector{{0.0, w.results.omega_max}};
+    log << format("  highest w = %.1f rad/s%s, alpha = %g 1/s\n", w.results.omega_max,
+                  system.is_nonlinear() ? " (the tangent's, the largest along the reference run)" : "", alpha);
+  }
 
   const std::size_t runs = names.size() * (static_cast<std::size_t>(o.fixed_levels) + o.tolerances.size());
   log << format(
@@ -390,7 +487,7 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
   for (std::size_t i = 0; i < names.size(); ++i) {
     const Stopwatch integrator_clock;
     const integrators::IntegratorInfo& info = row_of(o, names[i]);
-    const double limit = integrators::predicted_stability_limit(info, modal.frequencies(), modal.alpha());
+    const double limit = integrators::predicted_stability_limit(info, frequencies, alpha);
     if (info.fixed_step) sweep_fixed_steps(w, info, limit);
     if (info.adaptive) sweep_tolerances(w, info, limit);
     if (std::isfinite(limit)) search_stability_limit(w, info, limit);

@@ -37,6 +37,27 @@ const std::array<Column<CompareRow>, 15> compare{{
     {"status", "ok, or why the run has no figures", [](const CompareRow& r) -> Cell { return r.status; }, "%.6g", true},
 }};
 
+/// The same with the Newton iterations after the linear solves: a nonlinear system's compare.csv.
+const std::array<Column<CompareRow>, 16> compare_nonlinear{{
+    compare[0],
+    compare[1],
+    compare[2],
+    compare[3],
+    compare[4],
+    compare[5],
+    compare[6],
+    compare[7],
+    compare[8],
+    {"newton_iterations", "Newton iterations in all (a nonlinear system)",
+     [](const CompareRow& r) -> Cell { return r.nonlinear_iterations; }},
+    compare[9],
+    compare[10],
+    compare[11],
+    compare[12],
+    compare[13],
+    compare[14],
+}};
+
 const std::array<Column<StabilityRow>, 4> stability{{
     {"integrator", "the explicit method", [](const StabilityRow& s) -> Cell { return s.integrator; }},
     {"omega_max_rad_s", "the integrated system's highest frequency (rad/s)",
@@ -64,7 +85,9 @@ const std::array<Column<CompareRow>, 6> tools{{
 
 }  // namespace
 
-std::span<const Column<CompareRow>> compare_columns() { return compare; }
+std::span<const Column<CompareRow>> compare_columns(bool nonlinear) {
+  return nonlinear ? std::span<const Column<CompareRow>>(compare_nonlinear) : std::span<const Column<CompareRow>>(compare);
+}
 std::span<const Column<StabilityRow>> stability_columns() { return stability; }
 std::span<const Column<CompareRow>> tool_columns() { return tools; }
 

@@ -22,6 +22,7 @@ struct CompareRow {
   double dt_or_tol = 0;
   int theoretical_order = 0;  ///< the method's (its table row)
   long steps = 0, rhs_evals = 0, jac_evals = 0, lin_setups = 0, lin_solves = 0;
+  long nonlinear_iterations = 0;  ///< Newton iterations on a nonlinear system
   double wall_s = 0, err_max_mm = 0, err_rms_mm = 0, energy_drift = 0;
   ToolFigures tools;  ///< with tools (tools.csv)
   bool stable = true;
@@ -42,11 +43,15 @@ struct StabilityRow {
 struct CompareResults {
   std::vector<CompareRow> rows;
   std::vector<StabilityRow> stability;
-  double omega_max = 0;  ///< rad/s, of the integrated system
+  double omega_max = 0;  ///< rad/s, of the integrated system (a nonlinear one: its tangent's, the largest along the reference)
+  bool nonlinear = false;
+  /// Without a modal solution: the largest difference between the reference and its check (mm).
+  double reference_agreement_mm = 0;
 };
 
-/// compare.csv: a row per run.
-std::span<const io::Column<CompareRow>> compare_columns();
+/// compare.csv: a row per run; on a nonlinear system with the Newton iterations too (a linear
+/// one's file keeps its columns).
+std::span<const io::Column<CompareRow>> compare_columns(bool nonlinear = false);
 /// stability.csv: a row per explicit method.
 std::span<const io::Column<StabilityRow>> stability_columns();
 /// tools.csv, with tools: a row per run that has figures.

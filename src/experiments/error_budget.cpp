@@ -241,7 +241,14 @@ ModelErrorStudy model_error_study(const BudgetInput& in, const std::filesystem::
 
 void model_error_into(const BudgetInput& in, const std::filesystem::path& out, const io::ResultCache& cache, ErrorBudget& budget,
                       std::ostream& log) {
-  const ModelErrorStudy study = model_error_study(in, out, cache, log);
+  ModelErrorStudy study;
+  try {
+    study = model_error_study(in, out, cache, log);
+  } catch (const SolverError& e) {  // CalculiX found no solution at this load: the rest of the budget stands
+    budget.model_note = std::string("not measured: ") + e.what();
+    log << "  model: " << budget.model_note << '\n';
+    return;
+  }
   if (!study.full_load_reached && !calculix_available()) {
     budget.model_note = "not measured: CalculiX (ccx) is not installed (scripts/setup.sh installs calculix-ccx)";
     return;

@@ -295,6 +295,10 @@ void LargeDeformationPaper::report(const LargeDeformationDrive& d) const {
       "the full neo-Hookean model\n",
       drive_name(d.drive).c_str());
   print_findings(paper_curves(d, LargeDeformationModel::hybrid), n_ramps, step_costs(d, "hybrid"), log_);
+  for (const auto& c : d.curves)
+    if (static_cast<long>(c.max_mm.size()) < o_.steps)
+      log_ << format("  [--] %s %s, ramp %.1f s, stopped at step %zu (below): the findings above count only the steps it took\n",
+                     c.setup.c_str(), std::string(model_name(c.model)).c_str(), c.ramp_s, c.max_mm.size() + 1);
   log_ << "The paper's own model (linear, condensed) against the full neo-Hookean model:\n";
   print_findings(paper_curves(d, LargeDeformationModel::linear_condensed), n_ramps, step_costs(d, "linear"), log_);
 

@@ -127,6 +127,13 @@ Modes lowest_modes(const Vector& mass_diagonal, solvers::Cholesky& K_factor, Ind
       mass_diagonal, [&](const Vector& b, Vector& x) { K_factor.solve(b, x); }, count, tolerance);
 }
 
+double highest_frequency(const SecondOrderSystem& system, const SparseMatrix& K, double tolerance) {
+  SecondOrderSystem with_K;
+  with_K.M = system.M;
+  with_K.K = K;
+  return highest_frequency(with_K, tolerance);
+}
+
 double highest_frequency(const SecondOrderSystem& system, double tolerance) {
   const Index n = system.size();
   const SparseMatrix& M = system.M;

@@ -32,5 +32,7 @@ Modes modes_below(const Vector& mass_diagonal, const SolveK& solve_K, double cut
 /// A full M (Guyan, Craig-Bampton) takes the generalized form, with M^-1 by Cholesky. Throws
 /// SolverError when Lanczos does not converge.
 double highest_frequency(const SecondOrderSystem& system, double tolerance = 1e-10);
+/// The same with the stiffness K in place of the system's (a nonlinear system's tangent K_t(u)).
+double highest_frequency(const SecondOrderSystem& system, const SparseMatrix& K, double tolerance = 1e-10);
 
 }  // namespace roifem::model

@@ -184,10 +184,11 @@ ScenarioRunSummary run_scenario(const scenario::Scenario& sc, const std::filesys
                   system.internal_force->describe().c_str(), summary.stats.nonlinear_iterations,
                   static_cast<double>(summary.stats.nonlinear_iterations) / static_cast<double>(std::max(1L, summary.steps)),
                   summary.stats.lin_setups,
-                  summary.stats.failed_steps == 0
-                      ? ""
-                      : format(" (%ld steps solved again with a line search, %ld of them by LU: their Newton matrix indefinite)",
-                               summary.stats.failed_steps, summary.stats.indefinite_steps)
+                  summary.stats.failed_steps == 0 ? ""
+                  : summary.stats.indefinite_steps == 0
+                      ? format(" (%ld failed steps, retried)", summary.stats.failed_steps).c_str()
+                      : format(" (%ld failed steps, retried; %ld Newton matrices indefinite, by LU)", summary.stats.failed_steps,
+                               summary.stats.indefinite_steps)
                             .c_str());
   print_tool_forces(*built, state, ledger, log);
   if (const auto held = stepper.integrator().constraints())
