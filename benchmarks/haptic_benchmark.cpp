@@ -47,14 +47,14 @@ int run(const Options& o) {
   const long ticks = o.haptic.ticks;
   const double deadline_ms = 1e3 / o.haptic.rate_hz;
   std::string columns;
-  for (const char* who : {"plain", "haptic", "control"})
+  for (const char* who : {"plain", "haptic", "control", "nonlinear"})
     for (const char* what :
          {"median_ms", "p99_ms", "p999_ms", "max_ms", "late", "late_preempted", "late_page_fault", "page_faults", "preemptions"})
       columns += std::string(",") + who + "_" + what;
   io::CsvWriter csv(o.out / "haptic.csv",
                     "nodes,roi_nodes,system_dofs,interface_dofs,tool_nodes,setup_s,attach_ms,"
                     "peak_force_N,ticks,rate_hz,blas_threads,memory_locked" +
-                        columns + ",tick_vs_step");
+                        columns + ",tick_vs_step,newton_iterations,newton_residual,force_error_rel,nonlinear_vs_tick");
   std::printf(
       "Haptic: %ld ticks at %.0f Hz (dt = %.3g ms, deadline %.3g ms); a tool on the %ld wall nodes nearest the target; "
       "plain = the condensed step (load, step, displacement out), tick = the hand's position in, the step, force and "
@@ -83,7 +83,15 @@ int run(const Options& o) {
       csv.row(io::format("%ld,%ld,%ld,%ld,%ld,%.6g,%.6g,%.6g,%ld,%.6g,%d,%d,", m.nodes, m.roi_nodes, m.system_dofs,
                          m.interface_dofs, m.tool_nodes, m.setup_s, m.attach_s * 1e3, m.peak_force_N, ticks, o.haptic.rate_hz,
                          m.blas_threads, m.memory_locked ? 1 : 0) +
-              stats_csv(m.plain) + "," + stats_csv(m.haptic) + "," + stats_csv(m.control) + io::format(",%.6g", ratio));
+              stats_csv(m.plain) + "," + stats_csv(m.haptic) + "," + stats_csv(m.control) + "," + stats_csv(m.nonlinear) +
+              io::format(",%.6g,%d,%.6g,%.6g,%.6g", ratio, m.newton_iterations, m.newton_residual, m.force_error_rel,
+                         m.newton_iterations > 0 ? m.nonlinear.median / m.haptic.median : 0.0));
+      if (m.newton_iterations > 0)
+        std::printf(
+            "%8s %5s  nonlinear tick (hybrid ROI, %d modified-Newton iterations): %s (ms, late per 10,000); %.2fx the "
+            "linear tick; Newton residual after them %.1e; force %.1e from a converged step's\n",
+            "", "", m.newton_iterations, stats_text(m.nonlinear, ticks).c_str(), m.nonlinear.median / m.haptic.median,
+            m.newton_residual, m.force_error_rel);
     }
   }
   csv.close();
@@ -121,6 +129,9 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   app.add_flag("!--no-machine-bounds", o.machine_bounds, "skip measuring the machine's bounds (smoke tests)");
+  app.add_option("--newton-iterations", o.haptic.newton_iterations,
+                 "the nonlinear tick's modified-Newton iterations (the hybrid ROI, neo-Hookean; 0: no nonlinear tick)")
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   try {
     return run(o);

@@ -22,23 +22,24 @@ DirectSolve factor_effective_stiffness(const model::SecondOrderSystem& system, c
 
 }  // namespace
 
-namespace {
-/// The haptic tick solves one linear system per tick: a nonlinear model is not built for it yet.
-const model::SecondOrderSystem& linear_only(const model::SecondOrderSystem& system) {
-  if (system.is_nonlinear())
-    throw InputError("the haptic trapezoid takes a linear model; this one is " + system.internal_force->describe());
-  return system;
-}
-}  // namespace
-
-HapticTrapezoid::HapticTrapezoid(const model::SecondOrderSystem& system, double dt)
-    : system_(linear_only(system)), rule_(dt), K_eff_(factor_effective_stiffness(system, rule_)) {
+HapticTrapezoid::HapticTrapezoid(const model::SecondOrderSystem& system, double dt, HapticNewton newton)
+    : system_(system), rule_(dt), K_eff_(factor_effective_stiffness(system, rule_)), newton_(newton) {
   const Index n = system.size();
   a_ = Vector::Zero(n);
   f_.resize(n);
   w_.resize(n);
   u_next_.resize(n);
   work_.resize(n);
+  if (system.is_nonlinear()) {
+    if (system.internal_force->has_motion())
+      throw InputError("the haptic trapezoid holds its tool's nodes as unknowns; this law moves tools of its own (" +
+                       system.internal_force->describe() + ")");
+    if (newton_.iterations < 1)
+      throw InputError("haptic trapezoid: a nonlinear model needs at least one Newton iteration per tick");
+    inertia_ = rule_.c_u() * system.M + (2.0 / dt) * system.C;
+    for (Vector* v : {&b_, &f_int_, &residual_, &step_}) v->resize(n);
+    zero_ = Vector::Zero(n);
+  }
 }
 
 void HapticTrapezoid::attach(const std::vector<std::array<Index, 3>>& node_dofs) {
@@ -81,6 +82,8 @@ void HapticTrapezoid::attach(const std::vector<std::array<Index, 3>>& node_dofs)
   rows_.resize(3, n);
   rows_.setFromTriplets(entries.begin(), entries.end());
   rows_.makeCompressed();
+  is_held_.assign(static_cast<std::size_t>(n), false);
+  for (const Index d : held) is_held_[static_cast<std::size_t>(d)] = true;
   held_ = std::move(held);
   Z_ = std::move(Z);
   W_ = std::move(W);
@@ -109,11 +112,48 @@ Vec3 HapticTrapezoid::tick(const Vec3& g, model::State& s) {
   for (std::size_t i = 0; i < held_.size(); ++i) gap_[static_cast<Index>(i)] = u_next_[held_[i]] - g[static_cast<Index>(i % 3)];
   W_factor_.solveInPlace(gap_);  // lambda
   u_next_.noalias() -= Z_ * gap_;
+  if (system_.is_nonlinear()) {
+    system_.apply_mass(w_, b_);
+    b_ += f_;  // the step's right-hand side f + M w (history() folded C's terms into w)
+    solve_nonlinear(s.t);
+  }
   rule_.advance(s, a_, u_next_, work_);
   Vec3 force = -load_on_tool;
+  if (system_.is_nonlinear()) {
+    for (std::size_t i = 0; i < held_.size(); ++i) force[static_cast<Index>(i % 3)] += f_int_[held_[i]];
+    return force;
+  }
   for (Index c = 0; c < 3; ++c)
     for (decltype(rows_)::InnerIterator it(rows_, c); it; ++it) force[c] += it.value() * s.u[it.col()];
   return force;
+}
+
+void HapticTrapezoid::solve_nonlinear(double t) {
+  // The residual's scale: the internal force at the predictor (the right-hand side f + M w is
+  // mostly the step's inertia at a haptic dt, 4/dt^2 M u: against it every residual looks small).
+  double scale = 0;
+  auto residual = [&] {  // R(u) at u_next_, and its largest entry off the held dofs (theirs: the tool's reaction)
+    system_.internal_force->force(t, u_next_, f_int_);
+    if (scale == 0) scale = std::max(f_int_.lpNorm<Eigen::Infinity>(), 1e-300);
+    residual_.noalias() = inertia_ * u_next_;
+    residual_ += f_int_ - b_;
+    double largest = 0;
+    for (Index i = 0; i < residual_.size(); ++i)
+      if (!is_held_[static_cast<std::size_t>(i)]) largest = std::max(largest, std::abs(residual_[i]));
+    return largest / scale;
+  };
+  last_iterations_ = 0;
+  last_residual_ = residual();
+  while (last_iterations_ < newton_.iterations && !(newton_.tolerance > 0 && last_residual_ <= newton_.tolerance)) {
+    residual_ = -residual_;
+    K_eff_.solve(residual_, zero_, step_);  // d* = -K_eff^-1 R
+    for (std::size_t i = 0; i < held_.size(); ++i) gap_[static_cast<Index>(i)] = step_[held_[i]];
+    W_factor_.solveInPlace(gap_);
+    step_.noalias() -= Z_ * gap_;  // H d = 0: the held dofs stay where the tool put them
+    u_next_ += step_;
+    ++last_iterations_;
+    last_residual_ = residual();
+  }
 }
 
 }  // namespace roifem::integrators

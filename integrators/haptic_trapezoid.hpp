@@ -15,6 +15,16 @@
 /// (model/prescribed_motion.hpp) with M and C lumped, and the returned force is the same
 /// quantity: the residual K u - f summed over the held nodes (tools.hpp; their own inertia moves
 /// with the tool).
+///
+/// On a nonlinear model (the hybrid ROI: model/hyperelastic_force.hpp) a tick solves the step's
+/// equation R(u) = (4/dt^2 M + 2/dt C) u + f_int(t, u) - (f + M w) = 0 under H u = G by modified
+/// Newton with a fixed, stated budget: the linear tick's answer is the predictor, and each
+/// iteration solves with the same K_eff factor (the tangent at rest as a fixed tangent) and the
+/// same W, Z, so that H u = G holds throughout:
+///   d* = -K_eff^-1 R(u),   u += d* - Z W^-1 H d*.
+/// The force is the residual f_int(t, u) - f summed over the held nodes. A tick costs the linear
+/// tick plus, per iteration, an internal force and a solve; its Newton residual after the budget
+/// (the free dofs' largest, relative to the internal force's) is reported, not hidden.
 #include <Eigen/Cholesky>
 #include <array>
 #include <vector>
@@ -24,10 +34,17 @@
 
 namespace roifem::integrators {
 
+/// A nonlinear model's iterations per tick: `iterations` exactly (a fixed budget), or fewer once
+/// the residual is within `tolerance` of the internal force (0: never: the budget holds).
+struct HapticNewton {
+  int iterations = 3;
+  double tolerance = 0;
+};
+
 class HapticTrapezoid {
  public:
   /// Factors K_eff = K + 2/dt C + 4/dt^2 M. Throws SolverError when it is not positive definite.
-  HapticTrapezoid(const model::SecondOrderSystem& system, double dt);
+  HapticTrapezoid(const model::SecondOrderSystem& system, double dt, HapticNewton newton = {});
   HapticTrapezoid(const HapticTrapezoid&) = delete;
   HapticTrapezoid& operator=(const HapticTrapezoid&) = delete;
 
@@ -43,6 +60,9 @@ class HapticTrapezoid {
 
   /// W = H K_eff^-1 H^T (m/N), rows and columns the held dofs in attach's order.
   const DenseMatrix& compliance() const { return W_; }
+  /// A nonlinear model: the last tick's iterations and its residual after them (relative).
+  int last_iterations() const { return last_iterations_; }
+  double last_residual() const { return last_residual_; }
   double dt() const { return rule_.dt(); }
   double attach_seconds() const { return attach_s_; }
 
@@ -57,6 +77,15 @@ class HapticTrapezoid {
   double attach_s_ = 0, t0_ = 0;
   long k_ = 0;
   Vector a_, f_, w_, u_next_, work_, gap_;
+  // A nonlinear model's modified Newton.
+  HapticNewton newton_;
+  SparseMatrix inertia_;  ///< 4/dt^2 M + 2/dt C
+  std::vector<bool> is_held_;
+  Vector b_, f_int_, residual_, zero_, step_;
+  int last_iterations_ = 0;
+  double last_residual_ = 0;
+  /// u_next_ from the linear predictor to the step's nonlinear answer; f_int_ at the answer.
+  void solve_nonlinear(double t);
 };
 
 }  // namespace roifem::integrators

@@ -13,6 +13,7 @@
 #include "common/timer.hpp"
 #include "integrators/haptic_trapezoid.hpp"
 #include "integrators/trapezoid.hpp"
+#include "model/hyperelastic_force.hpp"
 #include "roi/node_dofs.hpp"
 #include "scale/brain_model.hpp"
 #include "scale/child_process.hpp"
@@ -168,8 +169,10 @@ std::string HapticMeasurement::serialize() const {
   out << "nodes=" << nodes << "\nroi_nodes=" << roi_nodes << "\nsystem_dofs=" << system_dofs
       << "\ninterface_dofs=" << interface_dofs << "\ntool_nodes=" << tool_nodes << "\nsetup_s=" << setup_s
       << "\nattach_s=" << attach_s << "\npeak_force_N=" << peak_force_N << "\nmemory_locked=" << memory_locked
-      << "\nblas_threads=" << blas_threads << "\n";
-  return out.str() + plain.serialize("plain_") + haptic.serialize("haptic_") + control.serialize("control_");
+      << "\nblas_threads=" << blas_threads << "\nnewton_iterations=" << newton_iterations
+      << "\nnewton_residual=" << newton_residual << "\nforce_error_rel=" << force_error_rel << "\n";
+  return out.str() + plain.serialize("plain_") + haptic.serialize("haptic_") + control.serialize("control_") +
+         nonlinear.serialize("nonlinear_");
 }
 
 HapticMeasurement HapticMeasurement::parse(const std::string& text) {
@@ -188,6 +191,10 @@ HapticMeasurement HapticMeasurement::parse(const std::string& text) {
   m.plain = TickStats::parse(text, "plain_");
   m.haptic = TickStats::parse(text, "haptic_");
   m.control = TickStats::parse(text, "control_");
+  m.nonlinear = TickStats::parse(text, "nonlinear_");
+  m.newton_iterations = std::stoi(f.at("newton_iterations"));
+  m.newton_residual = std::stod(f.at("newton_residual"));
+  m.force_error_rel = std::stod(f.at("force_error_rel"));
   return m;
 }
 
@@ -214,12 +221,45 @@ HapticMeasurement measure_haptic(const std::filesystem::path& mesh_file, Index r
   haptic.attach(held);
   haptic.reset(haptic_state);
   m.attach_s = haptic.attach_seconds();
+  // The hybrid ROI: the same condensation, its elements with no node in the static part neo-Hookean;
+  // ticked with the budget, and once more to convergence (untimed) for the force error.
+  const int budget = o.newton_iterations;
+  model::SecondOrderSystem hybrid = system;
+  std::unique_ptr<integrators::HapticTrapezoid> nonlinear, converged;
+  model::State nonlinear_state = haptic_state, converged_state = haptic_state;
+  if (budget > 0) {
+    const fem::MaterialMap law = brain->model.materials.mapped([](fem::Material material) {
+      material.model = fem::MaterialModel::neo_hookean;
+      return material;
+    });
+    hybrid.internal_force = model::hybrid_roi_force(brain->mesh, *brain->model.dofs, law, fem::Element::tet4,
+                                                    condensed.condensation->partition(), system.K, {}, &system.K_split);
+    nonlinear = std::make_unique<integrators::HapticTrapezoid>(hybrid, dt, integrators::HapticNewton{.iterations = budget});
+    converged = std::make_unique<integrators::HapticTrapezoid>(hybrid, dt,
+                                                               integrators::HapticNewton{.iterations = 100, .tolerance = 1e-12});
+    for (auto* h : {nonlinear.get(), converged.get()}) h->attach(held);
+    nonlinear->reset(nonlinear_state);
+    converged->reset(converged_state);
+    m.newton_iterations = budget;
+  }
   if (o.lock_memory) m.memory_locked = mlockall(MCL_CURRENT | MCL_FUTURE) == 0;
 
   Vector displacement_out(system.size());
   Vec3 force_out = Vec3::Zero();
-  TickSamples plain_ticks, haptic_ticks, control_ticks;
-  for (auto* s : {&plain_ticks, &haptic_ticks, &control_ticks}) s->reserve(o.ticks);
+  TickSamples plain_ticks, haptic_ticks, control_ticks, nonlinear_ticks;
+  for (auto* s : {&plain_ticks, &haptic_ticks, &control_ticks, &nonlinear_ticks}) s->reserve(o.ticks);
+  Vec3 nonlinear_force = Vec3::Zero();
+  double peak_converged = 0, force_error = 0;
+  auto nonlinear_tick = [&] {
+    nonlinear_force = nonlinear->tick(hand(nonlinear_state.t + dt), nonlinear_state);
+    displacement_out = nonlinear_state.u;
+  };
+  auto compare_with_converged = [&] {  // untimed
+    const Vec3 exact = converged->tick(hand(converged_state.t + dt), converged_state);
+    peak_converged = std::max(peak_converged, exact.norm());
+    force_error = std::max(force_error, (nonlinear_force - exact).norm());
+    m.newton_residual = std::max(m.newton_residual, nonlinear->last_residual());
+  };
   auto plain_step = [&] {
     plain.step(plain_state);
     displacement_out = plain_state.u;
@@ -231,6 +271,10 @@ HapticMeasurement measure_haptic(const std::filesystem::path& mesh_file, Index r
   for (long k = 0; k < o.warmup; ++k) {
     timed(plain_step, plain_ticks, false);
     timed(haptic_tick, haptic_ticks, false);
+    if (budget > 0) {
+      timed(nonlinear_tick, nonlinear_ticks, false);
+      compare_with_converged();
+    }
   }
   const auto interface_dofs = static_cast<std::size_t>(condensed.interface_dofs);
   Control control(simulation::median([&] {
@@ -247,12 +291,22 @@ HapticMeasurement measure_haptic(const std::filesystem::path& mesh_file, Index r
       timed(haptic_tick, haptic_ticks, true);
       m.peak_force_N = std::max(m.peak_force_N, force_out.norm());
     }
+    if (budget > 0)
+      for (long k = 0; k < count; ++k) {
+        timed(nonlinear_tick, nonlinear_ticks, true);
+        compare_with_converged();
+      }
     for (long k = 0; k < count; ++k) timed([&] { control.run(); }, control_ticks, true);
   }
   if (!haptic_state.u.allFinite()) throw SolverError("haptic benchmark: the haptic run diverged");
   m.plain = summarize(plain_ticks, dt);
   m.haptic = summarize(haptic_ticks, dt);
   m.control = summarize(control_ticks, dt);
+  if (budget > 0) {
+    if (!nonlinear_state.u.allFinite()) throw SolverError("haptic benchmark: the nonlinear run diverged");
+    m.nonlinear = summarize(nonlinear_ticks, dt);
+    m.force_error_rel = force_error / peak_converged;
+  }
   return m;
 }
 

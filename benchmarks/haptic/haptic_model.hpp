@@ -25,6 +25,9 @@ struct HapticOptions {
   double rate_hz = 1000;  ///< the device's rate: dt = 1 / rate and the deadline
   int blas_threads = 0;   ///< 0: leave the BLAS's count
   bool lock_memory = false;
+  /// The nonlinear tick beside the linear one: the hybrid ROI (neo-Hookean where no node is in
+  /// the static part) by modified Newton with this many iterations per tick (0: not measured).
+  int newton_iterations = 2;
 };
 
 /// Tick statistics (s) and the late ticks' causes.
@@ -47,6 +50,12 @@ struct HapticMeasurement {
   bool memory_locked = false;
   int blas_threads = 0;
   TickStats plain, haptic, control;
+  /// The nonlinear tick (newton_iterations > 0): its times, its iterations, its Newton residual
+  /// after them (the largest over the ticks, relative to the internal force) and its force's
+  /// largest distance from a fully converged Newton step's (relative to the peak force).
+  TickStats nonlinear;
+  int newton_iterations = 0;
+  double newton_residual = 0, force_error_rel = 0;
   std::string serialize() const;
   static HapticMeasurement parse(const std::string& text);
 };

@@ -128,14 +128,14 @@ Vector HyperelasticForce::displacement(const Vector& u, const Vector& g) const {
 void HyperelasticForce::force(double t, const Vector& u, Vector& f) const {
   const Vector g = positions(t);
   assembler_->force(displacement(u, g), f);
-  if (!K_lin_is_zero_) f.noalias() += K_lin_ * u;
+  add_linear(u, f);
   if (motion_) f.noalias() -= motion_->K_ug * g;
 }
 
 void HyperelasticForce::force_and_tangent(double t, const Vector& u, Vector& f, SparseMatrix& K_t) const {
   const Vector g = positions(t);
   assembler_->force_and_tangent(displacement(u, g), f, element_tangent_);
-  if (!K_lin_is_zero_) f.noalias() += K_lin_ * u;
+  add_linear(u, f);
   if (motion_) f.noalias() -= motion_->K_ug * g;
   add_elements_to_K_lin(1.0, K_t);
 }
@@ -163,6 +163,20 @@ std::shared_ptr<const InternalForce> HyperelasticForce::with_ramp(const Ramp& ra
   return ramped;
 }
 
+void HyperelasticForce::add_linear(const Vector& u, Vector& f) const {
+  if (K_lin_is_zero_) return;
+  if (!K_split_) {
+    f.noalias() += K_lin_ * u;
+    return;
+  }
+  // K_lin = K~ - the elements' linear stiffness: K~ through its split form (the interface's dense
+  // block by a symmetric BLAS product, not as tens of thousands of scattered sparse entries).
+  linear_u_.resize(u.size());
+  K_split_->apply(u, linear_u_);
+  f += linear_u_;
+  f.noalias() -= K_elements_ * u;
+}
+
 void HyperelasticForce::add_elements_to_K_lin(double share_of_K_lin, SparseMatrix& K) const {
   // K = share K_lin + the elements' matrix, in K_lin's pattern, value by value (no allocation).
   if (K.nonZeros() != K_lin_.nonZeros() || K.rows() != K_lin_.rows()) K = K_lin_;
@@ -177,7 +191,7 @@ void HyperelasticForce::discrete_gradient(const Vector& u_a, const Vector& u_b, 
   if (motion_) throw Error("internal: a discrete gradient of a force that tools move");
   f_alg.resize(u_a.size());
   assembler_->discrete_gradient(dofs_->expand(u_a), dofs_->expand(u_b), f_alg);
-  if (!K_lin_is_zero_) f_alg.noalias() += K_lin_ * (0.5 * (u_a + u_b));
+  add_linear(0.5 * (u_a + u_b), f_alg);
 }
 
 void HyperelasticForce::discrete_gradient_and_tangent(const Vector& u_a, const Vector& u_b, Vector& f_alg,
@@ -185,14 +199,18 @@ void HyperelasticForce::discrete_gradient_and_tangent(const Vector& u_a, const V
   if (motion_) throw Error("internal: a discrete gradient of a force that tools move");
   f_alg.resize(u_a.size());
   assembler_->discrete_gradient_and_tangent(dofs_->expand(u_a), dofs_->expand(u_b), f_alg, element_tangent_);
-  if (!K_lin_is_zero_) f_alg.noalias() += K_lin_ * (0.5 * (u_a + u_b));
+  add_linear(0.5 * (u_a + u_b), f_alg);
   add_elements_to_K_lin(0.5, K_alg);
 }
 
 double HyperelasticForce::energy(double t, const Vector& u) const {
   const Vector g = positions(t);
   double W = assembler_->energy(displacement(u, g));
-  if (!K_lin_is_zero_) W += 0.5 * u.dot(K_lin_ * u);
+  if (!K_lin_is_zero_) {
+    Vector K_lin_u = Vector::Zero(u.size());
+    add_linear(u, K_lin_u);
+    W += 0.5 * u.dot(K_lin_u);
+  }
   if (motion_) W -= u.dot(motion_->K_ug * g) + 0.5 * g.dot(motion_->K_gg * g);
   return W;
 }
@@ -204,7 +222,8 @@ namespace {
 /// pattern, so that the force's tangent at rest is K.
 std::shared_ptr<const InternalForce> law_on(std::shared_ptr<const fem::DofMap> dofs, const mesh::TetMesh& mesh,
                                             const fem::MaterialMap& materials, std::vector<Index> elements, const SparseMatrix& K,
-                                            const std::vector<Tool>& tools, const char* where) {
+                                            const std::vector<Tool>& tools, const char* where,
+                                            const SplitMatrix* K_split = nullptr) {
   SparseMatrix K_at_rest;
   Vector f(dofs->num_free());
   fem::HyperelasticAssembler(mesh, *dofs, materials, elements)
@@ -214,8 +233,10 @@ std::shared_ptr<const InternalForce> law_on(std::shared_ptr<const fem::DofMap> d
   const std::vector<int> at = solvers::positions_in(K_at_rest, K_lin);
   for (std::size_t i = 0; i < at.size(); ++i) K_lin.valuePtr()[at[i]] -= K_at_rest.valuePtr()[i];
   std::string description = description_of(elements.size(), mesh.num_tets(), where);
-  return std::make_shared<const HyperelasticForce>(std::move(dofs), mesh, materials, std::move(elements), std::move(K_lin), false,
-                                                   std::move(description), tools);
+  auto law = std::make_shared<HyperelasticForce>(std::move(dofs), mesh, materials, std::move(elements), std::move(K_lin), false,
+                                                 std::move(description), tools);
+  if (K_split && !K_split->empty()) law->use_split_products(std::make_shared<const SplitMatrix>(*K_split), std::move(K_at_rest));
+  return law;
 }
 
 void refuse_nodal_pressure(fem::Element element) {
@@ -258,7 +279,7 @@ std::shared_ptr<const InternalForce> hyperelastic_force(const mesh::TetMesh& mes
 std::shared_ptr<const InternalForce> hybrid_roi_force(const mesh::TetMesh& mesh, const fem::DofMap& dofs,
                                                       const fem::MaterialMap& materials, fem::Element element,
                                                       const roi::Partition& partition, const SparseMatrix& K_condensed,
-                                                      const std::vector<Tool>& tools) {
+                                                      const std::vector<Tool>& tools, const SplitMatrix* K_split) {
   if (!materials.nonlinear()) return nullptr;
   refuse_nodal_pressure(element);
   // The ROI's dofs as a DofMap of their own: every other dof held (at its prescribed value, or at
@@ -274,7 +295,7 @@ std::shared_ptr<const InternalForce> hybrid_roi_force(const mesh::TetMesh& mesh,
     throw Error("internal: hybrid ROI: the ROI's dofs do not match the condensation's");
   // K~ less the nonlinear elements' linear stiffness: the hybrid's tangent at rest is K~.
   return law_on(std::move(roi_dofs), mesh, materials, hybrid_elements(mesh, dofs, materials, partition), K_condensed, tools,
-                ", the hybrid ROI's (no node in the static part)");
+                ", the hybrid ROI's (no node in the static part)", K_split);
 }
 
 std::shared_ptr<const InternalForce> hybrid_law_uncondensed(const mesh::TetMesh& mesh, const fem::DofMap& dofs,

@@ -29,6 +29,7 @@
 #include "fem/element.hpp"
 #include "fem/hyperelastic_assembly.hpp"
 #include "model/internal_force.hpp"
+#include "model/second_order_system.hpp"
 #include "model/tools.hpp"
 #include "roi/roi.hpp"
 
@@ -43,6 +44,12 @@ class HyperelasticForce final : public InternalForce {
   HyperelasticForce(std::shared_ptr<const fem::DofMap> dofs, const mesh::TetMesh& mesh, const fem::MaterialMap& materials,
                     std::vector<Index> elements, const SparseMatrix& K_lin, bool K_lin_is_zero, std::string description,
                     std::vector<Tool> tools = {});
+  /// Products with K_lin = K_split - K_elements through K_split's dense block (the hybrid ROI's
+  /// K~), in place of K_lin's assembled entries; K_lin stays for the tangent.
+  void use_split_products(std::shared_ptr<const SplitMatrix> K_split, SparseMatrix K_elements) {
+    K_split_ = std::move(K_split);
+    K_elements_ = std::move(K_elements);
+  }
   void force(double t, const Vector& u, Vector& f) const override;
   void force_and_tangent(double t, const Vector& u, Vector& f, SparseMatrix& K_t) const override;
   /// The elements' discrete gradient plus K_lin (u_a + u_b)/2 (exact for the quadratic K_lin part).
@@ -81,7 +88,13 @@ class HyperelasticForce final : public InternalForce {
   std::shared_ptr<const Motion> motion_;                         // null: no tool moves the law's elements
   /// K = share_of_K_lin K_lin + element_tangent_, in K_lin's pattern.
   void add_elements_to_K_lin(double share_of_K_lin, SparseMatrix& K) const;
+  /// f += K_lin u.
+  void add_linear(const Vector& u, Vector& f) const;
   SparseMatrix K_lin_;
+  /// The hybrid's products: K_lin u = K~ u (split: sparse plus the interface's dense block) - K_elements u.
+  std::shared_ptr<const SplitMatrix> K_split_;
+  SparseMatrix K_elements_;
+  mutable Vector linear_u_;
   bool K_lin_is_zero_;
   std::vector<int> assembler_in_K_;       ///< where the assembler's pattern's values land in K_lin's
   mutable SparseMatrix element_tangent_;  ///< the elements' tangent, in the assembler's pattern
@@ -96,11 +109,12 @@ std::shared_ptr<const InternalForce> hyperelastic_force(const mesh::TetMesh& mes
                                                         const std::vector<Tool>& tools = {});
 
 /// The hybrid ROI's internal force over the ROI dofs of a static condensation (partition.d, in
-/// order), from the condensed K~ (the reduced system's K) and the full model's dofs and materials.
+/// order), from the condensed K~ (the reduced system's K, and its split form K_split for products,
+/// where it has one) and the full model's dofs and materials.
 std::shared_ptr<const InternalForce> hybrid_roi_force(const mesh::TetMesh& mesh, const fem::DofMap& dofs,
                                                       const fem::MaterialMap& materials, fem::Element element,
                                                       const roi::Partition& partition, const SparseMatrix& K_condensed,
-                                                      const std::vector<Tool>& tools = {});
+                                                      const std::vector<Tool>& tools = {}, const SplitMatrix* K_split = nullptr);
 
 /// The hybrid ROI's law on the full model, uncondensed: the elements the hybrid takes nonlinear
 /// (neo-Hookean, no node in `partition`'s static part) by the law, every other by the full model's

@@ -85,7 +85,8 @@ std::unique_ptr<condensation::ReducedModel> reduce_full_model(model::FemModel& f
   full.system.internal_force = law;
   if (law)
     reduced->attach_internal_force(model::hybrid_roi_force(*full.mesh, *full.dofs, full.materials, full.element,
-                                                           reduced->partition(), reduced->system().K, full.tools.tools()));
+                                                           reduced->partition(), reduced->system().K, full.tools.tools(),
+                                                           &reduced->system().K_split));
   return reduced;
 }
 

@@ -57,11 +57,12 @@ TEST(HapticTrapezoid, ASpringMassOnAHandFeelsTheAnalyticForceAtSecondOrder) {
 double haptic_against_elimination(const model::SecondOrderSystem& eliminated, const model::ToolSet& tools,
                                   const model::SecondOrderSystem& without, const std::vector<std::array<Index, 3>>& held,
                                   const std::function<Vector(const Vector&, double)>& eliminated_field,
-                                  const std::function<Vector(const Vector&)>& haptic_field, double dt, long steps) {
+                                  const std::function<Vector(const Vector&)>& haptic_field, double dt, long steps,
+                                  HapticNewton newton = {}) {
   Trapezoid trapezoid(dt);
   model::State a = model::State::at_rest(eliminated.size()), b = model::State::at_rest(without.size());
   trapezoid.reset(eliminated, a);
-  HapticTrapezoid haptic(without, dt);
+  HapticTrapezoid haptic(without, dt, newton);
   haptic.attach(held);
   haptic.reset(b);
   double worst = 0, largest = 0, field_worst = 0, field_largest = 0;
@@ -98,6 +99,75 @@ TEST(HapticTrapezoid, EqualsEliminationOnADampedBeamUnderGravity) {
       [&](const Vector& u, double t) { return with_tool.displacement(u, t); },
       [&](const Vector& u) { return Vector(without.dofs->expand(u)); }, 0.01, 60);
   EXPECT_LT(relative, 1e-10);
+}
+
+/// The beam of the tests above with a neo-Hookean material, its end held by the hand and moved
+/// 15 mm down and 5 mm sideways over 0.2 s (smooth).
+struct NeoHookeanHeldBeam {
+  test::Beam beam;
+  fem::Material material = [] {
+    fem::Material m = fem::Material::from_young_poisson(3000, 0.45, 1000, 0.8);
+    m.model = fem::MaterialModel::neo_hookean;
+    return m;
+  }();
+  model::SetTool tool{.name = "hand",
+                      .set = "x1",
+                      .center = Vec3::Zero(),
+                      .radius = 0,
+                      .path = {.displacement = Vec3(0, 5e-3, -15e-3),
+                               .ramp = model::Ramp{.duration = 0.2, .shape = model::Ramp::Shape::smooth, .samples = {}}}};
+  model::FemModel with_tool = model::build_fem_model(beam.mesh, material, {"x0"}, {}, {tool});
+  model::FemModel without = model::build_fem_model(beam.mesh, material, {"x0"}, {});
+};
+
+TEST(HapticTrapezoid, ANeoHookeanTickConvergedEqualsEliminationByNewton) {
+  // Two formulations of the same nonlinear step: the tool eliminated and the step solved by Newton
+  // with the tangent (Trapezoid), and the tool held through the linear compliance with the step
+  // solved by modified Newton on the fixed K_eff (the haptic tick), iterated to convergence.
+  const NeoHookeanHeldBeam b;
+  ASSERT_TRUE(b.without.system.is_nonlinear());
+  const double relative = haptic_against_elimination(
+      b.with_tool.system, b.with_tool.tools, b.without.system, node_dofs(*b.without.dofs, b.beam.mesh.set("x1").nodes),
+      [&](const Vector& u, double t) { return b.with_tool.displacement(u, t); },
+      [&](const Vector& u) { return Vector(b.without.dofs->expand(u)); }, 0.01, 40,
+      HapticNewton{.iterations = 200, .tolerance = 1e-12});
+  std::printf("neo-Hookean beam, end held and moved 15.8 mm: the converged haptic tick's force against elimination: %.2e\n",
+              relative);
+  EXPECT_LT(relative, 1e-9);
+}
+
+TEST(HapticTrapezoid, ANeoHookeanTickWithAFixedBudgetApproachesTheConvergedForce) {
+  const NeoHookeanHeldBeam b;
+  const auto held = node_dofs(*b.without.dofs, b.beam.mesh.set("x1").nodes);
+  const double dt = 1e-3;  // the device's 1 kHz
+  auto forces = [&](HapticNewton newton, std::vector<double>* residuals) {
+    HapticTrapezoid haptic(b.without.system, dt, newton);
+    haptic.attach(held);
+    model::State s = model::State::at_rest(b.without.system.size());
+    haptic.reset(s);
+    std::vector<Vec3> out;
+    for (long n = 1; n <= 300; ++n) {
+      out.push_back(haptic.tick(b.tool.path.at(static_cast<double>(n) * dt), s));
+      if (residuals) residuals->push_back(haptic.last_residual());
+    }
+    return out;
+  };
+  const auto converged = forces({.iterations = 200, .tolerance = 1e-12}, nullptr);
+  double largest = 0;
+  for (const Vec3& F : converged) largest = std::max(largest, F.norm());
+  std::vector<double> errors;
+  for (const int budget : {1, 2, 3}) {
+    std::vector<double> residuals;
+    const auto F = forces({.iterations = budget, .tolerance = 0}, &residuals);
+    double worst = 0;
+    for (std::size_t k = 0; k < F.size(); ++k) worst = std::max(worst, (F[k] - converged[k]).norm());
+    errors.push_back(worst / largest);
+    std::printf("budget %d: force error %.2e of the peak %.4f N, largest residual after the budget %.2e\n", budget, errors.back(),
+                largest, *std::max_element(residuals.begin(), residuals.end()));
+  }
+  EXPECT_LT(errors[1], errors[0]);
+  EXPECT_LT(errors[2], errors[1]);
+  EXPECT_LT(errors[2], 1e-3);
 }
 
 TEST(HapticTrapezoid, EqualsEliminationOnTheCondensedPaperBrain) {
