@@ -38,6 +38,15 @@ HyperelasticAssembler::HyperelasticAssembler(const mesh::TetMesh& mesh, const Do
   pattern_ = StiffnessAssembler(mesh, dofs).stiffness(materials);
   std::fill(pattern_.valuePtr(), pattern_.valuePtr() + pattern_.nonZeros(), 0.0);
   cache_positions();
+  laws_.reserve(elements_.size());
+  for (const Index e : elements_) laws_.push_back(NeoHookean::of(materials_.of(e)));
+  if (!mesh.is_quadratic()) {
+    tet4_geometry_.reserve(elements_.size());
+    for (const Index e : elements_) {
+      const auto& c = mesh.tets[as_size(e)];
+      tet4_geometry_.push_back(tet4_geometry(mesh.node(c[0]), mesh.node(c[1]), mesh.node(c[2]), mesh.node(c[3])));
+    }
+  }
 }
 
 std::span<const int> HyperelasticAssembler::nodes_of(std::size_t slot, std::array<int, 10>& nodes) const {
@@ -83,7 +92,7 @@ void HyperelasticAssembler::for_each_element(Evaluator&& evaluate, Visit&& visit
   for (std::size_t slot = 0; slot < elements_.size(); ++slot) {
     const Index e = elements_[slot];
     const auto& c = mesh_.tets[as_size(e)];
-    const NeoHookean law = NeoHookean::of(materials_.of(e));
+    const NeoHookean& law = laws_[slot];
     const auto nodes = nodes_of(slot, buffer);
     auto check = [&](const auto& r) {
       if (!(r.min_J > 0))
@@ -96,7 +105,7 @@ void HyperelasticAssembler::for_each_element(Evaluator&& evaluate, Visit&& visit
         for (int a = 0; a < 4; ++a) ue.segment<3>(3 * a) = u_full.segment<3>(3 * nodes[as_size(a)]);
         return ue;
       };
-      const auto r = evaluate(tet4_geometry(mesh_.node(c[0]), mesh_.node(c[1]), mesh_.node(c[2]), mesh_.node(c[3])), law, gather);
+      const auto r = evaluate(tet4_geometry_[slot], law, gather);
       check(r);
       visit(slot, nodes, r);
     } else {

@@ -14,6 +14,8 @@
 #include "common/types.hpp"
 #include "fem/dof_map.hpp"
 #include "fem/material_map.hpp"
+#include "fem/neo_hookean.hpp"
+#include "fem/tet4.hpp"
 #include "mesh/tet_mesh.hpp"
 
 namespace roifem::fem {
@@ -67,6 +69,10 @@ class HyperelasticAssembler {
   /// Per element, its matrix's (3 n)^2 positions (cache_positions); empty where they would pass
   /// 32M entries (128 MB: the 20k-node brain's tet4 take 16M), and scatter() then searches.
   std::vector<int> positions_;
+  /// Per element of a linear mesh, its geometry and law, formed once (a haptic tick evaluates the
+  /// force several times a millisecond): 120 bytes an element.
+  std::vector<Tet4Geometry> tet4_geometry_;
+  std::vector<NeoHookean> laws_;
 };
 
 }  // namespace roifem::fem

@@ -63,7 +63,7 @@ std::shared_ptr<const HyperelasticForce::Motion> HyperelasticForce::make_motion(
     for (const int n : tools[static_cast<std::size_t>(a)].nodes)
       for (int c = 0; c < 3; ++c) {
         if (dofs.free_dof(n, c) >= 0) throw Error("internal: a tool's node is free in the law's dofs");
-        tool_component[static_cast<std::size_t>(3 * n + c)] = 3 * a + c;
+        tool_component[3 * static_cast<std::size_t>(n) + static_cast<std::size_t>(c)] = 3 * a + c;
       }
   // The law's elements' stiffness at rest over the unknowns and the tools' dofs together: its
   // columns at the tools' dofs, summed per tool, are K_ug and K_gg.
@@ -117,12 +117,17 @@ Vector HyperelasticForce::Motion::positions(double t) const {
   return g;
 }
 
-Vector HyperelasticForce::displacement(const Vector& u, const Vector& g) const {
-  Vector U = dofs_->expand(u);
+const Vector& HyperelasticForce::displacement(const Vector& u, const Vector& g) const {
+  // Only the free entries (and the tools' nodes) change between calls: the full vector is kept, its
+  // prescribed entries written once (a hybrid ROI's free dofs are a few thousand of a brain's 3N).
+  if (U_.size() != dofs_->num_full()) U_ = dofs_->prescribed();
+  if (u.size() != dofs_->num_free()) throw Error("internal: the law's displacement does not match its dofs");
+  for (Index i = 0; i < u.size(); ++i) U_[dofs_->full_dof(i)] = u[i];
   if (motion_)
     for (std::size_t a = 0; a < motion_->tools.size(); ++a)
-      for (const int n : motion_->tools[a].nodes) U.segment<3>(3 * n) += g.segment<3>(3 * static_cast<Index>(a));
-  return U;
+      for (const int n : motion_->tools[a].nodes)
+        U_.segment<3>(3 * n) = dofs_->prescribed().segment<3>(3 * n) + g.segment<3>(3 * static_cast<Index>(a));
+  return U_;
 }
 
 void HyperelasticForce::force(double t, const Vector& u, Vector& f) const {
@@ -169,12 +174,11 @@ void HyperelasticForce::add_linear(const Vector& u, Vector& f) const {
     f.noalias() += K_lin_ * u;
     return;
   }
-  // K_lin = K~ - the elements' linear stiffness: K~ through its split form (the interface's dense
-  // block by a symmetric BLAS product, not as tens of thousands of scattered sparse entries).
+  // K_lin through its split form: the interface's dense block by a symmetric BLAS product, not as
+  // tens of thousands of scattered sparse entries.
   linear_u_.resize(u.size());
   K_split_->apply(u, linear_u_);
   f += linear_u_;
-  f.noalias() -= K_elements_ * u;
 }
 
 void HyperelasticForce::add_elements_to_K_lin(double share_of_K_lin, SparseMatrix& K) const {
@@ -235,7 +239,7 @@ std::shared_ptr<const InternalForce> law_on(std::shared_ptr<const fem::DofMap> d
   std::string description = description_of(elements.size(), mesh.num_tets(), where);
   auto law = std::make_shared<HyperelasticForce>(std::move(dofs), mesh, materials, std::move(elements), std::move(K_lin), false,
                                                  std::move(description), tools);
-  if (K_split && !K_split->empty()) law->use_split_products(std::make_shared<const SplitMatrix>(*K_split), std::move(K_at_rest));
+  if (K_split && !K_split->empty()) law->use_split_products(*K_split, K_at_rest);
   return law;
 }
 

@@ -46,9 +46,9 @@ class HyperelasticForce final : public InternalForce {
                     std::vector<Tool> tools = {});
   /// Products with K_lin = K_split - K_elements through K_split's dense block (the hybrid ROI's
   /// K~), in place of K_lin's assembled entries; K_lin stays for the tangent.
-  void use_split_products(std::shared_ptr<const SplitMatrix> K_split, SparseMatrix K_elements) {
-    K_split_ = std::move(K_split);
-    K_elements_ = std::move(K_elements);
+  void use_split_products(SplitMatrix K_split, const SparseMatrix& K_elements) {
+    K_split.sparse = SparseMatrix(K_split.sparse - K_elements);  // K_lin's sparse part; the dense block unchanged
+    K_split_ = std::make_shared<const SplitMatrix>(std::move(K_split));
   }
   void force(double t, const Vector& u, Vector& f) const override;
   void force_and_tangent(double t, const Vector& u, Vector& f, SparseMatrix& K_t) const override;
@@ -80,7 +80,9 @@ class HyperelasticForce final : public InternalForce {
                                                    const fem::MaterialMap& materials, const std::vector<Index>& elements,
                                                    std::vector<Tool> tools);
   /// The full displacement the elements read: u, the prescribed values, the tools' positions g.
-  Vector displacement(const Vector& u, const Vector& g) const;
+  /// The full displacement the elements read (valid until the next call).
+  const Vector& displacement(const Vector& u, const Vector& g) const;
+  mutable Vector U_;  ///< displacement()'s
   Vector positions(double t) const { return motion_ ? motion_->positions(t) : Vector(); }
 
   std::shared_ptr<const fem::DofMap> dofs_;                      // before the assembler, which keeps a reference to it
@@ -91,9 +93,9 @@ class HyperelasticForce final : public InternalForce {
   /// f += K_lin u.
   void add_linear(const Vector& u, Vector& f) const;
   SparseMatrix K_lin_;
-  /// The hybrid's products: K_lin u = K~ u (split: sparse plus the interface's dense block) - K_elements u.
+  /// The hybrid's products: K_lin split, its sparse part K~'s less the law's elements' linear
+  /// stiffness, its dense block the interface's (shared by the copies with_ramp makes).
   std::shared_ptr<const SplitMatrix> K_split_;
-  SparseMatrix K_elements_;
   mutable Vector linear_u_;
   bool K_lin_is_zero_;
   std::vector<int> assembler_in_K_;       ///< where the assembler's pattern's values land in K_lin's
