@@ -86,12 +86,15 @@ int run(const Options& o) {
               stats_csv(m.plain) + "," + stats_csv(m.haptic) + "," + stats_csv(m.control) + "," + stats_csv(m.nonlinear) +
               io::format(",%.6g,%d,%.6g,%.6g,%.6g", ratio, m.newton_iterations, m.newton_residual, m.force_error_rel,
                          m.newton_iterations > 0 ? m.nonlinear.median / m.haptic.median : 0.0));
-      if (m.newton_iterations > 0)
+      if (m.newton_iterations > 0 && m.nonlinear_ticks > 0)
         std::printf(
-            "%8s %5s  nonlinear tick (hybrid ROI, %d modified-Newton iterations): %s (ms, late per 10,000); %.2fx the "
-            "linear tick; Newton residual after them %.1e; force %.1e from a converged step's\n",
-            "", "", m.newton_iterations, stats_text(m.nonlinear, ticks).c_str(), m.nonlinear.median / m.haptic.median,
-            m.newton_residual, m.force_error_rel);
+            "%8s %5s  nonlinear tick (hybrid ROI, %d modified-Newton iterations, hand x %g): %s (ms, late per 10,000); "
+            "%.2fx the linear tick; Newton residual after them %.1e; force %.1e from a converged step's%s\n",
+            "", "", m.newton_iterations, o.haptic.hand_scale, stats_text(m.nonlinear, m.nonlinear_ticks).c_str(),
+            m.nonlinear.median / m.haptic.median, m.newton_residual, m.force_error_rel,
+            m.nonlinear_ticks < ticks ? io::format(" (stopped after %ld ticks)", m.nonlinear_ticks).c_str() : "");
+      else if (m.newton_iterations > 0)
+        std::printf("%8s %5s  nonlinear tick: stopped before its first timed tick (its message above)\n", "", "");
     }
   }
   csv.close();
@@ -129,6 +132,8 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   app.add_flag("!--no-machine-bounds", o.machine_bounds, "skip measuring the machine's bounds (smoke tests)");
+  app.add_option("--hand-scale", o.haptic.hand_scale, "the nonlinear tick's hand path, scaled (the linear tick's: 1)")
+      ->capture_default_str();
   app.add_option("--newton-iterations", o.haptic.newton_iterations,
                  "the nonlinear tick's modified-Newton iterations (the hybrid ROI, neo-Hookean; 0: no nonlinear tick)")
       ->capture_default_str();

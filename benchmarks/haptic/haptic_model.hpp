@@ -26,8 +26,11 @@ struct HapticOptions {
   int blas_threads = 0;   ///< 0: leave the BLAS's count
   bool lock_memory = false;
   /// The nonlinear tick beside the linear one: the hybrid ROI (neo-Hookean where no node is in
-  /// the static part) by modified Newton with this many iterations per tick (0: not measured).
+  /// the static part) by modified Newton with this many iterations per tick (0: not measured),
+  /// along the hand's path scaled by hand_scale (the paper's material: a rigid tool of 20 nodes
+  /// moved 2 mm inverts elements at its edge).
   int newton_iterations = 2;
+  double hand_scale = 1;
 };
 
 /// Tick statistics (s) and the late ticks' causes.
@@ -56,6 +59,7 @@ struct HapticMeasurement {
   TickStats nonlinear;
   int newton_iterations = 0;
   double newton_residual = 0, force_error_rel = 0;
+  long nonlinear_ticks = 0;  ///< ticks the nonlinear run took (fewer than asked where it stopped)
   std::string serialize() const;
   static HapticMeasurement parse(const std::string& text);
 };

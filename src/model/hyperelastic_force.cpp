@@ -250,14 +250,19 @@ void refuse_nodal_pressure(fem::Element element) {
         "[material] model = \"linear\"");
 }
 
-/// The hybrid's nonlinear elements: neo-Hookean, with no node in the static part.
+/// The hybrid's nonlinear elements: neo-Hookean, with no node in the static part, and some node
+/// that moves (an ROI node or a tool's): one of held nodes alone never strains.
 std::vector<Index> hybrid_elements(const mesh::TetMesh& mesh, const fem::DofMap& dofs, const fem::MaterialMap& materials,
-                                   const roi::Partition& partition) {
-  std::vector<bool> static_node(static_cast<std::size_t>(mesh.num_nodes()), false);
+                                   const roi::Partition& partition, const std::vector<Tool>& tools) {
+  std::vector<bool> static_node(static_cast<std::size_t>(mesh.num_nodes()), false), moving_node = static_node;
   for (const Index i : partition.s) static_node[static_cast<std::size_t>(dofs.full_dof(i) / 3)] = true;
+  for (const Index i : partition.d) moving_node[static_cast<std::size_t>(dofs.full_dof(i) / 3)] = true;
+  for (const Tool& tool : tools)
+    for (const int n : tool.nodes) moving_node[static_cast<std::size_t>(n)] = true;
   std::vector<Index> elements;
   for (Index e = 0; e < mesh.num_tets(); ++e)
-    if (follows_the_law(materials.of(e)) && !element_touches(mesh, e, static_node)) elements.push_back(e);
+    if (follows_the_law(materials.of(e)) && !element_touches(mesh, e, static_node) && element_touches(mesh, e, moving_node))
+      elements.push_back(e);
   return elements;
 }
 
@@ -298,8 +303,8 @@ std::shared_ptr<const InternalForce> hybrid_roi_force(const mesh::TetMesh& mesh,
   if (roi_dofs->num_free() != partition.roi_size() || K_condensed.rows() != partition.roi_size())
     throw Error("internal: hybrid ROI: the ROI's dofs do not match the condensation's");
   // K~ less the nonlinear elements' linear stiffness: the hybrid's tangent at rest is K~.
-  return law_on(std::move(roi_dofs), mesh, materials, hybrid_elements(mesh, dofs, materials, partition), K_condensed, tools,
-                ", the hybrid ROI's (no node in the static part)", K_split);
+  return law_on(std::move(roi_dofs), mesh, materials, hybrid_elements(mesh, dofs, materials, partition, tools), K_condensed,
+                tools, ", the hybrid ROI's (no node in the static part)", K_split);
 }
 
 std::shared_ptr<const InternalForce> hybrid_law_uncondensed(const mesh::TetMesh& mesh, const fem::DofMap& dofs,
@@ -309,7 +314,7 @@ std::shared_ptr<const InternalForce> hybrid_law_uncondensed(const mesh::TetMesh&
   if (!materials.nonlinear()) return nullptr;
   refuse_nodal_pressure(element);
   return law_on(std::shared_ptr<const fem::DofMap>(std::shared_ptr<void>(), &dofs), mesh, materials,
-                hybrid_elements(mesh, dofs, materials, partition), K, tools,
+                hybrid_elements(mesh, dofs, materials, partition, tools), K, tools,
                 ", the hybrid ROI's, uncondensed (the full model, linear outside the ROI)");
 }
 
