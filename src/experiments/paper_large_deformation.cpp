@@ -29,13 +29,15 @@ using io::format;
 
 std::string drive_name(PaperDrive drive) { return drive == PaperDrive::spatulas ? "spatulas" : "forces"; }
 
-double peak(const std::vector<double>& values) { return values.empty() ? 0.0 : *std::max_element(values.begin(), values.end()); }
+double peak_of(const std::vector<double>& values) {
+  return values.empty() ? 0.0 : *std::max_element(values.begin(), values.end());
+}
 
-constexpr std::array models{LargeDeformationModel::hybrid, LargeDeformationModel::linear_condensed,
-                            LargeDeformationModel::full_linear};
+constexpr std::array measured_models{LargeDeformationModel::hybrid, LargeDeformationModel::linear_condensed,
+                                     LargeDeformationModel::full_linear};
 
 /// One setup's two condensed models and its ROI nodes in both numberings.
-struct Setup {
+struct HybridSetup {
   std::string name;
   std::unique_ptr<condensation::ReducedModel> linear;  ///< static condensation of the linear model
   model::SecondOrderSystem hybrid;                     ///< the same with the hybrid ROI's law
@@ -121,7 +123,7 @@ class LargeDeformationPaper {
   std::ostream& log_;
   mesh::TetMesh mesh_;
   std::unique_ptr<PaperModel> nonlinear_, linear_;
-  std::vector<Setup> setups_;
+  std::vector<HybridSetup> setups_;
   /// Per setup and ramp: the linear condensed model against the full linear one (the paper's own
   /// error), for the budget's reduction column.
   std::vector<std::vector<ErrorCurve>> reduction_;
@@ -174,7 +176,7 @@ void LargeDeformationPaper::build_setups() {
     const roi::RoiSpec spec{
         .kind = roi::RoiSpec::Kind::nearest, .center = o_.roi_target_mm * mm, .radius = 0, .count = o_.setup_nodes[k], .set = {}};
     const roi::Partition partition = roi::partition_dofs(linear_->full.system.K, dofs, select_setup_nodes(*linear_, spec));
-    Setup s;
+    HybridSetup s;
     s.name = "setup" + std::to_string(k + 1);
     s.linear = std::make_unique<condensation::ReducedModel>(linear_->full.system, partition, dofs, static_condensation);
     s.hybrid = s.linear->system();
@@ -211,7 +213,7 @@ void LargeDeformationPaper::measure(LargeDeformationDrive& d) {
       d.timing.push_back(timing_of(d.drive, "full linear", mesh_.num_nodes(), lin.system.size(), full_linear));
     }
     for (std::size_t si = 0; si < setups_.size(); ++si) {
-      const Setup& s = setups_[si];
+      const HybridSetup& s = setups_[si];
       const Trajectory hybrid = run_trapezoid(model::with_ramp(s.hybrid, ramp), s.hybrid_tools.with_ramp(ramp), o_.dt, o_.steps,
                                               s.name + " hybrid" + at, log_);
       const Trajectory condensed = run_trapezoid(model::with_ramp(s.linear->system(), ramp), s.linear_tools.with_ramp(ramp),
@@ -223,7 +225,7 @@ void LargeDeformationPaper::measure(LargeDeformationDrive& d) {
         d.timing.push_back(timing_of(d.drive, s.name + " hybrid", nodes, s.hybrid.size(), hybrid));
         d.timing.push_back(timing_of(d.drive, s.name + " linear", nodes, s.hybrid.size(), condensed));
       }
-      for (const LargeDeformationModel model : models) {
+      for (const LargeDeformationModel model : measured_models) {
         LargeDeformationCurve& c = d.curves.emplace_back();
         c.drive = d.drive;
         c.setup = s.name;
@@ -242,7 +244,7 @@ void LargeDeformationPaper::measure(LargeDeformationDrive& d) {
       reduction_[si].push_back({reduction.mean_mm, reduction.max_mm});
     }
   }
-  // Setup-major, as the linear paper's curves: setup, model, ramp.
+  // HybridSetup-major, as the linear paper's curves: setup, model, ramp.
   std::stable_sort(d.curves.begin(), d.curves.end(), [](const LargeDeformationCurve& a, const LargeDeformationCurve& b) {
     return a.setup != b.setup ? a.setup < b.setup : a.model < b.model;
   });
@@ -275,7 +277,7 @@ void LargeDeformationPaper::measure_budget(LargeDeformationDrive& d) {
                  .reduction = reduction_,
                  .model_dynamic = {},
                  .hybrid = {}};
-  for (const Setup& s : setups_) {
+  for (const HybridSetup& s : setups_) {
     in.setups.emplace_back(s.name, s.linear->partition().roi_nodes);
     auto& dynamic = in.model_dynamic.emplace_back();
     auto& hybrid = in.hybrid.emplace_back();
@@ -312,7 +314,7 @@ void LargeDeformationPaper::report(const LargeDeformationDrive& d) const {
       std::string line = format("  %-7s %4.1fs", d.curves[k].setup.c_str(), d.curves[k + r].ramp_s);
       for (std::size_t m = 0; m < 3; ++m) {
         const PaperCurve c = d.curves[k + m * n_ramps + r].as_paper_curve();
-        line += format("  %7.3f / %7.4f", peak(c.max_mm), steady_mean(c));
+        line += format("  %7.3f / %7.4f", peak_of(c.max_mm), steady_mean(c));
       }
       log_ << line << '\n';
     }
@@ -340,12 +342,12 @@ void LargeDeformationPaper::report(const LargeDeformationDrive& d) const {
     for (std::size_t k = 0; k < d.curves.size(); k += 3 * n_ramps)
       for (std::size_t r = 0; r < n_ramps; ++r) {
         const auto& first = d.curves[k + r];
-        std::string line = format("  %-7s %4.1fs %14.3f", first.setup.c_str(), first.ramp_s, peak(first.force_full_mN));
+        std::string line = format("  %-7s %4.1fs %14.3f", first.setup.c_str(), first.ramp_s, peak_of(first.force_full_mN));
         for (std::size_t m = 0; m < 3; ++m) {
           const auto& c = d.curves[k + m * n_ramps + r];
-          line += peak(c.force_full_mN) > 0
-                      ? format("  %9.3f (%5.2f%%)", peak(c.force_err_mN), 100 * peak(c.force_err_mN) / peak(c.force_full_mN))
-                      : format("  %18s", "- (no step)");
+          line += peak_of(c.force_full_mN) > 0 ? format("  %9.3f (%5.2f%%)", peak_of(c.force_err_mN),
+                                                        100 * peak_of(c.force_err_mN) / peak_of(c.force_full_mN))
+                                               : format("  %18s", "- (no step)");
         }
         log_ << line << '\n';
       }
@@ -365,12 +367,12 @@ struct CurveStep {
   double time_s = 0;
 };
 
-double at(const std::vector<double>& series, const CurveStep& s) { return series[static_cast<std::size_t>(s.step - 1)]; }
+double at_step(const std::vector<double>& series, const CurveStep& s) { return series[static_cast<std::size_t>(s.step - 1)]; }
 
 using io::Cell;
 using io::Column;
 
-const std::array<Column<CurveStep>, 10> curve_columns{{
+const std::array<Column<CurveStep>, 10> large_deformation_columns{{
     {"drive", "forces or spatulas", [](const CurveStep& s) -> Cell { return drive_name(s.curve->drive); }},
     {"setup", "setup1, setup2, ...", [](const CurveStep& s) -> Cell { return s.curve->setup; }},
     {"model", "hybrid, linear condensed or full linear: measured against the full neo-Hookean model",
@@ -379,18 +381,20 @@ const std::array<Column<CurveStep>, 10> curve_columns{{
     {"step", "the step, 1..steps", [](const CurveStep& s) -> Cell { return s.step; }},
     {"time_s", "the step's time (s)", [](const CurveStep& s) -> Cell { return s.time_s; }, "%.4f"},
     {"mean_mm", "the mean over the setup's ROI nodes of |u_model - u_neo-hookean| (mm)",
-     [](const CurveStep& s) -> Cell { return at(s.curve->mean_mm, s); }, "%.9g"},
+     [](const CurveStep& s) -> Cell { return at_step(s.curve->mean_mm, s); }, "%.9g"},
     {"max_mm", "the largest over the setup's ROI nodes of |u_model - u_neo-hookean| (mm)",
-     [](const CurveStep& s) -> Cell { return at(s.curve->max_mm, s); }, "%.9g"},
+     [](const CurveStep& s) -> Cell { return at_step(s.curve->max_mm, s); }, "%.9g"},
     {"force_full_mN", "spatulas: the larger of the two spatulas' force in the full neo-Hookean model (mN)",
-     [](const CurveStep& s) -> Cell { return s.curve->force_full_mN.empty() ? Cell() : Cell(at(s.curve->force_full_mN, s)); },
+     [](const CurveStep& s) -> Cell {
+       return s.curve->force_full_mN.empty() ? Cell() : Cell(at_step(s.curve->force_full_mN, s));
+     },
      "%.9g"},
     {"force_err_mN", "spatulas: the larger of the two spatulas' |F_model - F_neo-hookean| (mN)",
-     [](const CurveStep& s) -> Cell { return s.curve->force_err_mN.empty() ? Cell() : Cell(at(s.curve->force_err_mN, s)); },
+     [](const CurveStep& s) -> Cell { return s.curve->force_err_mN.empty() ? Cell() : Cell(at_step(s.curve->force_err_mN, s)); },
      "%.9g"},
 }};
 
-const std::array<Column<LargeDeformationTiming>, 9> timing_columns{{
+const std::array<Column<LargeDeformationTiming>, 9> large_deformation_timing_columns{{
     {"drive", "forces or spatulas", [](const LargeDeformationTiming& t) -> Cell { return drive_name(t.drive); }},
     {"model", "full neo-hookean, full linear, setupN hybrid, setupN linear",
      [](const LargeDeformationTiming& t) -> Cell { return t.model; }},
@@ -420,8 +424,9 @@ void LargeDeformationPaper::write(const LargeDeformationResults& results) const 
     timing.insert(timing.end(), d.timing.begin(), d.timing.end());
     if (d.budget) write_error_budget_csv(*d.budget, results.dt, o_.out);
   }
-  io::write_csv(o_.out / "large_deformation.csv", std::span<const Column<CurveStep>>(curve_columns), steps);
-  io::write_csv(o_.out / "large_deformation_timing.csv", std::span<const Column<LargeDeformationTiming>>(timing_columns), timing);
+  io::write_csv(o_.out / "large_deformation.csv", std::span<const Column<CurveStep>>(large_deformation_columns), steps);
+  io::write_csv(o_.out / "large_deformation_timing.csv",
+                std::span<const Column<LargeDeformationTiming>>(large_deformation_timing_columns), timing);
   std::string files = (o_.out / "large_deformation.csv").string() + ", " + (o_.out / "large_deformation_timing.csv").string();
   for (const auto& d : results.drives)
     if (d.budget) files += ", " + (o_.out / "error_budget.csv").string();

@@ -144,7 +144,7 @@ const std::array<Column<RoiSizeRow>, 11> roi_size_table{{
      [](const RoiSizeRow& r) -> Cell { return static_cast<long>(r.holds_below); }},
 }};
 
-Cell optional_cell(const std::optional<double>& x) { return x ? Cell(*x) : Cell(); }
+Cell optional_figure(const std::optional<double>& x) { return x ? Cell(*x) : Cell(); }
 
 const std::array<Column<RoiSizeRun>, 6> roi_size_run_table{{
     {"reduction", "the static part's reduction", [](const RoiSizeRun& r) -> Cell { return r.row->reduction; }},
@@ -156,9 +156,9 @@ const std::array<Column<RoiSizeRun>, 6> roi_size_run_table{{
     {"remainder_mm",
      "neo-hookean: the peak error of the full model with the hybrid's law, uncondensed, against the full neo-Hookean "
      "model: the linear remainder's error (mm)",
-     [](const RoiSizeRun& r) { return optional_cell(r.probe.remainder_mm); }, "%.9g"},
+     [](const RoiSizeRun& r) { return optional_figure(r.probe.remainder_mm); }, "%.9g"},
     {"condensation_mm", "neo-hookean: the peak error of the hybrid against that uncondensed model: the condensation's (mm)",
-     [](const RoiSizeRun& r) { return optional_cell(r.probe.condensation_mm); }, "%.9g"},
+     [](const RoiSizeRun& r) { return optional_figure(r.probe.condensation_mm); }, "%.9g"},
 }};
 
 /// The two result tables, rewritten (atomically) after every run, so that a search stopped early
