@@ -9,10 +9,10 @@
 /// the linear rule, solved in one iteration. Where the Jacobian is not positive definite (a
 /// compressed element of a nearly incompressible law turns its tangent indefinite long before it
 /// inverts: mu = 12 Pa against kappa (J - 1) at 0.3% compression on the paper brain), the caller
-/// may solve the step again on KLU's LU factorization of the same matrix (solve_indefinite, on its
-/// own analysis): Newton needs a nonsingular Jacobian, not a definite one. An iteration allocates nothing: the Jacobian's pattern
-/// (K's and the inertia's) is built once, and each iteration adds K_t's and the inertia's values
-/// into it through index maps.
+/// may solve the step again on KLU's LU factorization of the same matrix (solve_carefully, on its
+/// own analysis): Newton needs a nonsingular Jacobian, not a definite one. An iteration allocates
+/// nothing: the Jacobian's pattern (K's and the inertia's) is built once, and each iteration adds
+/// K_t's and the inertia's values into it through index maps.
 #include <vector>
 
 #include "model/average_acceleration.hpp"
