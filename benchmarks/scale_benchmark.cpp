@@ -8,6 +8,8 @@
 //   compile with: cmake --build --preset release --target roifem_scale_benchmark
 //   sample run:   build/release/benchmarks/roifem_scale_benchmark --nodes 800 5000 20000 100000 300000
 //                   --rois 300 1000 3% --haptic 20000 100000 300000 --full-cg 100000 300000 --out results/scale
+//   neo-Hookean:  build/release/benchmarks/roifem_scale_benchmark --nodes 20000 --rois none --neo-hookean 20000
+//                   --out results/scale-nh
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -33,6 +35,8 @@ struct Options {
   std::vector<long> haptic{};
   std::vector<long> full_cg{};  ///< sizes at which the full model also runs by trapezoid-cg
   long cg_check_steps = 20;
+  std::vector<long> neo_hookean{};  ///< sizes at which the full model also runs with the neo-Hookean law
+  double neo_hookean_load = 0.25;
   double haptic_rate_hz = 1000;
   std::filesystem::path out = "scale-results";
   TimingOptions timing;
@@ -54,6 +58,10 @@ std::string row_text(long nodes, const std::string& label, const std::optional<S
   if (!m) return io::format("%8ld %-10s  failed: %s", nodes, label.c_str(), failure.c_str());
   const double vs_full = full ? full->step_median_s / m->step_median_s : 0;
   std::string note;
+  if (m->newton_per_step > 0)
+    note = io::format(
+        "  Newton %.2f iterations/step; %ld steps from rest in %.1f s (%.1f s in Newton), %ld retried; peak |u| %.2f mm",
+        m->newton_per_step, m->steps_timed, m->all_steps_s, m->factorization_s, m->retried_steps, m->peak_displacement_mm);
   if (m->cg_iterations_per_step > 0) {
     note = io::format("  CG %.0f iterations/step; ", m->cg_iterations_per_step);
     note += m->deviation_vs_direct >= 0 ? io::format("max |u_cg - u_direct| / max |u| = %.1e", m->deviation_vs_direct)
@@ -68,10 +76,11 @@ std::string row_text(long nodes, const std::string& label, const std::optional<S
 int run(const Options& o) {
   std::filesystem::create_directories(o.out);
   if (o.machine_bounds) report_machine_bounds(o.out);
-  io::CsvWriter csv(o.out / "scale.csv",
-                    "nodes,model,roi_nodes,system_dofs,interface_dofs,read_s,assembly_s,factorization_s,condensation_s,"
-                    "integrator_setup_s,setup_s,step_median_ms,step_p99_ms,frame_rate_hz,steps_timed,peak_rss_mb,"
-                    "step_vs_full,cg_iterations_per_step,cg_deviation_vs_direct,status");
+  io::CsvWriter csv(
+      o.out / "scale.csv",
+      "nodes,model,roi_nodes,system_dofs,interface_dofs,read_s,assembly_s,factorization_s,condensation_s,"
+      "integrator_setup_s,setup_s,step_median_ms,step_p99_ms,frame_rate_hz,steps_timed,peak_rss_mb,"
+      "step_vs_full,cg_iterations_per_step,cg_deviation_vs_direct,newton_per_step,all_steps_s,peak_displacement_mm,retried_steps,status");
   std::printf(
       "Scale: trapezoidal rule, dt = 0.05 s; a step = new load + step + displacement out; medians over the timed steps\n");
   std::printf("%8s %-10s %6s %8s %6s %8s %9s %9s %8s %10s %10s %9s %8s %8s\n", "nodes", "model", "ROI", "dofs", "iface",
@@ -81,11 +90,14 @@ int run(const Options& o) {
     std::vector<ModelSpec> models{{"full", 0}};
     if (std::find(o.full_cg.begin(), o.full_cg.end(), n) != o.full_cg.end())
       models.push_back({"full-cg", 0, true, o.cg_check_steps});
+    if (std::find(o.neo_hookean.begin(), o.neo_hookean.end(), n) != o.neo_hookean.end())
+      models.push_back({"full-nh", 0, false, 0, true, o.neo_hookean_load});
     for (const auto& r : o.rois)
       if (r != "none") models.push_back(roi_spec(r, n));
     std::optional<ScaleMeasurement> full;
     for (const auto& spec : models) {
-      const bool direct_full = spec.roi_nodes == 0 && !spec.conjugate_gradients;  // the row the others are compared with
+      const bool direct_full =
+          spec.roi_nodes == 0 && !spec.conjugate_gradients && !spec.neo_hookean;  // the row the others are compared with
       const ChildResult child =
           run_in_child([&] { return measure_model(mesh_file, spec, o.timing).serialize(); }, o.model_timeout_s);
       std::optional<ScaleMeasurement> m;
@@ -94,14 +106,15 @@ int run(const Options& o) {
       std::printf("%s\n", row_text(n, spec.label, m, direct_full ? std::nullopt : full, child.output).c_str());
       std::fflush(stdout);
       if (m)
-        csv.row(io::format("%ld,%s,%ld,%ld,%ld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%ld,%.6g,%.6g,%.6g,%.6g,ok", m->nodes,
-                           spec.label.c_str(), m->roi_nodes, m->system_dofs, m->interface_dofs, m->read_s, m->assembly_s,
-                           m->factorization_s, m->condensation_s, m->integrator_setup_s, m->setup_s(), m->step_median_s * 1e3,
-                           m->step_p99_s * 1e3, 1.0 / m->step_median_s, m->steps_timed, m->peak_rss_mb,
-                           full && !direct_full ? full->step_median_s / m->step_median_s : 1.0, m->cg_iterations_per_step,
-                           m->deviation_vs_direct));
+        csv.row(io::format(
+            "%ld,%s,%ld,%ld,%ld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%ld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%ld,ok", m->nodes,
+            spec.label.c_str(), m->roi_nodes, m->system_dofs, m->interface_dofs, m->read_s, m->assembly_s, m->factorization_s,
+            m->condensation_s, m->integrator_setup_s, m->setup_s(), m->step_median_s * 1e3, m->step_p99_s * 1e3,
+            1.0 / m->step_median_s, m->steps_timed, m->peak_rss_mb,
+            full && !direct_full ? full->step_median_s / m->step_median_s : 1.0, m->cg_iterations_per_step,
+            m->deviation_vs_direct, m->newton_per_step, m->all_steps_s, m->peak_displacement_mm, m->retried_steps));
       else
-        csv.row(io::format("%ld,%s,,,,,,,,,,,,,,,,,,failed", n, spec.label.c_str()));
+        csv.row(io::format("%ld,%s,,,,,,,,,,,,,,,,,,,,,,failed", n, spec.label.c_str()));
     }
   }
   csv.close();
@@ -174,6 +187,15 @@ int main(int argc, char** argv) {
   app.add_option("--cg-check-steps", o.cg_check_steps,
                  "steps over which trapezoid-cg is compared with the direct solve (where its factor fits; 0: no check)")
       ->capture_default_str();
+  app.add_option("--neo-hookean", o.neo_hookean,
+                 "brain sizes at which the full model also runs with the neo-Hookean law (same lambda, mu) by "
+                 "Newton: --steps steps from rest, every one timed (row full-nh)")
+      ->capture_default_str();
+  app.add_option("--neo-hookean-load", o.neo_hookean_load,
+                 "the neo-Hookean rows' wall forces, as a fraction of the paper's 16 mN (the full force opens a generated "
+                 "brain's slit by centimetres and inverts elements)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   app.add_option("--rate", o.haptic_rate_hz, "haptic rate (Hz)")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--out", o.out, "directory for scale.csv, haptic.csv and scale.png")->capture_default_str();
   app.add_option("--steps", o.timing.max_steps, "timed steps per model at most")

@@ -19,16 +19,19 @@ double peak_rss_mb() {
   return static_cast<double>(usage.ru_maxrss) / 1024.0;  // kB on Linux
 }
 
-std::unique_ptr<Brain> build_brain(const std::filesystem::path& mesh_file) {
+std::unique_ptr<Brain> build_brain(const std::filesystem::path& mesh_file, fem::MaterialModel model, double load_scale) {
   auto brain = std::make_unique<Brain>();
   Stopwatch clock;
   brain->mesh = mesh::read_mesh(mesh_file);
   mesh::check_mesh(brain->mesh);
   brain->read_s = clock.seconds();
   clock.restart();
-  brain->model = model::build_fem_model(brain->mesh, fem::material_preset("paper"), {"base"},
-                                        {{"opening_left", Vec3(-wall_force_N, 0, 0), model::Ramp{0.5}, {}},
-                                         {"opening_right", Vec3(wall_force_N, 0, 0), model::Ramp{0.5}, {}}});
+  fem::Material material = fem::material_preset("paper");
+  material.model = model;
+  const double force = wall_force_N * load_scale;
+  brain->model = model::build_fem_model(
+      brain->mesh, material, {"base"},
+      {{"opening_left", Vec3(-force, 0, 0), model::Ramp{0.5}, {}}, {"opening_right", Vec3(force, 0, 0), model::Ramp{0.5}, {}}});
   brain->assembly_s = clock.seconds();
   return brain;
 }

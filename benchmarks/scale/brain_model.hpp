@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "condensation/reduced_model.hpp"
+#include "fem/material_model.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "model/fem_model.hpp"
 
@@ -18,8 +19,10 @@ struct Brain {
   double read_s = 0, assembly_s = 0;  ///< mesh read and checked; dof map, K, M, C and loads
 };
 
-/// Reads and checks the mesh, assembles the model.
-std::unique_ptr<Brain> build_brain(const std::filesystem::path& mesh_file);
+/// Reads and checks the mesh, assembles the model: the paper's material (its law `model`: linear,
+/// or neo-Hookean with the same lambda and mu) and its wall forces times `load_scale`.
+std::unique_ptr<Brain> build_brain(const std::filesystem::path& mesh_file, fem::MaterialModel model = fem::MaterialModel::linear,
+                                   double load_scale = 1);
 
 /// The `count` free nodes nearest the target.
 roi::RoiSpec nearest_target(Index count);

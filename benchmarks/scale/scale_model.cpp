@@ -2,6 +2,7 @@
 #include "scale/scale_model.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <memory>
 #include <sstream>
 
@@ -21,8 +22,9 @@ namespace {
 constexpr double dt = 0.05;  // the paper's step
 
 /// Median and p99 of the per-tick time: load, step, displacement out.
+/// `peak_u`, where given: the largest |u_i| over the steps.
 std::pair<double, double> time_steps(const model::SecondOrderSystem& system, integrators::Trapezoid& trapezoid,
-                                     const TimingOptions& timing, long& steps_timed) {
+                                     const TimingOptions& timing, long& steps_timed, double* peak_u = nullptr) {
   model::State state = model::State::at_rest(system.size());
   trapezoid.reset(system, state);
   Vector out(system.size());
@@ -33,6 +35,7 @@ std::pair<double, double> time_steps(const model::SecondOrderSystem& system, int
     trapezoid.step(state);
     out = state.u;
     const double s = clock.seconds();
+    if (peak_u) *peak_u = std::max(*peak_u, state.u.lpNorm<Eigen::Infinity>());
     if (k < timing.warmup_steps) {
       target = std::clamp(static_cast<long>(timing.step_budget_s / s), std::min(10L, timing.max_steps), timing.max_steps);
       continue;
@@ -77,7 +80,8 @@ std::string ScaleMeasurement::serialize() const {
       << "\nintegrator_setup_s=" << integrator_setup_s << "\nstep_median_s=" << step_median_s << "\nstep_p99_s=" << step_p99_s
       << "\nsteps_timed=" << steps_timed << "\npeak_rss_mb=" << peak_rss_mb
       << "\ncg_iterations_per_step=" << cg_iterations_per_step << "\ndeviation_vs_direct=" << deviation_vs_direct
-      << "\ncheck_note=" << check_note << "\n";
+      << "\ncheck_note=" << check_note << "\nnewton_per_step=" << newton_per_step << "\nall_steps_s=" << all_steps_s
+      << "\npeak_displacement_mm=" << peak_displacement_mm << "\nretried_steps=" << retried_steps << "\n";
   return out.str();
 }
 
@@ -101,11 +105,16 @@ ScaleMeasurement ScaleMeasurement::parse(const std::string& text) {
   m.cg_iterations_per_step = std::stod(f.at("cg_iterations_per_step"));
   m.deviation_vs_direct = std::stod(f.at("deviation_vs_direct"));
   m.check_note = f.at("check_note");
+  m.newton_per_step = std::stod(f.at("newton_per_step"));
+  m.all_steps_s = std::stod(f.at("all_steps_s"));
+  m.peak_displacement_mm = std::stod(f.at("peak_displacement_mm"));
+  m.retried_steps = std::stol(f.at("retried_steps"));
   return m;
 }
 
 ScaleMeasurement measure_model(const std::filesystem::path& mesh_file, const ModelSpec& spec, const TimingOptions& timing) {
-  const auto brain = build_brain(mesh_file);
+  const auto brain =
+      build_brain(mesh_file, spec.neo_hookean ? fem::MaterialModel::neo_hookean : fem::MaterialModel::linear, spec.load_scale);
   ScaleMeasurement m;
   m.nodes = static_cast<long>(brain->mesh.num_nodes());
   m.dofs = static_cast<long>(brain->model.system.size());
@@ -125,6 +134,23 @@ ScaleMeasurement measure_model(const std::filesystem::path& mesh_file, const Mod
     system = &condensed.condensation->system();
   }
   m.system_dofs = static_cast<long>(system->size());
+  if (spec.neo_hookean) {  // every step from rest: a nonlinear step's cost grows with the load
+    TimingOptions every = timing;
+    every.warmup_steps = 0;
+    every.step_budget_s = std::numeric_limits<double>::infinity();
+    double peak_u = 0;
+    const Stopwatch all;
+    const auto [median, p99] = time_steps(*system, trapezoid, every, m.steps_timed, &peak_u);
+    m.all_steps_s = all.seconds();
+    m.factorization_s = trapezoid.stats().factorization_s;
+    m.step_median_s = median;
+    m.step_p99_s = p99;
+    m.peak_rss_mb = peak_rss_mb();
+    m.newton_per_step = static_cast<double>(trapezoid.stats().nonlinear_iterations) / static_cast<double>(m.steps_timed);
+    m.peak_displacement_mm = peak_u / mm;
+    m.retried_steps = trapezoid.stats().failed_steps;
+    return m;
+  }
   const auto [median, p99] = time_steps(*system, trapezoid, timing, m.steps_timed);
   (spec.roi_nodes > 0 ? m.integrator_setup_s : m.factorization_s) = trapezoid.stats().factorization_s;
   m.step_median_s = median;
