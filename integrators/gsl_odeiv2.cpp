@@ -26,12 +26,7 @@ std::unique_ptr<Integrator> make_gsl(const IntegratorInfo& info, const gsl_odeiv
   return std::make_unique<GslOdeiv2>(info.name, stepper, control);
 }
 
-bool GslOdeiv2::takes_nonlinear() const {
-  for (const gsl_odeiv2_step_type* implicit :
-       {gsl_odeiv2_step_rk1imp, gsl_odeiv2_step_rk2imp, gsl_odeiv2_step_rk4imp, gsl_odeiv2_step_bsimp, gsl_odeiv2_step_msbdf})
-    if (stepper_ == implicit) return false;
-  return true;
-}
+bool GslOdeiv2::takes_nonlinear() const { return true; }
 
 int GslOdeiv2::rhs(double t, const double y[], double dydt[], void* self) {
   auto* me = static_cast<GslOdeiv2*>(self);
@@ -40,13 +35,22 @@ int GslOdeiv2::rhs(double t, const double y[], double dydt[], void* self) {
   return status;
 }
 
-int GslOdeiv2::jacobian(double, const double*, double* dfdy, double dfdt[], void* self) {
+int GslOdeiv2::jacobian(double t, const double* y, double* dfdy, double dfdt[], void* self) {
   auto* me = static_cast<GslOdeiv2*>(self);
-  const Index m = me->jacobian_.rows();
-  std::memcpy(dfdy, me->jacobian_.data(), sizeof(double) * static_cast<std::size_t>(m * m));
-  std::fill(dfdt, dfdt + m, 0.0);  // the load's time derivative: ignored by the Newton matrix it feeds
-  ++me->stats_.jac_evals;
-  return GSL_SUCCESS;
+  const int status = guarded_callback(me->pending_, GSL_EBADFUNC, [&] {
+    // A nonlinear system's Jacobian moves with u: -M^-1 K_t(t, u) in its lower left block, at
+    // the state the stepper asks for (its implicit steppers' Newton iterations: modified Newton
+    // on this matrix until they ask again).
+    if (me->system_->is_nonlinear()) {
+      const Index n = me->system_->size();
+      me->jacobian_.bottomLeftCorner(n, n) = DenseMatrix(me->form_->lower_left(me->form_->stiffness(t, y)));
+    }
+    const Index m = me->jacobian_.rows();
+    std::memcpy(dfdy, me->jacobian_.data(), sizeof(double) * static_cast<std::size_t>(m * m));
+    std::fill(dfdt, dfdt + m, 0.0);  // the load's time derivative: ignored by the Newton matrix it feeds
+  });
+  if (status == GSL_SUCCESS) ++me->stats_.jac_evals;
+  return status;
 }
 
 void GslOdeiv2::prepare(const model::SecondOrderSystem& system, const model::State& initial) {
@@ -111,7 +115,8 @@ ButcherTableau gsl_rk4_step() {
   t.A.topLeftCorner<4, 4>() = A / 2;
   t.A.bottomRightCorner<4, 4>() = A / 2;
   for (int i = 4; i < 8; ++i) t.A.block<1, 4>(i, 0) = b.transpose() / 2;
-  t.b << b / 2, b / 2;
+  t.b.head<4>() = b / 2;  // (a comma initializer here draws a false maybe-uninitialized warning from g++ 12)
+  t.b.tail<4>() = b / 2;
   return t;
 }
 
@@ -131,7 +136,7 @@ std::vector<IntegratorInfo> gsl_rows() {
                     .tableau = tableau,
                     .make = make,
                     .summary = summary,
-                    .nonlinear = is_explicit});
+                    .nonlinear = true});
   };
   gsl(
       "gsl-bsimp", 6, false, false, LinearSolver::dense, nullptr,
