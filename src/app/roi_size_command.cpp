@@ -36,6 +36,10 @@ void add_roi_size_command(CLI::App& app, Action& action) {
   cmd->add_option("--resolution", o->size.resolution,
                   "Fine grid next to the answer: each size the previous times (1 + this), at least one node more")
       ->capture_default_str();
+  cmd->add_option("--timing-steps", o->size.timing_steps,
+                  "Steps timed for the step column (medians): the full model's, and each answer's")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--out", o->size.out, "Output directory for roi_size.csv and roi_size_runs.csv (optional)");
   cmd->callback([&action, o] {
     action = [o] {

@@ -44,7 +44,7 @@ struct RoiSizeOptions {
   Index start_nodes = 1;
   double coarse = 0.25;      ///< ratio of the coarse grid's successive sizes, less one
   double resolution = 0.02;  ///< the same for the fine grid (at least one node apart)
-  long timing_steps = 300;
+  long timing_steps = 300;  ///< steps timed for the step column (the full model's and each answer's)
   std::filesystem::path out;  ///< optional: DIR/roi_size.csv and DIR/roi_size_runs.csv, rewritten as the search goes
 };
 
