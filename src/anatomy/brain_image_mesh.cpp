@@ -226,31 +226,9 @@ std::string unknown_label(const RegionSpec& r, const std::string& label, const s
          known + ", ... " + std::to_string(names.size()) + " in all)";
 }
 
-std::vector<bool> region_faces(const RegionSpec& r, const std::vector<Face>& faces, const ImageVolume* atlas,
-                               const std::map<std::string, int>& table) {
-  std::vector<bool> chosen(faces.size(), false);
-  if (r.kind == RegionSpec::Kind::below) {
-    for (std::size_t f = 0; f < faces.size(); ++f) chosen[f] = faces[f].centre.z() < r.below_z_mm;
-    if (std::find(chosen.begin(), chosen.end(), true) == chosen.end())
-      throw InputError("--region " + r.text + ": no boundary triangle lies below that height (the brain's bottom is higher)");
-    return chosen;
-  }
-  if (r.kind == RegionSpec::Kind::sphere) {
-    double nearest = std::numeric_limits<double>::infinity();
-    for (std::size_t f = 0; f < faces.size(); ++f) {
-      const double d = (faces[f].centre - r.centre_mm).norm();
-      nearest = std::min(nearest, d);
-      chosen[f] = d <= r.radius_mm;
-    }
-    if (std::find(chosen.begin(), chosen.end(), true) == chosen.end()) {
-      char text[160];
-      std::snprintf(text, sizeof text,
-                    ": no boundary triangle lies within %.3g mm of the point; the brain's surface is %.3g mm from it",
-                    r.radius_mm, nearest);
-      throw InputError("--region " + r.text + text + " (is the point outside the brain, or in another space than the image's?)");
-    }
-    return chosen;
-  }
+/// The label numbers a --region NAME=label:... names, by number or by the atlas's table: InputError
+/// for a name not in the table or a number it does not list.
+std::set<int> region_labels(const RegionSpec& r, const std::map<std::string, int>& table) {
   std::set<int> labels;
   for (const auto& l : r.labels) {
     auto it = table.find(l);
@@ -276,6 +254,44 @@ std::vector<bool> region_faces(const RegionSpec& r, const std::vector<Face>& fac
     }
     labels.insert(*number);
   }
+  return labels;
+}
+
+/// The atlas's table of label names beside it (aal.nii.gz -> aal.nii.txt); empty where there is none.
+std::map<std::string, int> atlas_table(const std::filesystem::path& atlas) {
+  std::filesystem::path table_file = atlas;
+  table_file.replace_extension();  // aal.nii.gz -> aal.nii
+  if (table_file.extension() != ".nii") table_file = atlas;
+  table_file += ".txt";
+  return std::filesystem::exists(table_file) ? read_label_table(table_file) : std::map<std::string, int>{};
+}
+
+std::vector<bool> region_faces(const RegionSpec& r, const std::vector<Face>& faces, const ImageVolume* atlas,
+                               const std::map<std::string, int>& table) {
+  std::vector<bool> chosen(faces.size(), false);
+  if (r.kind == RegionSpec::Kind::below) {
+    for (std::size_t f = 0; f < faces.size(); ++f) chosen[f] = faces[f].centre.z() < r.below_z_mm;
+    if (std::find(chosen.begin(), chosen.end(), true) == chosen.end())
+      throw InputError("--region " + r.text + ": no boundary triangle lies below that height (the brain's bottom is higher)");
+    return chosen;
+  }
+  if (r.kind == RegionSpec::Kind::sphere) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      const double d = (faces[f].centre - r.centre_mm).norm();
+      nearest = std::min(nearest, d);
+      chosen[f] = d <= r.radius_mm;
+    }
+    if (std::find(chosen.begin(), chosen.end(), true) == chosen.end()) {
+      char text[160];
+      std::snprintf(text, sizeof text,
+                    ": no boundary triangle lies within %.3g mm of the point; the brain's surface is %.3g mm from it",
+                    r.radius_mm, nearest);
+      throw InputError("--region " + r.text + text + " (is the point outside the brain, or in another space than the image's?)");
+    }
+    return chosen;
+  }
+  const std::set<int> labels = region_labels(r, table);
   for (std::size_t f = 0; f < faces.size(); ++f) chosen[f] = labels.count(label_under(*atlas, faces[f])) > 0;
   if (std::find(chosen.begin(), chosen.end(), true) == chosen.end())
     throw InputError("--region " + r.text + ": no boundary triangle lies over that atlas label (a deep structure?)");
@@ -344,11 +360,7 @@ void name_sets(mesh::TetMesh& m, const BrainImageOptions& o, const ImageVolume& 
   for (const auto& r : o.regions) {
     if (r.kind == RegionSpec::Kind::label && !atlas) {
       atlas = read_nifti(o.atlas);
-      std::filesystem::path table_file = o.atlas;
-      table_file.replace_extension();  // aal.nii.gz -> aal.nii
-      if (table_file.extension() != ".nii") table_file = o.atlas;
-      table_file += ".txt";
-      if (std::filesystem::exists(table_file)) table = read_label_table(table_file);
+      table = atlas_table(o.atlas);
     }
     add_surface_set(m, r.name, faces, region_faces(r, faces, atlas ? &*atlas : nullptr, table));
   }
@@ -386,6 +398,9 @@ std::filesystem::path colin27_atlas() {
 BrainImageMesh mesh_brain_image(const BrainImageOptions& o, const std::filesystem::path& output,
                                 const std::function<void(const std::string&)>& progress) {
   validate(o);
+  // A label the atlas's table does not hold is refused now, not after minutes of meshing.
+  for (const auto& r : o.regions)
+    if (r.kind == RegionSpec::Kind::label) region_labels(r, atlas_table(o.atlas));
   BrainImageMesh result;
   const ImageVolume image = read_nifti(o.image);
   MaskCleanup clean = clean_mask(image, o.threshold);

@@ -22,7 +22,7 @@ namespace {
 void write_steps(const CalculixProblem& p, const std::vector<double>& fractions, bool nlgeom, std::ostream& out) {
   out << "*TIME POINTS, NAME=END\n1.0\n";
   for (const double f : fractions) {
-    out << (nlgeom ? "*STEP, NLGEOM, INC=10000\n" : "*STEP\n") << "*STATIC\n0.05, 1.0, 1e-6, 0.05\n";
+    out << (nlgeom ? "*STEP, NLGEOM, INC=10000\n" : "*STEP\n") << "*STATIC\n0.25, 1.0, 1e-6, 0.5\n";
     if (p.newton_tolerance > 0) out << calculix::field_controls(p.newton_tolerance);
     calculix::write_loads(p, f, out);
     out << "*NODE PRINT, NSET=NALL, TIME POINTS=END\nU\n*END STEP\n";
