@@ -32,7 +32,7 @@ void write_point_masses(const CalculixDynamicProblem& p, std::ostream& out) {
                     static_cast<long long>(solid + n) + 1, static_cast<long long>(n) + 1, p.lumped_mass[n] * t_per_kg);
 }
 
-void write_deck(const CalculixDynamicProblem& p, const fs::path& file) {
+void write_dynamic_deck(const CalculixDynamicProblem& p, const fs::path& file) {
   std::ofstream out(file);
   const fem::Material& m = p.model.material;
   out << "** roifem: the dynamic problem for CalculiX (mm, N, MPa, t, s)\n";
@@ -62,7 +62,7 @@ std::vector<Vector> solve_dynamics_with_calculix(const CalculixDynamicProblem& p
   fs::create_directories(work_dir);
   const std::string job = "dynamic";
   for (const char* ext : {".dat", ".frd", ".sta", ".cvg"}) fs::remove(work_dir / (job + ext));
-  write_deck(p, work_dir / (job + ".inp"));
+  write_dynamic_deck(p, work_dir / (job + ".inp"));
   const int status = calculix::run_ccx(work_dir, job);
   const auto blocks = calculix::read_displacements(work_dir / (job + ".dat"), nodes);
   std::vector<Vector> u;

@@ -31,9 +31,9 @@ inline void write_nifti(const std::filesystem::path& file, std::array<int, 3> di
   const float pixdim[8] = {1, static_cast<float>(voxel_mm), static_cast<float>(voxel_mm), static_cast<float>(voxel_mm), 1, 1, 1,
                            1};
   std::memcpy(header.data() + 76, pixdim, sizeof pixdim);
-  put(108, 352.0f);                       // vox_offset
-  put(112, 1.0f);                         // scl_slope
-  put(254, std::int16_t{sform ? 1 : 0});  // sform_code: scanner space, or none
+  put(108, 352.0f);                                    // vox_offset
+  put(112, 1.0f);                                      // scl_slope
+  put(254, static_cast<std::int16_t>(sform ? 1 : 0));  // sform_code: scanner space, or none
   const float srow[12] = {static_cast<float>(voxel_mm),
                           0,
                           0,
