@@ -76,11 +76,11 @@ std::string row_text(long nodes, const std::string& label, const std::optional<S
 int run(const Options& o) {
   std::filesystem::create_directories(o.out);
   if (o.machine_bounds) report_machine_bounds(o.out);
-  io::CsvWriter csv(
-      o.out / "scale.csv",
-      "nodes,model,roi_nodes,system_dofs,interface_dofs,read_s,assembly_s,factorization_s,condensation_s,"
-      "integrator_setup_s,setup_s,step_median_ms,step_p99_ms,frame_rate_hz,steps_timed,peak_rss_mb,"
-      "step_vs_full,cg_iterations_per_step,cg_deviation_vs_direct,newton_per_step,all_steps_s,peak_displacement_mm,retried_steps,status");
+  io::CsvWriter csv(o.out / "scale.csv",
+                    "nodes,model,roi_nodes,system_dofs,interface_dofs,read_s,assembly_s,factorization_s,condensation_s,"
+                    "integrator_setup_s,setup_s,step_median_ms,step_p99_ms,frame_rate_hz,steps_timed,peak_rss_mb,"
+                    "step_vs_full,cg_iterations_per_step,cg_deviation_vs_direct,newton_per_step,all_steps_s,peak_displacement_mm,"
+                    "retried_steps,status");
   std::printf(
       "Scale: trapezoidal rule, dt = 0.05 s; a step = new load + step + displacement out; medians over the timed steps\n");
   std::printf("%8s %-10s %6s %8s %6s %8s %9s %9s %8s %10s %10s %9s %8s %8s\n", "nodes", "model", "ROI", "dofs", "iface",
@@ -107,10 +107,10 @@ int run(const Options& o) {
       std::fflush(stdout);
       if (m)
         csv.row(io::format(
-            "%ld,%s,%ld,%ld,%ld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%ld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%ld,ok", m->nodes,
-            spec.label.c_str(), m->roi_nodes, m->system_dofs, m->interface_dofs, m->read_s, m->assembly_s, m->factorization_s,
-            m->condensation_s, m->integrator_setup_s, m->setup_s(), m->step_median_s * 1e3, m->step_p99_s * 1e3,
-            1.0 / m->step_median_s, m->steps_timed, m->peak_rss_mb,
+            "%ld,%s,%ld,%ld,%ld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%ld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%ld,ok",
+            m->nodes, spec.label.c_str(), m->roi_nodes, m->system_dofs, m->interface_dofs, m->read_s, m->assembly_s,
+            m->factorization_s, m->condensation_s, m->integrator_setup_s, m->setup_s(), m->step_median_s * 1e3,
+            m->step_p99_s * 1e3, 1.0 / m->step_median_s, m->steps_timed, m->peak_rss_mb,
             full && !direct_full ? full->step_median_s / m->step_median_s : 1.0, m->cg_iterations_per_step,
             m->deviation_vs_direct, m->newton_per_step, m->all_steps_s, m->peak_displacement_mm, m->retried_steps));
       else

@@ -42,9 +42,9 @@ struct RoiSizeOptions {
                                                   condensation::parse_reduction("craig-bampton-10")};
   std::string integrator = "trapezoid";  ///< runs the full reference and every reduced model, at the scenario's dt
   Index start_nodes = 1;
-  double coarse = 0.25;      ///< ratio of the coarse grid's successive sizes, less one
-  double resolution = 0.02;  ///< the same for the fine grid (at least one node apart)
-  long timing_steps = 300;  ///< steps timed for the step column (the full model's and each answer's)
+  double coarse = 0.25;       ///< ratio of the coarse grid's successive sizes, less one
+  double resolution = 0.02;   ///< the same for the fine grid (at least one node apart)
+  long timing_steps = 300;    ///< steps timed for the step column (the full model's and each answer's)
   std::filesystem::path out;  ///< optional: DIR/roi_size.csv and DIR/roi_size_runs.csv, rewritten as the search goes
 };
 
