@@ -33,10 +33,9 @@ struct TimingOptions {
 
 struct ScaleMeasurement {
   long nodes = 0, dofs = 0, roi_nodes = 0, system_dofs = 0, interface_dofs = 0;
-  double read_s = 0;      ///< mesh file read and checked
-  double assembly_s = 0;  ///< dof map, K, M, C and loads
-  double factorization_s =
-      0;  ///< condensed: ordering + factor of K over s and I; full: K_eff's factor; neo-Hookean: all Newton solves
+  double read_s = 0;              ///< mesh file read and checked
+  double assembly_s = 0;          ///< dof map, K, M, C and loads
+  double factorization_s = 0;     ///< condensed: ordering + factor of K over s and I; full: K_eff's; neo-Hookean: Newton's
   double condensation_s = 0;      ///< S read off the factor, loads reduced, reduced system assembled
   double integrator_setup_s = 0;  ///< condensed: the factor of the condensed K_eff
   double step_median_s = 0, step_p99_s = 0;
