@@ -134,31 +134,27 @@ ScaleMeasurement measure_model(const std::filesystem::path& mesh_file, const Mod
     system = &condensed.condensation->system();
   }
   m.system_dofs = static_cast<long>(system->size());
+  TimingOptions options = timing;
   if (spec.neo_hookean) {  // every step from rest: a nonlinear step's cost grows with the load
-    TimingOptions every = timing;
-    every.warmup_steps = 0;
-    every.step_budget_s = std::numeric_limits<double>::infinity();
-    double peak_u = 0;
-    const Stopwatch all;
-    const auto [median, p99] = time_steps(*system, trapezoid, every, m.steps_timed, &peak_u);
-    m.all_steps_s = all.seconds();
-    m.factorization_s = trapezoid.stats().factorization_s;
-    m.step_median_s = median;
-    m.step_p99_s = p99;
-    m.peak_rss_mb = peak_rss_mb();
-    m.newton_per_step = static_cast<double>(trapezoid.stats().nonlinear_iterations) / static_cast<double>(m.steps_timed);
-    m.peak_displacement_mm = peak_u / mm;
-    m.retried_steps = trapezoid.stats().failed_steps;
-    return m;
+    options.warmup_steps = 0;
+    options.step_budget_s = std::numeric_limits<double>::infinity();
   }
-  const auto [median, p99] = time_steps(*system, trapezoid, timing, m.steps_timed);
-  (spec.roi_nodes > 0 ? m.integrator_setup_s : m.factorization_s) = trapezoid.stats().factorization_s;
+  double peak_u = 0;
+  const Stopwatch all;
+  const auto [median, p99] = time_steps(*system, trapezoid, options, m.steps_timed, spec.neo_hookean ? &peak_u : nullptr);
+  const integrators::Stats stats = trapezoid.stats();
+  (spec.roi_nodes > 0 ? m.integrator_setup_s : m.factorization_s) = stats.factorization_s;
   m.step_median_s = median;
   m.step_p99_s = p99;
   m.peak_rss_mb = peak_rss_mb();
+  if (spec.neo_hookean) {
+    m.all_steps_s = all.seconds();
+    m.newton_per_step = static_cast<double>(stats.nonlinear_iterations) / static_cast<double>(m.steps_timed);
+    m.peak_displacement_mm = peak_u / mm;
+    m.retried_steps = stats.failed_steps;
+  }
   if (spec.conjugate_gradients) {
-    const auto& st = trapezoid.stats();
-    m.cg_iterations_per_step = static_cast<double>(st.lin_iterations) / static_cast<double>(st.steps);
+    m.cg_iterations_per_step = static_cast<double>(stats.lin_iterations) / static_cast<double>(stats.steps);
     if (spec.check_steps > 0) check_against_direct(*system, spec.check_steps, m);
   }
   return m;

@@ -399,8 +399,11 @@ BrainImageMesh mesh_brain_image(const BrainImageOptions& o, const std::filesyste
                                 const std::function<void(const std::string&)>& progress) {
   validate(o);
   // A label the atlas's table does not hold is refused now, not after minutes of meshing.
-  for (const auto& r : o.regions)
-    if (r.kind == RegionSpec::Kind::label) region_labels(r, atlas_table(o.atlas));
+  if (std::any_of(o.regions.begin(), o.regions.end(), [](const RegionSpec& r) { return r.kind == RegionSpec::Kind::label; })) {
+    const auto table = atlas_table(o.atlas);
+    for (const auto& r : o.regions)
+      if (r.kind == RegionSpec::Kind::label) region_labels(r, table);
+  }
   BrainImageMesh result;
   const ImageVolume image = read_nifti(o.image);
   MaskCleanup clean = clean_mask(image, o.threshold);
