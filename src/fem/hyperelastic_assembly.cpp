@@ -123,9 +123,8 @@ void HyperelasticAssembler::for_each_element(Evaluator&& evaluate, Visit&& visit
 }
 
 template <class Visit>
-void HyperelasticAssembler::for_each_element(const Vector& u_full, bool tangent, Visit&& visit) const {
+void HyperelasticAssembler::for_each_element(const Vector& u_full, Evaluate what, Visit&& visit) const {
   check_size(u_full);
-  const Evaluate what = tangent ? Evaluate::force_and_tangent : Evaluate::force;
   for_each_element(
       [&](const auto& geometry, const NeoHookean& law, const auto& gather) {
         if constexpr (std::is_same_v<std::decay_t<decltype(geometry)>, Tet4Geometry>)
@@ -177,11 +176,19 @@ void HyperelasticAssembler::scatter(std::size_t slot, std::span<const int> nodes
 }
 
 void HyperelasticAssembler::force(const Vector& u_full, Eigen::Ref<Vector> f_int) const {
-  f_int.setZero();
-  for_each_element(u_full, false, [&](std::size_t, std::span<const int> nodes, const auto& r) {
+  add_forces(u_full, Evaluate::force, f_int);
+}
+
+void HyperelasticAssembler::excess_force(const Vector& u_full, Eigen::Ref<Vector> g) const {
+  add_forces(u_full, Evaluate::excess, g);
+}
+
+void HyperelasticAssembler::add_forces(const Vector& u_full, Evaluate what, Eigen::Ref<Vector> f) const {
+  f.setZero();
+  for_each_element(u_full, what, [&](std::size_t, std::span<const int> nodes, const auto& r) {
     for (std::size_t a = 0; a < nodes.size(); ++a)
       for (int i = 0; i < 3; ++i)
-        if (const int row = dofs_.free_dof(nodes[a], i); row >= 0) f_int[row] += r.force[3 * static_cast<Index>(a) + i];
+        if (const int row = dofs_.free_dof(nodes[a], i); row >= 0) f[row] += r.force[3 * static_cast<Index>(a) + i];
   });
 }
 
@@ -189,7 +196,7 @@ void HyperelasticAssembler::force_and_tangent(const Vector& u_full, Eigen::Ref<V
   if (K_t.nonZeros() != pattern_.nonZeros() || K_t.rows() != pattern_.rows()) K_t = pattern_;
   std::fill(K_t.valuePtr(), K_t.valuePtr() + K_t.nonZeros(), 0.0);
   f_int.setZero();
-  for_each_element(u_full, true, [&](std::size_t slot, std::span<const int> nodes, const auto& r) {
+  for_each_element(u_full, Evaluate::force_and_tangent, [&](std::size_t slot, std::span<const int> nodes, const auto& r) {
     for (std::size_t a = 0; a < nodes.size(); ++a)
       for (int i = 0; i < 3; ++i)
         if (const int row = dofs_.free_dof(nodes[a], i); row >= 0) f_int[row] += r.force[3 * static_cast<Index>(a) + i];
@@ -233,7 +240,7 @@ void HyperelasticAssembler::discrete_gradient_and_tangent(const Vector& u_a_full
 
 double HyperelasticAssembler::energy(const Vector& u_full) const {
   double total = 0;
-  for_each_element(u_full, false, [&](std::size_t, std::span<const int>, const auto& r) { total += r.energy; });
+  for_each_element(u_full, Evaluate::energy, [&](std::size_t, std::span<const int>, const auto& r) { total += r.energy; });
   return total;
 }
 

@@ -13,6 +13,7 @@
 
 #include "common/types.hpp"
 #include "fem/dof_map.hpp"
+#include "fem/hyperelastic_element.hpp"
 #include "fem/material_map.hpp"
 #include "fem/neo_hookean.hpp"
 #include "fem/tet4.hpp"
@@ -31,6 +32,11 @@ class HyperelasticAssembler {
   /// f_int at the full displacement u_full (3N). Throws ModelError naming the first tetrahedron
   /// that has inverted (det F <= 0 at a quadrature point), with its nodes and det F.
   void force(const Vector& u_full, Eigen::Ref<Vector> f_int) const;
+  /// What the law's force exceeds the linear elements' by at u_full, f_int(u) - K_lin u with K_lin
+  /// the same elements' linear stiffness (the law's tangent at rest), element by element
+  /// (fem/hyperelastic_element.hpp's Evaluate::excess): no product by K_lin. Inverted elements as
+  /// in force().
+  void excess_force(const Vector& u_full, Eigen::Ref<Vector> g) const;
   /// f_int and K_t at u_full; K_t's values are overwritten in pattern()'s pattern.
   void force_and_tangent(const Vector& u_full, Eigen::Ref<Vector> f_int, SparseMatrix& K_t) const;
   /// Gonzalez's algorithmic force between the full displacements u_a and u_b
@@ -50,7 +56,9 @@ class HyperelasticAssembler {
   template <class Evaluator, class Visit>
   void for_each_element(Evaluator&& evaluate, Visit&& visit) const;
   template <class Visit>
-  void for_each_element(const Vector& u_full, bool tangent, Visit&& visit) const;
+  void for_each_element(const Vector& u_full, Evaluate what, Visit&& visit) const;
+  /// f = the elements' forces (force or excess) at u_full, over the free dofs.
+  void add_forces(const Vector& u_full, Evaluate what, Eigen::Ref<Vector> f) const;
   void discrete_gradient(const Vector& u_a_full, const Vector& u_b_full, Eigen::Ref<Vector> f_alg, SparseMatrix* K_alg) const;
   void check_size(const Vector& u_full) const;
   /// The nodes of the `slot`-th element listed (corners, then midpoints on a quadratic mesh).

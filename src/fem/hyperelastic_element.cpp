@@ -47,12 +47,13 @@ HyperelasticResponse<Nodes> integrate_element(const std::array<Eigen::Matrix<dou
   Mat9 A;
   for (int q = 0; q < Points; ++q) {
     const auto& g = grads[q];
-    r.energy += weight * law.energy(H[q]);
-    if (!tangent) {
-      P = law.stress(H[q]);
-    } else {
+    if (what == Evaluate::energy) r.energy += weight * law.energy(H[q]);
+    if (tangent)
       law.stress_and_tangent(H[q], P, A);
-    }
+    else if (what == Evaluate::excess)
+      P = law.excess_stress(H[q]);
+    else
+      P = law.stress(H[q]);
     // f_a = w P g_a: the 3 x Nodes block P G^T.
     const Eigen::Matrix<double, 3, Nodes> PG = weight * P * g.transpose();
     for (int a = 0; a < Nodes; ++a) r.force.template segment<3>(3 * a) += PG.col(a);

@@ -20,14 +20,21 @@ template <int Nodes>
 struct HyperelasticResponse {
   Eigen::Matrix<double, 3 * Nodes, 1> force;
   Eigen::Matrix<double, 3 * Nodes, 3 * Nodes> tangent;  ///< filled when asked for
-  double energy = 0;                                    ///< J
+  double energy = 0;                                    ///< J, when asked for (Evaluate::energy)
   /// The smallest det F over the quadrature points. At or below zero the element has inverted:
   /// force, tangent and energy are then not computed.
   double min_J = 1;
 };
 
-/// What an evaluation computes.
-enum class Evaluate { force, force_and_tangent };
+/// What an evaluation computes:
+///  - force: f;
+///  - energy: f and the energy;
+///  - excess: what the law's force exceeds the linear element's by, f - K_lin u_e, K_lin the
+///    linear element of the same lambda and mu (the law's tangent at rest), formed as the stress
+///    difference P(F) - sigma_lin(H) at each point (NeoHookean::excess_stress), so that no element
+///    matrix is formed: what a haptic tick iterates on (integrators/haptic_trapezoid.hpp);
+///  - force_and_tangent: f and K.
+enum class Evaluate { force, energy, excess, force_and_tangent };
 
 HyperelasticResponse<4> tet4_hyperelastic(const Tet4Geometry& g, const NeoHookean& law, const Eigen::Matrix<double, 12, 1>& u_e,
                                           Evaluate what);

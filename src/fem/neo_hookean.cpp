@@ -26,12 +26,15 @@ double cube_root_remainder(double d) {
   return 3 * sum;
 }
 
-NeoHookeanStrain strain_of(const Mat3& H) {
+/// The strain measures; `with_invariant`: I1_minus_3J23 too (the energy's; the stresses need
+/// only J - 1 and dev C).
+NeoHookeanStrain strain_of(const Mat3& H, bool with_invariant = false) {
   NeoHookeanStrain s;
   s.J_minus_1 = NeoHookean::J_minus_1(H);
   const Mat3 twice_E = H + H.transpose() + H.transpose() * H;
   const double tr2E = twice_E.trace();
   s.dev_C = twice_E - tr2E / 3 * Mat3::Identity();
+  if (!with_invariant) return s;
   // det C = 1 + 2 tr E + 2 ((tr E)^2 - tr E^2) + 8 det E, so with delta = det C - 1 = J^2 - 1:
   //   tr C - 3 (1 + delta)^(1/3) = -2 ((tr E)^2 - tr E^2) - 8 det E - h(delta).
   const Mat3 E = 0.5 * twice_E;
@@ -54,7 +57,7 @@ double NeoHookean::J_minus_1(const Mat3& H) {
 }
 
 double NeoHookean::energy(const Mat3& H) const {
-  const NeoHookeanStrain s = strain_of(H);
+  const NeoHookeanStrain s = strain_of(H, true);
   const double a = std::exp(-2.0 / 3.0 * std::log1p(s.J_minus_1));  // J^(-2/3)
   return C10 * a * s.I1_minus_3J23 + s.J_minus_1 * s.J_minus_1 / D1;
 }
@@ -64,6 +67,11 @@ Mat3 NeoHookean::stress(const Mat3& H) const {
   const double J = 1 + s.J_minus_1;
   const Mat3 S = 2 * C10 * std::pow(J, -2.0 / 3.0) * s.dev_C + 2 / D1 * s.J_minus_1 * J * Mat3::Identity();
   return (Mat3::Identity() + H).inverse().transpose() * S;
+}
+
+Mat3 NeoHookean::excess_stress(const Mat3& H) const {
+  const double mu = 2 * C10, lambda = 2 / D1 - 2.0 / 3.0 * mu;
+  return stress(H) - (lambda * H.trace() * Mat3::Identity() + mu * (H + H.transpose()));
 }
 
 // With a = J^(-2/3), G = F^-1 and the derivatives dJ/dF_kL = J G_Lk, dG_Ji/dF_kL = -G_Jk G_Li:

@@ -34,6 +34,10 @@ struct NeoHookean {
   double energy(const Mat3& H) const;
   /// First Piola-Kirchhoff stress P (Pa).
   Mat3 stress(const Mat3& H) const;
+  /// P less the linear law's stress at the same gradient, P(H) - [lambda tr(H) I + mu (H + H^T)]
+  /// with lambda = kappa - 2 mu/3 (the law's linearization at rest): what the law adds to the
+  /// linear model, O(|H|^2).
+  Mat3 excess_stress(const Mat3& H) const;
   /// P and its derivative A = dP/dF in one pass.
   void stress_and_tangent(const Mat3& H, Mat3& P, Mat9& A) const;
   /// The second Piola-Kirchhoff stress S = 2 dW/dC = C^-1 [mu J^(-2/3) dev C + kappa (J - 1) J I] (Pa)

@@ -145,6 +145,12 @@ void HyperelasticForce::force_and_tangent(double t, const Vector& u, Vector& f, 
   add_elements_to_K_lin(1.0, K_t);
 }
 
+void HyperelasticForce::excess_force(const Vector& u, Vector& g) const {
+  if (motion_)
+    throw InputError("the law's excess over the linear model is not formed where tools move its elements (" + description_ + ")");
+  assembler_->excess_force(displacement(u, Vector()), g);
+}
+
 Vector HyperelasticForce::tool_force_correction(double t, const Vector& u) const {
   if (!motion_) return {};
   const Vector g = positions(t);

@@ -52,6 +52,9 @@ class HyperelasticForce final : public InternalForce {
   }
   void force(double t, const Vector& u, Vector& f) const override;
   void force_and_tangent(double t, const Vector& u, Vector& f, SparseMatrix& K_t) const override;
+  /// The law's elements' excess (fem::HyperelasticAssembler::excess_force): K = K_lin + their
+  /// linear stiffness is the system's K, so this is f_int - K u.
+  void excess_force(const Vector& u, Vector& g) const override;
   /// The elements' discrete gradient plus K_lin (u_a + u_b)/2 (exact for the quadratic K_lin part).
   void discrete_gradient(const Vector& u_a, const Vector& u_b, Vector& f_alg) const override;
   /// K_alg = K_lin / 2 + the elements' df_alg/du_b.

@@ -28,6 +28,11 @@ class InternalForce {
   virtual void force(double t, const Vector& u, Vector& f) const = 0;
   /// f_int(t, u) and K_t(t, u) (K_t's values overwritten in the system's K pattern).
   virtual void force_and_tangent(double t, const Vector& u, Vector& f, SparseMatrix& K_t) const = 0;
+  /// What the law adds to the linear model, f_int(u) - K u with K the system's K (the tangent at
+  /// rest), formed element by element from the law's elements alone, with no product by K (a
+  /// hybrid ROI's K~ has a dense interface block): what a haptic tick iterates on
+  /// (integrators/haptic_trapezoid.hpp). A force without motion only; throws InputError else.
+  virtual void excess_force(const Vector& u, Vector& g) const = 0;
   /// Gonzalez's discrete gradient between two states (fem/discrete_gradient.hpp): a force f_alg
   /// with f_alg . (u_b - u_a) = W(u_b) - W(u_a) exactly, f_alg(u, u) = f_int(u), and second-order
   /// close to f_int((u_a + u_b)/2). What integrators/energy_momentum.hpp conserves energy by.

@@ -105,8 +105,8 @@ TEST(DiscreteGradient, Tet4AndTet10ForcesDoTheEnergysIncrementAndNoNetForceOrTor
     const Tet4Geometry g = tet4_geometry(t.x[0], t.x[1], t.x[2], t.x[3]);
     const auto r = tet4_discrete_gradient(g, dg_law, t.u_a, t.u_b);
     ASSERT_GT(r.min_J, 0);
-    const double E_a = tet4_hyperelastic(g, dg_law, t.u_a, Evaluate::force).energy;
-    const double E_b = tet4_hyperelastic(g, dg_law, t.u_b, Evaluate::force).energy;
+    const double E_a = tet4_hyperelastic(g, dg_law, t.u_a, Evaluate::energy).energy;
+    const double E_b = tet4_hyperelastic(g, dg_law, t.u_b, Evaluate::energy).energy;
     EXPECT_NEAR(r.force.dot(t.u_b - t.u_a), E_b - E_a, 1e-12 * (E_a + E_b)) << "seed " << seed;
     EXPECT_NEAR(r.energy, E_b, 1e-15 * E_b);
     // Linear and angular momentum: sum f_a = 0 and sum x_mid,a x f_a = 0 (F_mid S F_mid^T symmetric).
@@ -135,8 +135,8 @@ TEST(DiscreteGradient, Tet4AndTet10ForcesDoTheEnergysIncrementAndNoNetForceOrTor
     }
     const auto r10 = tet10_discrete_gradient(g10, dg_law, u10_a, u10_b);
     ASSERT_GT(r10.min_J, 0);
-    const double E10_a = tet10_hyperelastic(g10, dg_law, u10_a, Evaluate::force).energy;
-    const double E10_b = tet10_hyperelastic(g10, dg_law, u10_b, Evaluate::force).energy;
+    const double E10_a = tet10_hyperelastic(g10, dg_law, u10_a, Evaluate::energy).energy;
+    const double E10_b = tet10_hyperelastic(g10, dg_law, u10_b, Evaluate::energy).energy;
     EXPECT_NEAR(r10.force.dot(u10_b - u10_a), E10_b - E10_a, 1e-12 * (E10_a + E10_b)) << "seed " << seed;
   }
 }

@@ -139,7 +139,7 @@ void expect_consistent(const Eigen::Matrix<double, 3 * N, 1>& ue, Evaluate evalu
     auto up = ue, um = ue;
     up[j] += h;
     um[j] -= h;
-    const auto rp = evaluate(up, fem::Evaluate::force), rm = evaluate(um, fem::Evaluate::force);
+    const auto rp = evaluate(up, fem::Evaluate::energy), rm = evaluate(um, fem::Evaluate::energy);
     f_fd[j] = (rp.energy - rm.energy) / (2 * h);
     K_fd.col(j) = (rp.force - rm.force) / (2 * h);
   }
@@ -190,7 +190,7 @@ TEST(HyperelasticElement, RigidRotationBy90DegreesGivesNoForceWhereTheLinearElem
   const Mat3 R = Eigen::AngleAxisd(M_PI / 2, Vec3(1, 2, 3).normalized()).toRotationMatrix();
   Eigen::Matrix<double, 12, 1> u4;
   for (int a = 0; a < 4; ++a) u4.segment<3>(3 * a) = (R - Mat3::Identity()) * x[a];
-  const auto r4 = tet4_hyperelastic(g4, law, u4, Evaluate::force);
+  const auto r4 = tet4_hyperelastic(g4, law, u4, Evaluate::energy);
   // The scale: the force of a 10% stretch of the same element.
   Eigen::Matrix<double, 12, 1> stretch;
   for (int a = 0; a < 4; ++a) stretch.segment<3>(3 * a) = Vec3(0.1 * x[a].x(), 0, 0);
@@ -207,6 +207,37 @@ TEST(HyperelasticElement, RigidRotationBy90DegreesGivesNoForceWhereTheLinearElem
   for (int k = 0; k < 6; ++k)
     u10.segment<3>(3 * (4 + k)) = 0.5 * (u4.segment<3>(3 * tet10_edges[k][0]) + u4.segment<3>(3 * tet10_edges[k][1]));
   EXPECT_LT(tet10_hyperelastic(g10, law, u10, Evaluate::force).force.norm(), 1e-12 * scale);
+}
+
+TEST(HyperelasticElement, TheExcessIsTheForceLessTheLinearElementsAndVanishesQuadratically) {
+  // Evaluate::excess forms f - K_lin u_e from the stresses, without K_lin: against the linear
+  // elements' own matrices (tet4_stiffness, tet10_stiffness) at a large and at small displacements.
+  const auto x = skewed_tetrahedron();
+  const Tet4Geometry g4 = tet4_geometry(x[0], x[1], x[2], x[3]);
+  const Tet10Geometry g10 = tet10_geometry(x[0], x[1], x[2], x[3]);
+  const ElementMatrix K4 = tet4_stiffness(g4, neo_hookean_tissue);
+  const auto K10 = tet10_stiffness(g10, neo_hookean_tissue);
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> draw(-1, 1);
+  Eigen::Matrix<double, 12, 1> u4;
+  Eigen::Matrix<double, 30, 1> u10;
+  for (int i = 0; i < 12; ++i) u4[i] = draw(rng);
+  for (int i = 0; i < 30; ++i) u10[i] = draw(rng);
+  std::vector<double> small;
+  for (const double size : {0.1, 1e-2, 1e-3}) {
+    const Eigen::Matrix<double, 12, 1> a4 = size * u4;
+    const Eigen::Matrix<double, 30, 1> a10 = 0.5 * size * u10;
+    const auto f4 = tet4_hyperelastic(g4, law, a4, Evaluate::force);
+    const auto e4 = tet4_hyperelastic(g4, law, a4, Evaluate::excess);
+    const auto f10 = tet10_hyperelastic(g10, law, a10, Evaluate::force);
+    const auto e10 = tet10_hyperelastic(g10, law, a10, Evaluate::excess);
+    EXPECT_LT((e4.force - (f4.force - K4 * a4)).norm(), 1e-13 * (K4 * a4).norm()) << size;
+    EXPECT_LT((e10.force - (f10.force - K10 * a10)).norm(), 1e-13 * (K10 * a10).norm()) << size;
+    small.push_back(e4.force.norm() / (K4 * a4).norm());
+  }
+  // O(|u|^2): the excess relative to the linear force falls by the displacement's factor.
+  EXPECT_NEAR(small[1] / small[0], 0.1, 0.02);
+  EXPECT_NEAR(small[2] / small[1], 0.1, 0.01);
 }
 
 /// An unstructured box with its interior nodes jittered, and its boundary nodes.
