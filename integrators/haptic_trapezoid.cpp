@@ -37,8 +37,9 @@ HapticTrapezoid::HapticTrapezoid(const model::SecondOrderSystem& system, double 
     if (newton_.iterations < 1)
       throw InputError("haptic trapezoid: a nonlinear model needs at least one Newton iteration per tick");
     inertia_ = rule_.c_u() * system.M + (2.0 / dt) * system.C;
-    for (Vector* v : {&b_, &f_int_, &residual_, &step_}) v->resize(n);
+    for (Vector* v : {&rhs_, &step_, &excess_used_}) v->resize(n);
     zero_ = Vector::Zero(n);
+    excess_ = Vector::Zero(n);
   }
 }
 
@@ -98,6 +99,7 @@ void HapticTrapezoid::reset(const model::State& initial) {
   t0_ = initial.t;
   k_ = 0;
   a_ = model::AverageAcceleration::consistent_acceleration(system_, initial);
+  if (system_.is_nonlinear()) system_.internal_force->excess_force(initial.u, excess_);
 }
 
 Vec3 HapticTrapezoid::tick(const Vec3& g, model::State& s) {
@@ -108,49 +110,55 @@ Vec3 HapticTrapezoid::tick(const Vec3& g, model::State& s) {
   Vec3 load_on_tool = Vec3::Zero();
   for (std::size_t i = 0; i < held_.size(); ++i) load_on_tool[static_cast<Index>(i % 3)] += f_[held_[i]];
   rule_.history(system_, s, a_, f_, w_);
-  K_eff_.solve(f_, w_, u_next_);  // the plain step
-  for (std::size_t i = 0; i < held_.size(); ++i) gap_[static_cast<Index>(i)] = u_next_[held_[i]] - g[static_cast<Index>(i % 3)];
-  W_factor_.solveInPlace(gap_);  // lambda
-  u_next_.noalias() -= Z_ * gap_;
-  if (system_.is_nonlinear()) {
-    system_.apply_mass(w_, b_);
-    b_ += f_;  // the step's right-hand side f + M w (history() folded C's terms into w)
-    solve_nonlinear(s.t);
+  if (!system_.is_nonlinear()) {
+    constrained_solve(f_, g);  // the plain step, then the tool's constraint
+  } else {
+    rhs_ = f_ - excess_;  // the first iteration: g at u_n
+    constrained_solve(rhs_, g);
+    excess_used_ = excess_;
+    iterate_nonlinear();
   }
   rule_.advance(s, a_, u_next_, work_);
   Vec3 force = -load_on_tool;
-  if (system_.is_nonlinear()) {
-    for (std::size_t i = 0; i < held_.size(); ++i) force[static_cast<Index>(i % 3)] += f_int_[held_[i]];
-    return force;
-  }
   for (Index c = 0; c < 3; ++c)
     for (decltype(rows_)::InnerIterator it(rows_, c); it; ++it) force[c] += it.value() * s.u[it.col()];
+  if (system_.is_nonlinear())
+    for (std::size_t i = 0; i < held_.size(); ++i) force[static_cast<Index>(i % 3)] += excess_[held_[i]];
   return force;
 }
 
-void HapticTrapezoid::solve_nonlinear(double t) {
-  // The residual's scale: the internal force at the predictor (the right-hand side f + M w is
-  // mostly the step's inertia at a haptic dt, 4/dt^2 M u: against it every residual looks small).
-  double scale = 0;
-  auto residual = [&] {  // R(u) at u_next_, and its largest entry off the held dofs (theirs: the tool's reaction)
-    system_.internal_force->force(t, u_next_, f_int_);
-    if (scale == 0) scale = std::max(f_int_.lpNorm<Eigen::Infinity>(), 1e-300);
-    residual_.noalias() = inertia_ * u_next_;
-    residual_ += f_int_ - b_;
-    double largest = 0;
-    for (Index i = 0; i < residual_.size(); ++i)
-      if (!is_held_[static_cast<std::size_t>(i)]) largest = std::max(largest, std::abs(residual_[i]));
-    return largest / scale;
+void HapticTrapezoid::constrained_solve(const Vector& rhs, const Vec3& g) {
+  K_eff_.solve(rhs, w_, u_next_);
+  for (std::size_t i = 0; i < held_.size(); ++i) gap_[static_cast<Index>(i)] = u_next_[held_[i]] - g[static_cast<Index>(i % 3)];
+  W_factor_.solveInPlace(gap_);  // lambda
+  u_next_.noalias() -= Z_ * gap_;
+}
+
+void HapticTrapezoid::iterate_nonlinear() {
+  // On the free dofs K_eff u = f + M w - excess_used_ after every solve, so that there
+  // R(u) = excess(u) - excess_used_. Its largest free entry is measured against the excess's own:
+  // the share of the law's correction to the linear model that the budget leaves unresolved (the
+  // free dofs' internal force itself is no scale: near equilibrium K u and g cancel there).
+  auto residual = [&] {  // excess_ at u_next_, and the relative residual
+    system_.internal_force->excess_force(u_next_, excess_);
+    double largest = 0, scale = 0;
+    for (Index i = 0; i < excess_.size(); ++i)
+      if (!is_held_[static_cast<std::size_t>(i)]) {
+        largest = std::max(largest, std::abs(excess_[i] - excess_used_[i]));
+        scale = std::max(scale, std::abs(excess_[i]));
+      }
+    return scale > 0 ? largest / scale : 0.0;
   };
-  last_iterations_ = 0;
+  last_iterations_ = 1;
   last_residual_ = residual();
   while (last_iterations_ < newton_.iterations && !(newton_.tolerance > 0 && last_residual_ <= newton_.tolerance)) {
-    residual_ = -residual_;
-    K_eff_.solve(residual_, zero_, step_);  // d* = -K_eff^-1 R
+    rhs_ = excess_used_ - excess_;  // -R
+    K_eff_.solve(rhs_, zero_, step_);
     for (std::size_t i = 0; i < held_.size(); ++i) gap_[static_cast<Index>(i)] = step_[held_[i]];
     W_factor_.solveInPlace(gap_);
     step_.noalias() -= Z_ * gap_;  // H d = 0: the held dofs stay where the tool put them
     u_next_ += step_;
+    excess_used_ = excess_;
     ++last_iterations_;
     last_residual_ = residual();
   }

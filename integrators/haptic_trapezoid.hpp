@@ -16,15 +16,23 @@
 /// quantity: the residual K u - f summed over the held nodes (tools.hpp; their own inertia moves
 /// with the tool).
 ///
-/// On a nonlinear model (the hybrid ROI: model/hyperelastic_force.hpp) a tick solves the step's
-/// equation R(u) = (4/dt^2 M + 2/dt C) u + f_int(t, u) - (f + M w) = 0 under H u = G by modified
-/// Newton with a fixed, stated budget: the linear tick's answer is the predictor, and each
-/// iteration solves with the same K_eff factor (the tangent at rest as a fixed tangent) and the
-/// same W, Z, so that H u = G holds throughout:
-///   d* = -K_eff^-1 R(u),   u += d* - Z W^-1 H d*.
-/// The force is the residual f_int(t, u) - f summed over the held nodes. A tick costs the linear
-/// tick plus, per iteration, an internal force and a solve; its Newton residual after the budget
-/// (the free dofs' largest, relative to the internal force's) is reported, not hidden.
+/// On a nonlinear model (the hybrid ROI: model/hyperelastic_force.hpp) the step's equation is
+///   R(u) = K_eff u + g(u) - (f + M w) = 0   under H u = G,
+/// with g(u) = f_int(u) - K u what the law adds to the linear model, formed element by element on
+/// the law's elements alone (InternalForce::excess_force: no product by the hybrid's dense K~). A
+/// tick solves it by modified Newton from the previous state on the fixed tangent K_eff (the
+/// linear model's, already factored), with a fixed, stated budget of N iterations:
+///   u^1 = the constrained solve of K_eff u = f + M w - g(u_n)        (the linear tick's cost),
+///   u^k+1 = u^k + d,  d the constrained solve of K_eff d = -(g(u^k) - g(u^k-1)),
+/// each iteration one solve with the same factor and W, Z (so that H u = G holds throughout) and
+/// one excess force; g(u_n) is the last tick's final evaluation. The residual on the free dofs
+/// is exactly g(u^N) - g(u^N-1) (K_eff u^N = f + M w - g(u^N-1) there), so it is measured without
+/// a product by K~, relative to g(u^N)'s largest free entry: the share of the law's correction
+/// that the budget leaves unresolved. A linear
+/// model is the case g = 0: the first iteration is the exact linear step. The force is
+/// f_int - f summed over the held nodes, K u by the held rows of K plus g there. A tick costs
+/// the linear tick plus, per iteration, an excess force, and per iteration after the first, a
+/// solve.
 #include <Eigen/Cholesky>
 #include <array>
 #include <vector>
@@ -34,10 +42,11 @@
 
 namespace roifem::integrators {
 
-/// A nonlinear model's iterations per tick: `iterations` exactly (a fixed budget), or fewer once
-/// the residual is within `tolerance` of the internal force (0: never: the budget holds).
+/// A nonlinear model's modified-Newton iterations per tick, the first the linear tick's solve:
+/// `iterations` exactly (a fixed budget), or fewer once the residual is within `tolerance` of the
+/// law's excess force (0: never: the budget holds).
 struct HapticNewton {
-  int iterations = 3;
+  int iterations = 2;
   double tolerance = 0;
 };
 
@@ -60,7 +69,8 @@ class HapticTrapezoid {
 
   /// W = H K_eff^-1 H^T (m/N), rows and columns the held dofs in attach's order.
   const DenseMatrix& compliance() const { return W_; }
-  /// A nonlinear model: the last tick's iterations and its residual after them (relative).
+  /// A nonlinear model: the last tick's iterations and its residual after them (relative to the
+  /// law's excess force).
   int last_iterations() const { return last_iterations_; }
   double last_residual() const { return last_residual_; }
   double dt() const { return rule_.dt(); }
@@ -81,11 +91,15 @@ class HapticTrapezoid {
   HapticNewton newton_;
   SparseMatrix inertia_;  ///< 4/dt^2 M + 2/dt C
   std::vector<bool> is_held_;
-  Vector b_, f_int_, residual_, zero_, step_;
+  Vector excess_;       ///< g at the last iterate evaluated: u_n's at the start of a tick
+  Vector excess_used_;  ///< g in the last solve's right-hand side
+  Vector rhs_, zero_, step_;
   int last_iterations_ = 0;
   double last_residual_ = 0;
-  /// u_next_ from the linear predictor to the step's nonlinear answer; f_int_ at the answer.
-  void solve_nonlinear(double t);
+  /// u_next_ = u^1, the constrained solve of K_eff u = rhs (the step's right-hand side).
+  void constrained_solve(const Vector& rhs, const Vec3& g);
+  /// u_next_ from u^1 to the budget's answer; excess_ at it.
+  void iterate_nonlinear();
 };
 
 }  // namespace roifem::integrators
