@@ -13,14 +13,18 @@
 #include "integrators/integrator.hpp"
 #include "integrators/step_control.hpp"
 #include "integrators/sundials/ida_solver.hpp"
+#include "model/internal_force.hpp"
 #include "roi/roi.hpp"
 
 namespace roifem::integrators {
 
 class IdaRoiDae {
  public:
-  /// `full`: the whole model over all free dofs; `partition`: its ROI split.
-  IdaRoiDae(const model::SecondOrderSystem& full, const roi::Partition& partition, StepControl control, int max_order = 5);
+  /// `full`: the whole model over all free dofs; `partition`: its ROI split. `law`: a hybrid ROI's
+  /// law over full's dofs (model::hybrid_law_uncondensed), f_int(t, u) in place of K u, its
+  /// tangent in place of K in the Newton matrix (IDA's setup policy rebuilding it); null: linear.
+  IdaRoiDae(const model::SecondOrderSystem& full, const roi::Partition& partition, StepControl control, int max_order = 5,
+            std::shared_ptr<const model::InternalForce> law = nullptr);
   IdaRoiDae(const IdaRoiDae&) = delete;
   IdaRoiDae& operator=(const IdaRoiDae&) = delete;
 
@@ -35,6 +39,12 @@ class IdaRoiDae {
 
  private:
   void residual(double t, const Eigen::Ref<const Vector>& y, const Eigen::Ref<const Vector>& yp, Eigen::Ref<Vector> r);
+  /// dF/dy from the stiffness blocks.
+  SparseMatrix dF_dy(const SparseMatrix* pattern_of) const;
+  /// u over full's dofs from y's u_d and u_s.
+  void gather_full(const Eigen::Ref<const Vector>& y);
+  /// The law's Newton matrix at y: its tangent's blocks in place of K's.
+  void update_dF_dy(double t, const Eigen::Ref<const Vector>& y);
 
   const model::SecondOrderSystem& full_;
   roi::Partition partition_;
@@ -44,6 +54,9 @@ class IdaRoiDae {
   model::LoadHistory load_d_, load_s_;
   SparseMatrix dF_dy_, dF_dyp_;
   Vector f_d_, f_s_;
+  std::shared_ptr<const model::InternalForce> law_;
+  Vector u_, f_int_;  ///< the law's: over full's dofs
+  SparseMatrix K_t_;
   std::unique_ptr<sundials::IdaSolver> ida_;  ///< after the matrices it refers to
   double t_ = 0;
 };

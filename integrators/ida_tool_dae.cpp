@@ -10,6 +10,7 @@
 #include "common/errors.hpp"
 #include "common/number_text.hpp"
 #include "integrators/block_matrix.hpp"
+#include "model/internal_force.hpp"
 #include "model/mass_inverse.hpp"
 
 namespace roifem::integrators {
@@ -67,28 +68,57 @@ IdaToolDae::IdaToolDae(const model::SecondOrderSystem& all, const std::vector<mo
   Ht_ = H_.transpose();
   S_ = SparseMatrix(3 * static_cast<Index>(tools.size()), p());
   S_.setFromTriplets(sums.begin(), sums.end());
-  const SparseMatrix I = model::diagonal_matrix(Vector::Ones(n()));
-  const bool ggl = formulation_ == ToolFormulation::ggl, index1 = formulation_ == ToolFormulation::index1;
-  std::vector<Index> sizes{n(), n(), p()};
-  if (ggl) sizes.push_back(p());
-  std::vector<Block> dyp{{0, 0, &I}, {1, 1, &all.M}};
-  std::vector<Block> dy{{0, 1, &I, -1.0}, {1, 0, &all.K}, {1, 1, &all.C}, {1, 2, &Ht_, -1.0}};
-  if (index1) {
-    dyp.push_back({2, 1, &H_});
+  I_ = model::diagonal_matrix(Vector::Ones(n()));
+  sizes_ = {n(), n(), p()};
+  if (formulation_ == ToolFormulation::ggl) sizes_.push_back(p());
+  const SparseMatrix dyp_alone = assemble_blocks(sizes_, dF_dyp_blocks());
+  dF_dy_ = assemble_blocks(sizes_, dF_dy_blocks(all.K), &dyp_alone);
+  dF_dyp_ = assemble_blocks(sizes_, dF_dyp_blocks(), &dF_dy_);
+  if (dF_dy_.nonZeros() != dF_dyp_.nonZeros()) throw Error("internal: IDA tool DAE Jacobian patterns differ");
+  f_.resize(n());
+  if (all.is_nonlinear()) {
+    if (all.internal_force->has_motion()) throw Error("internal: IDA tool DAE: the law moves tools of its own");
+    u_.resize(n());
+    f_int_.resize(n());
+    K_t_ = all.K;
+  }
+}
+
+std::vector<Block> IdaToolDae::dF_dy_blocks(const SparseMatrix& K) const {
+  std::vector<Block> dy{{0, 1, &I_, -1.0}, {1, 0, &K}, {1, 1, &all_.C}, {1, 2, &Ht_, -1.0}};
+  if (formulation_ == ToolFormulation::index1) {
     dy.push_back({2, 0, &H_, a_ * a_});
     dy.push_back({2, 1, &H_, 2 * a_});
   } else {
     dy.push_back({2, 0, &H_});
   }
-  if (ggl) {
+  if (formulation_ == ToolFormulation::ggl) {
     dy.push_back({0, 3, &Ht_, -1.0});
     dy.push_back({3, 1, &H_});
   }
-  const SparseMatrix dyp_alone = assemble_blocks(sizes, dyp);
-  dF_dy_ = assemble_blocks(sizes, dy, &dyp_alone);
-  dF_dyp_ = assemble_blocks(sizes, dyp, &dF_dy_);
-  if (dF_dy_.nonZeros() != dF_dyp_.nonZeros()) throw Error("internal: IDA tool DAE Jacobian patterns differ");
-  f_.resize(n());
+  return dy;
+}
+
+std::vector<Block> IdaToolDae::dF_dyp_blocks() const {
+  std::vector<Block> dyp{{0, 0, &I_}, {1, 1, &all_.M}};
+  if (formulation_ == ToolFormulation::index1) dyp.push_back({2, 1, &H_});
+  return dyp;
+}
+
+void IdaToolDae::update_dF_dy(double t, const Eigen::Ref<const Vector>& y) {
+  u_ = y.head(n());
+  all_.internal_force->force_and_tangent(t, u_, f_int_, K_t_);
+  dF_dy_ = assemble_blocks(sizes_, dF_dy_blocks(K_t_), &dF_dyp_);  // the union of both patterns, as before
+}
+
+void IdaToolDae::add_internal_force(double t, const Eigen::Ref<const Vector>& u, Eigen::Ref<Vector> r) {
+  if (!all_.is_nonlinear()) {
+    r.noalias() += all_.K * u;
+    return;
+  }
+  u_ = u;
+  all_.internal_force->force(t, u_, f_int_);
+  r += f_int_;
 }
 
 Vector IdaToolDae::path(double t, int derivative) const {
@@ -106,7 +136,8 @@ void IdaToolDae::residual(double t, const Eigen::Ref<const Vector>& y, const Eig
   all_.load.evaluate(t, f_);
   const auto u = y.head(n), v = y.segment(n, n), lambda = y.segment(2 * n, p);
   r.head(n) = yp.head(n) - v;
-  r.segment(n, n).noalias() = all_.M * yp.segment(n, n) + all_.C * v + all_.K * u - Ht_ * lambda;
+  r.segment(n, n).noalias() = all_.M * yp.segment(n, n) + all_.C * v - Ht_ * lambda;
+  add_internal_force(t, u, r.segment(n, n));
   r.segment(n, n) -= f_;
   switch (formulation_) {
     case ToolFormulation::index3:
@@ -132,7 +163,9 @@ void IdaToolDae::make_consistent(double t, const Vector& u_in, const Vector& v_i
     v[tool_dofs_[static_cast<std::size_t>(i)]] = dG[i];
   }
   all_.load.evaluate(t, f_);
-  const Vector rest = f_ - all_.C * v - all_.K * u;  // M a = rest + H^T lambda
+  Vector internal = Vector::Zero(n);
+  add_internal_force(t, u, internal);
+  const Vector rest = f_ - all_.C * v - internal;  // M a = rest + H^T lambda
   Vector a(n);
   mass_inverse_->apply(rest, a);  // M is block diagonal between the tools' dofs and the rest
   for (Index i = 0; i < p; ++i) a[tool_dofs_[static_cast<std::size_t>(i)]] = ddG[i];
@@ -157,13 +190,17 @@ void IdaToolDae::reset(double t0) {
     for (const Index i : tool_dofs_) differential[n() + i] = 0;
   ida_.reset();
   ida_ = std::make_unique<sundials::IdaSolver>(
-      sundials::IdaSolver::Settings{.name = "IDA tool DAE (" + std::string(formulation_name(formulation_)) + ")",
-                                    .rtol = control_.rtol,
-                                    .atol = control_.atol,
-                                    .max_order = 5,
-                                    .max_steps = max_steps_per_output,
-                                    .differential = std::move(differential),
-                                    .suppress_algebraic = true},
+      sundials::IdaSolver::Settings{
+          .name = "IDA tool DAE (" + std::string(formulation_name(formulation_)) + ")",
+          .rtol = control_.rtol,
+          .atol = control_.atol,
+          .max_order = 5,
+          .max_steps = max_steps_per_output,
+          .differential = std::move(differential),
+          .suppress_algebraic = true,
+          .update_dF_dy = all_.is_nonlinear()
+                              ? std::function([this](double t, const Eigen::Ref<const Vector>& y) { update_dF_dy(t, y); })
+                              : nullptr},
       [this](double t, const auto& y, const auto& yp, auto r) { residual(t, y, yp, r); }, dF_dy_, dF_dyp_);
   make_consistent(t0, Vector::Zero(n()), Vector::Zero(n()));
   ida_->start(t0);
@@ -208,6 +245,11 @@ Vector IdaToolDae::tool_forces() const {
 double IdaToolDae::position_drift() const { return (H_ * displacement() - path(t_, 0)).cwiseAbs().maxCoeff(); }
 double IdaToolDae::velocity_drift() const { return (H_ * velocity() - path(t_, 1)).cwiseAbs().maxCoeff(); }
 
-Stats IdaToolDae::stats() const { return ida_ ? ida_->stats() : Stats{}; }
+Stats IdaToolDae::stats() const {
+  if (!ida_) return {};
+  Stats s = ida_->stats();
+  if (all_.is_nonlinear()) s.nonlinear_iterations = s.lin_solves;  // one linear solve per Newton iteration
+  return s;
+}
 
 }  // namespace roifem::integrators

@@ -19,6 +19,7 @@
 #include <string_view>
 #include <vector>
 
+#include "integrators/block_matrix.hpp"
 #include "integrators/integrator.hpp"
 #include "integrators/step_control.hpp"
 #include "integrators/sundials/ida_solver.hpp"
@@ -62,6 +63,13 @@ class IdaToolDae {
 
  private:
   void residual(double t, const Eigen::Ref<const Vector>& y, const Eigen::Ref<const Vector>& yp, Eigen::Ref<Vector> r);
+  /// r += K u, or f_int(t, u) on a nonlinear model.
+  void add_internal_force(double t, const Eigen::Ref<const Vector>& u, Eigen::Ref<Vector> r);
+  /// dF/dy's blocks with K as the stiffness (the tangent on a nonlinear model), and dF/dy''s.
+  std::vector<Block> dF_dy_blocks(const SparseMatrix& K) const;
+  std::vector<Block> dF_dyp_blocks() const;
+  /// A nonlinear model: dF/dy with the tangent at y (IDA's Jacobian setup asks for it).
+  void update_dF_dy(double t, const Eigen::Ref<const Vector>& y);
   Index n() const { return all_.size(); }
   Index p() const { return H_.rows(); }
   /// G(t), G'(t), G''(t) over the tools' dofs.
@@ -79,10 +87,13 @@ class IdaToolDae {
   std::vector<Index> tool_dofs_;
   std::vector<int> tool_component_;  ///< x, y or z of each tool dof
   std::vector<Index> tool_of_dof_;
-  SparseMatrix H_, Ht_, S_;
+  SparseMatrix H_, Ht_, S_, I_;
+  std::vector<Index> sizes_;                          ///< the blocks of y: u, v, lambda (, mu)
   std::unique_ptr<model::MassInverse> mass_inverse_;  ///< for consistent accelerations
   SparseMatrix dF_dy_, dF_dyp_;
   Vector f_;
+  Vector u_, f_int_;  ///< a nonlinear model's
+  SparseMatrix K_t_;
   std::unique_ptr<sundials::IdaSolver> ida_;  ///< after the matrices it refers to
   double t_ = 0;
   std::vector<double> kinks_;  ///< after the reset's t0 (kinks_after), computed once: a sampled path has one per sample

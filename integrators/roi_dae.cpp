@@ -26,7 +26,9 @@ void RoiDae::prepare(const model::SecondOrderSystem& system, const model::State&
   roi::Partition partition;
   partition.d = form.roi;
   partition.s = form.static_part;
-  dae_ = std::make_unique<IdaRoiDae>(*form.full, partition, control_);
+  if (system.is_nonlinear() && !form.law)
+    throw Error("internal: ida-roi-dae: a nonlinear ROI model whose uncondensed form has no law");
+  dae_ = std::make_unique<IdaRoiDae>(*form.full, partition, control_, 5, system.is_nonlinear() ? form.law : nullptr);
   dae_->reset(initial.t);
 }
 
@@ -49,7 +51,8 @@ std::vector<IntegratorInfo> roi_dae_rows() {
            .make = make_roi_dae,
            .summary = "IDA on the ROI model uncondensed: the static part kept as algebraic unknowns "
                       "(scenarios with an [roi] and static condensation; tools eliminated), KLU",
-           .needs_uncondensed = true}};
+           .needs_uncondensed = true,
+           .nonlinear = true}};
 }
 
 }  // namespace roifem::integrators

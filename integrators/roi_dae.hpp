@@ -24,6 +24,8 @@ class RoiDae final : public Integrator {
   explicit RoiDae(StepControl control);
   std::string_view name() const override { return "ida-roi-dae"; }
   Stats stats() const override;
+  /// A hybrid ROI by Newton on its law uncondensed (model::UncondensedForm::law).
+  bool takes_nonlinear() const override { return true; }
 
  private:
   /// InputError for a system that is not a static condensation (no system.uncondensed) or a

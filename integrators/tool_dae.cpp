@@ -24,6 +24,8 @@ void ToolDae::prepare(const model::SecondOrderSystem& system, const model::State
   if (initial.u.squaredNorm() != 0 || initial.v.squaredNorm() != 0)
     throw InputError(name_ + ": starts at rest only (the tools' nodes on their paths)");
   form_ = system.constrained.get();
+  if (system.is_nonlinear() != form_->all.is_nonlinear())
+    throw Error("internal: " + name_ + ": the tools' DAE form and the model differ in their law");
   dae_ = std::make_unique<IdaToolDae>(form_->all, form_->tools, formulation_, control_);
   dae_->reset(initial.t);
 }
@@ -56,7 +58,8 @@ std::vector<IntegratorInfo> tool_dae_rows() {
                           .method_id = static_cast<int>(formulation),
                           .make = make_tool_dae,
                           .summary = summary,
-                          .needs_tools = true};
+                          .needs_tools = true,
+                          .nonlinear = true};
   };
   return {row("ida-index3", ToolFormulation::index3,
               "IDA on the tools' DAE, index 3 (position constraints; velocities and multipliers out of the error test), KLU"),

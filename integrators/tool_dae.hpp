@@ -25,6 +25,8 @@ class ToolDae final : public Integrator {
   std::string_view name() const override { return name_; }
   Stats stats() const override;
   std::optional<ConstraintReport> constraints() const override;
+  /// A nonlinear model by Newton with the tangent (IDA's setup policy rebuilding it), as ida-bdf5.
+  bool takes_nonlinear() const override { return true; }
   /// The DAE itself (its multipliers, drifts), after reset().
   const IdaToolDae& dae() const { return *dae_; }
 

@@ -220,9 +220,12 @@ FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::MaterialMap& mate
     return model;
   }
   // With tools: the model over every unfixed dof, then the tools' dofs eliminated.
-  SecondOrderSystem all = assemble(mesh, materials, element, fixed_only);
+  model.dofs_with_tools = std::make_unique<fem::DofMap>(fixed_only);
+  SecondOrderSystem all = assemble(mesh, materials, element, *model.dofs_with_tools);
   // Over these dofs only the fixed nodes take a load's share (one on tools' nodes is theirs to carry).
-  all.load = loads_on(mesh, materials, fixed_only, loads, model.warnings);
+  all.load = loads_on(mesh, materials, *model.dofs_with_tools, loads, model.warnings);
+  // The tools' DAE forms (system.constrained) keep the tools' dofs as unknowns: the law reads them there.
+  all.internal_force = hyperelastic_force(mesh, *model.dofs_with_tools, materials, element);
   std::vector<ToolDofs> tool_dofs;
   for (const Tool& tool : attached) {
     ToolDofs td{.tool = tool, .dofs = {}};
@@ -234,7 +237,6 @@ FemModel build_fem_model(const mesh::TetMesh& mesh, const fem::MaterialMap& mate
   }
   ToolElimination eliminated = eliminate_tools(all, tool_dofs);
   model.dofs = std::make_unique<fem::DofMap>(constraints);
-  model.dofs_with_tools = std::make_unique<fem::DofMap>(fixed_only);
   model.system = std::move(eliminated.system);
   // A nonlinear law reads the tools' paths where they hold its elements' nodes (hyperelastic_force.hpp).
   model.system.internal_force = hyperelastic_force(mesh, *model.dofs, materials, element, attached);

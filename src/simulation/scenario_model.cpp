@@ -27,11 +27,18 @@ std::shared_ptr<const model::ConstrainedForm> condensed_constrained_form(const S
   for (const auto& tool : m.full.tools.tools()) nodes.insert(nodes.end(), tool.nodes.begin(), tool.nodes.end());
   std::sort(nodes.begin(), nodes.end());
   const roi::Partition partition = roi::partition_dofs(full_form.all.K, all_dofs, nodes);
-  condensation::ReducedModel reduced(full_form.all, partition, all_dofs, r);
+  // A neo-Hookean model: the linear one condensed, the hybrid's law over the same ROI (the tools'
+  // nodes among its unknowns) given after, as reduce_full_model does.
+  model::SecondOrderSystem linear_all = full_form.all;
+  const auto law = std::exchange(linear_all.internal_force, nullptr);
+  condensation::ReducedModel reduced(linear_all, partition, all_dofs, r);
   std::vector<Index> position(static_cast<std::size_t>(all_dofs.num_free()), -1);
   for (std::size_t i = 0; i < partition.d.size(); ++i) position[static_cast<std::size_t>(partition.d[i])] = static_cast<Index>(i);
   auto form = std::make_shared<model::ConstrainedForm>();
   form->all = reduced.system();
+  if (law)
+    form->all.internal_force = model::hybrid_roi_force(m.mesh, all_dofs, m.full.materials, m.full.element, reduced.partition(),
+                                                       reduced.system().K, {}, &reduced.system().K_split);
   form->tools = full_form.tools;
   for (auto& tool : form->tools)
     for (Index& dof : tool.dofs) dof = position[static_cast<std::size_t>(dof)];
@@ -112,8 +119,12 @@ std::unique_ptr<ScenarioModel> build_scenario_model(const scenario::Scenario& sc
     m->condensation->attach_constrained_form(condensed_constrained_form(*m, sc.reduction));
   if (m->condensation && sc.reduction.is_static_condensation()) {
     const roi::Partition& p = m->condensation->partition();
+    std::shared_ptr<const model::InternalForce> law;
+    if (m->full.system.is_nonlinear())
+      law = model::hybrid_law_uncondensed(m->mesh, dofs, m->full.materials, m->full.element, p, m->full.system.K,
+                                          m->full.tools.tools());
     m->condensation->attach_uncondensed_form(std::make_shared<const model::UncondensedForm>(
-        model::UncondensedForm{.full = &m->full.system, .roi = p.d, .static_part = p.s}));
+        model::UncondensedForm{.full = &m->full.system, .roi = p.d, .static_part = p.s, .law = std::move(law)}));
   }
   return m;
 }
