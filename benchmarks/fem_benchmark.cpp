@@ -13,6 +13,7 @@
 
 #include "brain_meshes.hpp"
 #include "fem/assembly.hpp"
+#include "fem/hyperelastic_assembly.hpp"
 #include "fem/static_solve.hpp"
 #include "mesh/gmsh_reader.hpp"
 #include "mesh/quadratic_mesh.hpp"
@@ -125,6 +126,30 @@ void condense_column_solves(benchmark::State& state, long nodes, Index roi_nodes
   state.counters["interface_dofs"] = static_cast<double>(split.interface_dofs.size());
 }
 
+/// The neo-Hookean law's force over every element at a displacement of about 1% strain
+/// (`excess`: what it adds to the linear elements, the haptic tick's inner loop), per element.
+void neo_hookean_force(benchmark::State& state, long nodes, bool excess) {
+  const Model model(nodes);
+  fem::Material tissue = material;
+  tissue.model = fem::MaterialModel::neo_hookean;
+  const fem::HyperelasticAssembler assembler(model.mesh, *model.dofs, fem::MaterialMap(tissue));
+  Vector u(3 * model.mesh.num_nodes());
+  for (int n = 0; n < model.mesh.num_nodes(); ++n)
+    u.segment<3>(3 * n) = 0.01 * model.mesh.node(n).cwiseProduct(Vec3(1, -0.5, 0.3));
+  Vector f(model.dofs->num_free()), u_free(model.dofs->num_free());
+  for (Index i = 0; i < u_free.size(); ++i) u_free[i] = u[model.dofs->full_dof(i)];
+  for (auto _ : state) {
+    if (excess)
+      assembler.excess_force_free(u_free, f);
+    else
+      assembler.force(u, f);
+    benchmark::DoNotOptimize(f.data());
+  }
+  // Seconds per element (printed with its SI prefix: "250n" is 250 ns).
+  state.counters["per_element"] = benchmark::Counter(static_cast<double>(model.mesh.num_tets()),
+                                                     benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
 }  // namespace
 }  // namespace roifem::bench
 
@@ -140,6 +165,12 @@ int main(int argc, char** argv) {
       benchmark::RegisterBenchmark(("assemble_values_tet10" + suffix).c_str(), assemble_values_tet10, n)
           ->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark(("factorize" + suffix).c_str(), factorize, n)->Unit(benchmark::kMillisecond);
+    if (n <= 20000) {
+      benchmark::RegisterBenchmark(("neo_hookean_force" + suffix).c_str(), neo_hookean_force, n, false)
+          ->Unit(benchmark::kMillisecond);
+      benchmark::RegisterBenchmark(("neo_hookean_excess" + suffix).c_str(), neo_hookean_force, n, true)
+          ->Unit(benchmark::kMillisecond);
+    }
     for (long roi : {300L, 1000L}) {
       if (roi * 2 > n) continue;
       const std::string which = suffix + "/roi:" + std::to_string(roi);

@@ -41,6 +41,12 @@ HyperelasticAssembler::HyperelasticAssembler(const mesh::TetMesh& mesh, const Do
   laws_.reserve(elements_.size());
   for (const Index e : elements_) laws_.push_back(NeoHookean::of(materials_.of(e)));
   if (!mesh.is_quadratic()) {
+    rows_.reserve(elements_.size());
+    for (const Index e : elements_) {
+      std::array<int, 12> rows{};
+      for (int k = 0; k < 12; ++k) rows[as_size(k)] = dofs.free_dof(mesh.tets[as_size(e)][as_size(k / 3)], k % 3);
+      rows_.push_back(rows);
+    }
     tet4_geometry_.reserve(elements_.size());
     for (const Index e : elements_) {
       const auto& c = mesh.tets[as_size(e)];
@@ -181,6 +187,33 @@ void HyperelasticAssembler::force(const Vector& u_full, Eigen::Ref<Vector> f_int
 
 void HyperelasticAssembler::excess_force(const Vector& u_full, Eigen::Ref<Vector> g) const {
   add_forces(u_full, Evaluate::excess, g);
+}
+
+void HyperelasticAssembler::excess_force_free(const Vector& u_free, Eigen::Ref<Vector> g) const {
+  if (u_free.size() != dofs_.num_free())
+    throw InputError(io::format("hyperelastic assembly: %lld free displacement values for %lld free dofs",
+                                static_cast<long long>(u_free.size()), static_cast<long long>(dofs_.num_free())));
+  if (mesh_.is_quadratic()) {
+    add_forces(dofs_.prescribed() + dofs_.expand_homogeneous(u_free), Evaluate::excess, g);
+    return;
+  }
+  // A haptic tick's loop: the lean kernel, each element's rows looked up once (rows_), the free
+  // displacement read where it lies (a hybrid ROI's few thousand dofs stay in cache).
+  g.setZero();
+  const Vector& prescribed = dofs_.prescribed();
+  Eigen::Matrix<double, 12, 1> ue, excess;
+  for (std::size_t slot = 0; slot < elements_.size(); ++slot) {
+    const std::array<int, 12>& rows = rows_[slot];
+    const auto& c = mesh_.tets[as_size(elements_[slot])];
+    for (int k = 0; k < 12; ++k)
+      ue[k] = rows[as_size(k)] >= 0 ? u_free[rows[as_size(k)]] : prescribed[3 * c[as_size(k / 3)] + k % 3];
+    const double J = tet4_excess_force(tet4_geometry_[slot], laws_[slot], ue, excess);
+    if (!(J > 0))
+      throw ModelError(io::format("tetrahedron %lld (nodes %d %d %d %d) has inverted: det F = %.4g <= 0",
+                                  static_cast<long long>(elements_[slot]), c[0], c[1], c[2], c[3], J));
+    for (int k = 0; k < 12; ++k)
+      if (rows[as_size(k)] >= 0) g[rows[as_size(k)]] += excess[k];
+  }
 }
 
 void HyperelasticAssembler::add_forces(const Vector& u_full, Evaluate what, Eigen::Ref<Vector> f) const {

@@ -37,6 +37,9 @@ class HyperelasticAssembler {
   /// (fem/hyperelastic_element.hpp's Evaluate::excess): no product by K_lin. Inverted elements as
   /// in force().
   void excess_force(const Vector& u_full, Eigen::Ref<Vector> g) const;
+  /// The same from the free displacement alone (the prescribed values the DofMap's), the tet4's
+  /// inner loop written for a haptic tick (a tet10 mesh expands it and takes excess_force).
+  void excess_force_free(const Vector& u_free, Eigen::Ref<Vector> g) const;
   /// f_int and K_t at u_full; K_t's values are overwritten in pattern()'s pattern.
   void force_and_tangent(const Vector& u_full, Eigen::Ref<Vector> f_int, SparseMatrix& K_t) const;
   /// Gonzalez's algorithmic force between the full displacements u_a and u_b
@@ -80,6 +83,7 @@ class HyperelasticAssembler {
   /// Per element of a linear mesh, its geometry and law, formed once (a haptic tick evaluates the
   /// force several times a millisecond): 120 bytes an element.
   std::vector<Tet4Geometry> tet4_geometry_;
+  std::vector<std::array<int, 12>> rows_;  ///< per element of a linear mesh, its dofs' free rows (-1: prescribed)
   std::vector<NeoHookean> laws_;
 };
 

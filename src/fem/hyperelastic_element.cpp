@@ -141,7 +141,40 @@ HyperelasticResponse<10> tet10_discrete_gradient(const Tet10Geometry& g, const N
 
 HyperelasticResponse<4> tet4_hyperelastic(const Tet4Geometry& g, const NeoHookean& law, const Eigen::Matrix<double, 12, 1>& u_e,
                                           Evaluate what) {
+  if (what == Evaluate::excess) {
+    HyperelasticResponse<4> r;
+    r.force.setZero();
+    r.min_J = tet4_excess_force(g, law, u_e, r.force);
+    return r;
+  }
   return integrate_element<4, 1>({g.grad}, std::abs(g.volume), law, u_e, what);
+}
+
+double tet4_excess_force(const Tet4Geometry& g, const NeoHookean& law, const Eigen::Matrix<double, 12, 1>& u_e,
+                         Eigen::Matrix<double, 12, 1>& excess) {
+  Mat3 H = Mat3::Zero();
+  for (int a = 0; a < 4; ++a) H.noalias() += u_e.segment<3>(3 * a) * g.grad.row(a);
+  const double J_minus_1 = NeoHookean::J_minus_1(H);
+  const double J = 1 + J_minus_1;
+  if (!(J > 0)) return J;
+  const Mat3 F = Mat3::Identity() + H;
+  Mat3 cofactor;  // cof(F) = J F^-T
+  cofactor.col(0) = F.col(1).cross(F.col(2));
+  cofactor.col(1) = F.col(2).cross(F.col(0));
+  cofactor.col(2) = F.col(0).cross(F.col(1));
+  const double mu = 2 * law.C10, kappa = 2 / law.D1, lambda = kappa - 2.0 / 3.0 * mu;
+  Mat3 S = H + H.transpose();  // 2E = H + H^T + H^T H; S = mu J^(-2/3) dev(2E) + kappa (J - 1) J I
+  S.noalias() += H.transpose() * H;
+  const double third_trace = S.trace() / 3, root = std::cbrt(J);
+  S.diagonal().array() -= third_trace;
+  S *= mu / (root * root);
+  S.diagonal().array() += kappa * J_minus_1 * J;
+  Mat3 X = (cofactor * S) / J;  // P = F^-T S
+  X -= mu * (H + H.transpose());
+  X.diagonal().array() -= lambda * H.trace();
+  X *= std::abs(g.volume);
+  for (int a = 0; a < 4; ++a) excess.segment<3>(3 * a).noalias() = X * g.grad.row(a).transpose();
+  return J;
 }
 
 HyperelasticResponse<10> tet10_hyperelastic(const Tet10Geometry& g, const NeoHookean& law,

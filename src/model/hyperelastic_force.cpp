@@ -148,7 +148,7 @@ void HyperelasticForce::force_and_tangent(double t, const Vector& u, Vector& f, 
 void HyperelasticForce::excess_force(const Vector& u, Vector& g) const {
   if (motion_)
     throw InputError("the law's excess over the linear model is not formed where tools move its elements (" + description_ + ")");
-  assembler_->excess_force(displacement(u, Vector()), g);
+  assembler_->excess_force_free(u, g);
 }
 
 Vector HyperelasticForce::tool_force_correction(double t, const Vector& u) const {
