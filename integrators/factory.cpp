@@ -19,7 +19,10 @@ std::unique_ptr<Integrator> make_integrator(const IntegratorInfo& info, const St
   }
   if (chosen.adaptive && !info.adaptive)
     throw InputError("integrator '" + name + "' has a fixed step only (no error estimate, so no rtol/atol)");
-  return info.make(info, chosen);
+  auto integrator = info.make(info, chosen);
+  if (!chosen.adaptive && info.is_explicit && info.tableau && chosen.watch_stability)
+    integrator->watch_stability(info, chosen.dt);
+  return integrator;
 }
 
 }  // namespace roifem::integrators

@@ -2,13 +2,24 @@
 #include "integrators/integrator.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "common/errors.hpp"
 #include "common/number_text.hpp"
+#include "integrators/stability_watch.hpp"
 #include "io/csv.hpp"
 #include "model/internal_force.hpp"
 
 namespace roifem::integrators {
+
+Integrator::Integrator() = default;
+Integrator::~Integrator() = default;
+Integrator::Integrator(Integrator&&) noexcept = default;
+Integrator& Integrator::operator=(Integrator&&) noexcept = default;
+
+void Integrator::watch_stability(const IntegratorInfo& method, double dt) {
+  watch_ = std::make_unique<StabilityWatch>(method, dt);
+}
 
 void Integrator::reset(const model::SecondOrderSystem& system, const model::State& initial) {
   bound_.reset();
@@ -18,12 +29,18 @@ void Integrator::reset(const model::SecondOrderSystem& system, const model::Stat
                      "\"linear\"");
   prepare(system, initial);
   bound_.emplace(system, initial);
+  system_ = &system;
 }
 
 void Integrator::advance_to(double t_out, model::State& state) {
   if (!bound_) throw Error("internal: " + std::string(name()) + ": advance_to before reset");
   advance(t_out, state);
   check_bounded(state);
+  if (watch_) watch_->check(name(), *system_, state, stats().steps);
+}
+
+double Integrator::smallest_stability_limit() const {
+  return watch_ ? watch_->smallest_limit() : std::numeric_limits<double>::infinity();
 }
 
 void Integrator::check_bounded(const model::State& state) {

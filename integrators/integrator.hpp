@@ -9,7 +9,10 @@
 /// not finite, or whose kinetic energy exceeds 100 times the most the loads can have given the
 /// exact solution by then (model/energy_bound.hpp), is a divergence, a SolverError naming the
 /// method, the time and its step. An explicit method past its stability limit trips it within a
-/// few steps, long before its numbers overflow; no family checks this on its own.
+/// few steps, long before its numbers overflow; no family checks this on its own. On a nonlinear
+/// model an explicit method at a fixed step is also held to the stability limit of the tangent
+/// at each output (integrators/stability_watch.hpp).
+#include <memory>
 #include <optional>
 #include <string_view>
 
@@ -17,6 +20,9 @@
 #include "model/second_order_system.hpp"
 
 namespace roifem::integrators {
+
+struct IntegratorInfo;
+class StabilityWatch;
 
 /// Counters every integrator reports (zero where the method has no such thing).
 struct Stats {
@@ -39,7 +45,10 @@ class Integrator {
   /// ||v||_M beyond this factor of the exact solution's bound is a divergence (kinetic energy 100x).
   static constexpr double divergence_factor = 10;
 
-  virtual ~Integrator() = default;
+  Integrator();
+  virtual ~Integrator();
+  Integrator(Integrator&&) noexcept;
+  Integrator& operator=(Integrator&&) noexcept;
   virtual std::string_view name() const = 0;
   /// Prepares for `system` from `initial` (factorizations, solver memory). The system must outlive
   /// the integrator's use of it.
@@ -54,6 +63,11 @@ class Integrator {
   virtual bool takes_nonlinear() const { return false; }
   /// The constraints' report after the last advance_to, from methods that hold constraints (else none).
   virtual std::optional<ConstraintReport> constraints() const { return std::nullopt; }
+  /// An explicit method at a fixed step: after each advance_to on a nonlinear model, the step is
+  /// checked against the stability limit of the tangent there (the factory attaches it).
+  void watch_stability(const IntegratorInfo& method, double dt);
+  /// The smallest stability limit the watch has found (s; infinity without a watch or a check).
+  double smallest_stability_limit() const;
 
  private:
   /// What each method implements: reset() and advance_to() without the divergence check.
@@ -63,6 +77,8 @@ class Integrator {
   void check_bounded(const model::State& state);
 
   std::optional<model::EnergyBound> bound_;
+  std::unique_ptr<StabilityWatch> watch_;
+  const model::SecondOrderSystem* system_ = nullptr;
 };
 
 }  // namespace roifem::integrators
