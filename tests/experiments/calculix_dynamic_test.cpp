@@ -22,7 +22,7 @@ namespace {
 
 using integrators::testing::NeoHookeanCantilever;
 
-double max_nodal_norm(const Vector& u) {
+double largest_nodal_norm(const Vector& u) {
   double m = 0;
   for (Index n = 0; n < u.size() / 3; ++n) m = std::max(m, u.segment<3>(3 * n).norm());
   return m;
@@ -36,8 +36,8 @@ struct Difference {
 Difference difference(const std::vector<Vector>& ours, const std::vector<Vector>& ccx) {
   double worst = 0, peak = 0;
   for (std::size_t k = 0; k < ours.size(); ++k) {
-    worst = std::max(worst, max_nodal_norm(ours[k] - ccx[k]));
-    peak = std::max(peak, max_nodal_norm(ccx[k]));
+    worst = std::max(worst, largest_nodal_norm(ours[k] - ccx[k]));
+    peak = std::max(peak, largest_nodal_norm(ccx[k]));
   }
   return {worst / peak, peak / mm};
 }
