@@ -36,7 +36,6 @@ HapticTrapezoid::HapticTrapezoid(const model::SecondOrderSystem& system, double 
                        system.internal_force->describe() + ")");
     if (newton_.iterations < 1)
       throw InputError("haptic trapezoid: a nonlinear model needs at least one Newton iteration per tick");
-    inertia_ = rule_.c_u() * system.M + (2.0 / dt) * system.C;
     for (Vector* v : {&rhs_, &step_, &excess_used_}) v->resize(n);
     zero_ = Vector::Zero(n);
     excess_ = Vector::Zero(n);

@@ -89,7 +89,6 @@ class HapticTrapezoid {
   Vector a_, f_, w_, u_next_, work_, gap_;
   // A nonlinear model's modified Newton.
   HapticNewton newton_;
-  SparseMatrix inertia_;  ///< 4/dt^2 M + 2/dt C
   std::vector<bool> is_held_;
   Vector excess_;       ///< g at the last iterate evaluated: u_n's at the start of a tick
   Vector excess_used_;  ///< g in the last solve's right-hand side

@@ -23,11 +23,18 @@ mapfile -t sources < <(git ls-files 'src/*.cpp' 'integrators/*.cpp' | grep -v '^
 disabled=-clang-analyzer-*
 [[ "${1:-}" == "--analyzer" ]] && disabled=""
 options=()
+# The release preset is a unity build too: without --unity, its units are linted the same way.
+unity_db=""
 if [[ "${1:-}" == "--unity" ]]; then
+  unity_db=build/asan
+elif [ -f build/release/compile_commands.json ] && grep -q '/Unity/unity_' build/release/compile_commands.json; then
+  unity_db=build/release
+fi
+if [[ -n "$unity_db" ]]; then
   # The asan preset's unity units (8 sources each, so Eigen's headers are parsed once per unit, not
   # per source: 127 s instead of about 500 on 2 cores), with the included sources diagnosed like headers
   # (and the unit's own #include of .cpp files not a finding). Every source must be in a unit.
-  db=build/asan
+  db=$unity_db
   [ -f $db/compile_commands.json ] || { echo "lint: $db/compile_commands.json missing (run scripts/run-sanitized-tests.sh first)" >&2; exit 2; }
   mapfile -t units < <(grep -o '"file": "[^"]*/\(src\|integrators\)/[^"]*/Unity/unity_[0-9]*_cxx\.cxx"' $db/compile_commands.json | cut -d'"' -f4)
   # A source CMake keeps out of the units (one with its own COMPILE_DEFINITIONS, as

@@ -148,7 +148,7 @@ ramp_s = 0.5
 )" + roi + "[time]\ndt_s = 0.05\nsteps = 2\n[output]\nfield_every = 0\n";
     return scenario::parse_scenario(text, "spatulas-neo-hookean.toml", ROIFEM_MESH_DIR);
   };
-  const double t = 0.05;
+  const double t = 0.02;
   for (const std::string& roi : {setup1, std::string()}) {
     const auto built = build_scenario_model(neo_hookean(roi));
     const model::SecondOrderSystem& system = built->system();
