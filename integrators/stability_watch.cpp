@@ -15,15 +15,15 @@ namespace roifem::integrators {
 
 void StabilityWatch::check(std::string_view name, const model::SecondOrderSystem& system, const model::State& state, long steps) {
   if (!system.is_nonlinear()) return;
-  if (K_t_.rows() != system.size()) {
+  if (K_t_.rows() != system.size()) {  // the first check: what does not move with the state
     K_t_ = system.K;
     f_.resize(system.size());
+    alpha_ = model::mass_proportional_damping(system);
+    if (!std::isfinite(alpha_)) alpha_ = 0;
   }
   system.internal_force->force_and_tangent(state.t, state.u, f_, K_t_);
   const double omega = model::highest_frequency(system, K_t_, 1e-6);
-  double alpha = model::mass_proportional_damping(system);
-  if (!std::isfinite(alpha)) alpha = 0;
-  const double limit = predicted_stability_limit(method_, Vector{{0.0, omega}}, alpha);
+  const double limit = predicted_stability_limit(method_, Vector{{0.0, omega}}, alpha_);
   smallest_limit_ = std::min(smallest_limit_, limit);
   if (dt_ <= limit) return;
   throw SolverError(

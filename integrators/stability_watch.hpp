@@ -32,6 +32,7 @@ class StabilityWatch {
   IntegratorInfo method_;
   double dt_;
   double smallest_limit_ = std::numeric_limits<double>::infinity();
+  double alpha_ = 0;  ///< the model's mass-proportional damping (1/s), read at the first check
   SparseMatrix K_t_;
   Vector f_;
 };

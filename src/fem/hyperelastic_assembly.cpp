@@ -185,10 +185,6 @@ void HyperelasticAssembler::force(const Vector& u_full, Eigen::Ref<Vector> f_int
   add_forces(u_full, Evaluate::force, f_int);
 }
 
-void HyperelasticAssembler::excess_force(const Vector& u_full, Eigen::Ref<Vector> g) const {
-  add_forces(u_full, Evaluate::excess, g);
-}
-
 void HyperelasticAssembler::excess_force_free(const Vector& u_free, Eigen::Ref<Vector> g) const {
   if (u_free.size() != dofs_.num_free())
     throw InputError(io::format("hyperelastic assembly: %lld free displacement values for %lld free dofs",

@@ -32,13 +32,11 @@ class HyperelasticAssembler {
   /// f_int at the full displacement u_full (3N). Throws ModelError naming the first tetrahedron
   /// that has inverted (det F <= 0 at a quadrature point), with its nodes and det F.
   void force(const Vector& u_full, Eigen::Ref<Vector> f_int) const;
-  /// What the law's force exceeds the linear elements' by at u_full, f_int(u) - K_lin u with K_lin
-  /// the same elements' linear stiffness (the law's tangent at rest), element by element
-  /// (fem/hyperelastic_element.hpp's Evaluate::excess): no product by K_lin. Inverted elements as
-  /// in force().
-  void excess_force(const Vector& u_full, Eigen::Ref<Vector> g) const;
-  /// The same from the free displacement alone (the prescribed values the DofMap's), the tet4's
-  /// inner loop written for a haptic tick (a tet10 mesh expands it and takes excess_force).
+  /// What the law's force exceeds the linear elements' by, f_int(u) - K_lin u with K_lin the same
+  /// elements' linear stiffness (the law's tangent at rest), element by element
+  /// (fem/hyperelastic_element.hpp's Evaluate::excess): no product by K_lin. From the free
+  /// displacement alone (the prescribed values the DofMap's); the tet4's inner loop is written for
+  /// a haptic tick. Inverted elements as in force().
   void excess_force_free(const Vector& u_free, Eigen::Ref<Vector> g) const;
   /// f_int and K_t at u_full; K_t's values are overwritten in pattern()'s pattern.
   void force_and_tangent(const Vector& u_full, Eigen::Ref<Vector> f_int, SparseMatrix& K_t) const;

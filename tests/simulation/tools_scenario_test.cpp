@@ -18,23 +18,15 @@
 namespace roifem::simulation {
 namespace {
 
-/// The paper's brain with two spatulas on the opening's walls, each moved 1 mm outwards over 0.5 s,
-/// and `roi` (TOML, may be empty).
-scenario::Scenario spatulas(const std::string& roi, long steps = 40) {
-  const std::string text = "mesh = \"" + std::string(ROIFEM_MESH_DIR) + "/brain-800.msh\"\n" + R"([material]
-preset = "paper"
-[[tool]]
-name = "left"
-set = "opening_left"
-displacement_mm = [-1.0, 0, 0]
-ramp_s = 0.5
-[[tool]]
-name = "right"
-set = "opening_right"
-displacement_mm = [1.0, 0, 0]
-ramp_s = 0.5
-)" + roi +
-                           "[time]\ndt_s = 0.05\nsteps = " + std::to_string(steps) + "\n[output]\nfield_every = 0\n";
+/// The paper's brain with two spatulas on the opening's walls, each moved `mm` outwards over 0.5 s,
+/// the material's law `law`, and `roi` (TOML, may be empty).
+scenario::Scenario spatulas(const std::string& roi, long steps = 40, const std::string& mm = "1.0",
+                            const std::string& law = "linear") {
+  const std::string text =
+      "mesh = \"" + std::string(ROIFEM_MESH_DIR) + "/brain-800.msh\"\n" + "[material]\npreset = \"paper\"\nmodel = \"" + law +
+      "\"\n" + "[[tool]]\nname = \"left\"\nset = \"opening_left\"\ndisplacement_mm = [-" + mm + ", 0, 0]\nramp_s = 0.5\n" +
+      "[[tool]]\nname = \"right\"\nset = \"opening_right\"\ndisplacement_mm = [" + mm + ", 0, 0]\nramp_s = 0.5\n" + roi +
+      "[time]\ndt_s = 0.05\nsteps = " + std::to_string(steps) + "\n[output]\nfield_every = 0\n";
   return scenario::parse_scenario(text, "spatulas.toml", ROIFEM_MESH_DIR);
 }
 
@@ -131,23 +123,7 @@ TEST(ToolsScenario, TheDaeFormsTakeANeoHookeanModelByNewtonAndMeetATightRunOfThe
   // tools' DAE form, and on the hybrid the ROI uncondensed (ida-roi-dae), the law's tangent their
   // Jacobian, against a tight ida-bdf5 run of the tools eliminated and the ROI condensed (a second
   // method on the same equations): displacements and the spatulas' forces.
-  auto neo_hookean = [](const std::string& roi, const std::string& law = "neo-hookean") {
-    std::string text = "mesh = \"" + std::string(ROIFEM_MESH_DIR) + "/brain-800.msh\"\n" + R"([material]
-preset = "paper"
-model = ")" + law + R"("
-[[tool]]
-name = "left"
-set = "opening_left"
-displacement_mm = [-3.0, 0, 0]
-ramp_s = 0.5
-[[tool]]
-name = "right"
-set = "opening_right"
-displacement_mm = [3.0, 0, 0]
-ramp_s = 0.5
-)" + roi + "[time]\ndt_s = 0.05\nsteps = 2\n[output]\nfield_every = 0\n";
-    return scenario::parse_scenario(text, "spatulas-neo-hookean.toml", ROIFEM_MESH_DIR);
-  };
+  auto neo_hookean = [](const std::string& roi, const std::string& law = "neo-hookean") { return spatulas(roi, 2, "3.0", law); };
   const double t = 0.02;
   for (const std::string& roi : {setup1, std::string()}) {
     const auto built = build_scenario_model(neo_hookean(roi));
