@@ -2,6 +2,7 @@
 #include "mesh/gmsh_session.hpp"
 
 #include <gmsh.h>
+#include <omp.h>
 
 #include <atomic>
 
@@ -11,7 +12,7 @@ namespace {
 std::atomic<bool> session_alive{false};  // Gmsh's own state is global; this only guards it.
 }
 
-GmshSession::GmshSession(bool verbose) {
+GmshSession::GmshSession(bool verbose) : openmp_threads_(omp_get_max_threads()) {
   if (session_alive.exchange(true)) throw Error("internal: a second Gmsh session was opened while one is alive");
   gmsh::initialize(0, nullptr, /*readConfigFiles=*/false);
   gmsh::option::setNumber("General.Terminal", verbose ? 1 : 0);
@@ -23,6 +24,7 @@ GmshSession::~GmshSession() {
     gmsh::finalize();
   } catch (...) {  // never throw from a destructor
   }
+  omp_set_num_threads(openmp_threads_);
   session_alive = false;
 }
 

@@ -2,7 +2,9 @@
 #pragma once
 /// RAII around the Gmsh API. Gmsh keeps one global model per process, so at most one session
 /// may be alive at a time (a second throws). Gmsh 4.8 reports errors by throwing std::string;
-/// gmsh_call() turns them into InputError with context.
+/// gmsh_call() turns them into InputError with context. Gmsh sets OpenMP's thread count to its own
+/// General.NumThreads (1 unless set) when it starts; the session gives the process back the count
+/// it found when it ends (without that, every OpenMP loop after a mesh was read ran on one thread).
 #include <string>
 #include <utility>
 
@@ -16,6 +18,9 @@ class GmshSession {
   GmshSession(const GmshSession&) = delete;
   GmshSession& operator=(const GmshSession&) = delete;
   ~GmshSession();
+
+ private:
+  int openmp_threads_;  ///< OpenMP's thread count before Gmsh started
 };
 
 /// Runs f(); a std::string thrown by Gmsh becomes InputError("<context>: <message>").

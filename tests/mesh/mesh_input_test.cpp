@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Reading meshes, and every kind of bad mesh input stopping with a message that names the fault.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <algorithm>
 
@@ -37,6 +38,16 @@ TEST(MeshReader, ReadsTheShippedBrainWithItsNamedSets) {
   // Walls of the opening are the planes x = -2 mm and x = +2 mm.
   for (int n : mesh.set("opening_left").nodes) EXPECT_NEAR(mesh.nodes(0, n), -0.002, 1e-9);
   for (int n : mesh.set("opening_right").nodes) EXPECT_NEAR(mesh.nodes(0, n), 0.002, 1e-9);
+}
+
+TEST(MeshReader, LeavesOpenMPsThreadCountAsItFoundIt) {
+  // Gmsh sets OpenMP's thread count to its General.NumThreads (1) when it starts: every OpenMP
+  // loop after a mesh was read (the stiffness assembly, the haptic tick's law) ran on one thread.
+  const int before = omp_get_max_threads();
+  omp_set_num_threads(3);
+  (void)read_mesh(std::string(ROIFEM_MESH_DIR) + "/brain-800.msh");
+  EXPECT_EQ(omp_get_max_threads(), 3);
+  omp_set_num_threads(before);
 }
 
 TEST(MeshReader, ReadsMsh22AndScalesLengths) {
