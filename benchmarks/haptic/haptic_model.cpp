@@ -253,17 +253,20 @@ HapticMeasurement measure_haptic(const std::filesystem::path& mesh_file, Index r
   Vec3 force_out = Vec3::Zero();
   TickSamples plain_ticks, haptic_ticks, control_ticks, nonlinear_ticks;
   for (auto* s : {&plain_ticks, &haptic_ticks, &control_ticks, &nonlinear_ticks}) s->reserve(o.ticks);
-  Vec3 nonlinear_force = Vec3::Zero();
+  // The budgeted ticks of a block run back to back, as the linear ones do; the converged run (its
+  // own factor, its own trajectory under the same hand) follows, untimed, so that it never evicts
+  // the budgeted tick's factor from the cache between two ticks.
+  std::vector<Vec3> nonlinear_forces;
+  nonlinear_forces.reserve(500);
   double peak_converged = 0, force_error = 0;
   auto nonlinear_tick = [&] {
-    nonlinear_force = nonlinear->tick(o.hand_scale * hand(nonlinear_state.t + dt), nonlinear_state);
+    nonlinear_forces.push_back(nonlinear->tick(o.hand_scale * hand(nonlinear_state.t + dt), nonlinear_state));
     displacement_out = nonlinear_state.u;
   };
-  auto compare_with_converged = [&] {  // untimed
+  auto compare_with_converged = [&](const Vec3& budgeted) {  // untimed
     const Vec3 exact = converged->tick(o.hand_scale * hand(converged_state.t + dt), converged_state);
     peak_converged = std::max(peak_converged, exact.norm());
-    force_error = std::max(force_error, (nonlinear_force - exact).norm());
-    m.newton_residual = std::max(m.newton_residual, nonlinear->last_residual());
+    force_error = std::max(force_error, (budgeted - exact).norm());
   };
   auto plain_step = [&] {
     plain.step(plain_state);
@@ -279,13 +282,14 @@ HapticMeasurement measure_haptic(const std::filesystem::path& mesh_file, Index r
   auto nonlinear_block = [&](long count, bool record) {
     const char* which = "the budgeted tick";
     try {
+      nonlinear_forces.clear();
       for (long k = 0; k < count && nonlinear_running; ++k) {
-        which = "the budgeted tick";
         timed(nonlinear_tick, nonlinear_ticks, record);
-        which = "the converged tick";
-        compare_with_converged();
-        if (record) ++m.nonlinear_ticks;
+        m.newton_residual = std::max(m.newton_residual, nonlinear->last_residual());
       }
+      which = "the converged tick";
+      for (const Vec3& budgeted : nonlinear_forces) compare_with_converged(budgeted);
+      if (record) m.nonlinear_ticks += static_cast<long>(nonlinear_forces.size());
     } catch (const Error& e) {
       nonlinear_running = false;
       std::fprintf(stderr, "nonlinear tick stopped after %ld timed ticks, in %s at t = %.4f s: %s\n", m.nonlinear_ticks, which,
