@@ -10,6 +10,7 @@
 #include "common/errors.hpp"
 #include "fem/assembly.hpp"
 #include "fem/hyperelastic_element.hpp"
+#include "fem/tet4_excess_batch.hpp"
 #include "io/csv.hpp"
 
 namespace roifem::fem {
@@ -41,17 +42,12 @@ HyperelasticAssembler::HyperelasticAssembler(const mesh::TetMesh& mesh, const Do
   laws_.reserve(elements_.size());
   for (const Index e : elements_) laws_.push_back(NeoHookean::of(materials_.of(e)));
   if (!mesh.is_quadratic()) {
-    rows_.reserve(elements_.size());
-    for (const Index e : elements_) {
-      std::array<int, 12> rows{};
-      for (int k = 0; k < 12; ++k) rows[as_size(k)] = dofs.free_dof(mesh.tets[as_size(e)][as_size(k / 3)], k % 3);
-      rows_.push_back(rows);
-    }
     tet4_geometry_.reserve(elements_.size());
     for (const Index e : elements_) {
       const auto& c = mesh.tets[as_size(e)];
       tet4_geometry_.push_back(tet4_geometry(mesh.node(c[0]), mesh.node(c[1]), mesh.node(c[2]), mesh.node(c[3])));
     }
+    batch_excess();
   }
 }
 
@@ -193,22 +189,54 @@ void HyperelasticAssembler::excess_force_free(const Vector& u_free, Eigen::Ref<V
     add_forces(dofs_.prescribed() + dofs_.expand_homogeneous(u_free), Evaluate::excess, g);
     return;
   }
-  // A haptic tick's loop: the lean kernel, each element's rows looked up once (rows_), the free
-  // displacement read where it lies (a hybrid ROI's few thousand dofs stay in cache).
+  // A haptic tick's loop: kTet4Lanes elements at a time (fem/tet4_excess_batch.hpp), their dofs
+  // looked up once (ExcessBatch), the free displacement read where it lies (a hybrid ROI's few
+  // thousand dofs stay in cache).
   g.setZero();
   const Vector& prescribed = dofs_.prescribed();
-  Eigen::Matrix<double, 12, 1> ue, excess;
-  for (std::size_t slot = 0; slot < elements_.size(); ++slot) {
-    const std::array<int, 12>& rows = rows_[slot];
+  double ue[12][kTet4Lanes], excess[12][kTet4Lanes], J[kTet4Lanes];
+  for (std::size_t batch = 0; batch < excess_batches_.size(); ++batch) {
+    const ExcessBatch& b = excess_batches_[batch];
+    for (int k = 0; k < 12; ++k)
+      for (int l = 0; l < kTet4Lanes; ++l) {
+        const int row = b.rows[k][l], full = b.full[k][l];
+        ue[k][l] = row >= 0 ? u_free[row] : full >= 0 ? prescribed[full] : 0.0;
+      }
+    tet4_excess_force_batch(b.law, ue, excess, J);
+    for (int l = 0; l < kTet4Lanes; ++l)
+      if (!(J[l] > 0)) {
+        const std::size_t slot = batch * kTet4Lanes + as_size(l);
+        const auto& c = mesh_.tets[as_size(elements_[slot])];
+        throw ModelError(io::format("tetrahedron %lld (nodes %d %d %d %d) has inverted: det F = %.4g <= 0",
+                                    static_cast<long long>(elements_[slot]), c[0], c[1], c[2], c[3], J[l]));
+      }
+    for (int k = 0; k < 12; ++k)
+      for (int l = 0; l < kTet4Lanes; ++l)
+        if (const int row = b.rows[k][l]; row >= 0) g[row] += excess[k][l];
+  }
+}
+
+void HyperelasticAssembler::batch_excess() {
+  const std::size_t count = elements_.size();
+  excess_batches_.resize((count + kTet4Lanes - 1) / kTet4Lanes);
+  for (std::size_t slot = 0; slot < excess_batches_.size() * kTet4Lanes; ++slot) {
+    ExcessBatch& b = excess_batches_[slot / kTet4Lanes];
+    const auto l = static_cast<int>(slot % kTet4Lanes);
+    for (int k = 0; k < 12; ++k) b.rows[k][l] = b.full[k][l] = -1;
+    if (slot >= count) continue;  // a lane with no element: zero geometry, no dofs
     const auto& c = mesh_.tets[as_size(elements_[slot])];
-    for (int k = 0; k < 12; ++k)
-      ue[k] = rows[as_size(k)] >= 0 ? u_free[rows[as_size(k)]] : prescribed[3 * c[as_size(k / 3)] + k % 3];
-    const double J = tet4_excess_force(tet4_geometry_[slot], laws_[slot], ue, excess);
-    if (!(J > 0))
-      throw ModelError(io::format("tetrahedron %lld (nodes %d %d %d %d) has inverted: det F = %.4g <= 0",
-                                  static_cast<long long>(elements_[slot]), c[0], c[1], c[2], c[3], J));
-    for (int k = 0; k < 12; ++k)
-      if (rows[as_size(k)] >= 0) g[rows[as_size(k)]] += excess[k];
+    for (int k = 0; k < 12; ++k) {
+      b.rows[k][l] = dofs_.free_dof(c[as_size(k / 3)], k % 3);
+      b.full[k][l] = 3 * c[as_size(k / 3)] + k % 3;
+    }
+    const Tet4Geometry& geometry = tet4_geometry_[slot];
+    for (int a = 0; a < 4; ++a)
+      for (int i = 0; i < 3; ++i) b.law.grad[a][i][l] = geometry.grad(a, i);
+    b.law.volume[l] = std::abs(geometry.volume);
+    const NeoHookean& law = laws_[slot];
+    b.law.mu[l] = 2 * law.C10;
+    b.law.kappa[l] = 2 / law.D1;
+    b.law.lambda[l] = b.law.kappa[l] - 2.0 / 3.0 * b.law.mu[l];
   }
 }
 

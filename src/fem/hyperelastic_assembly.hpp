@@ -16,6 +16,7 @@
 #include "fem/hyperelastic_element.hpp"
 #include "fem/material_map.hpp"
 #include "fem/neo_hookean.hpp"
+#include "fem/tet4_excess_batch.hpp"
 #include "fem/tet4.hpp"
 #include "mesh/tet_mesh.hpp"
 
@@ -36,7 +37,8 @@ class HyperelasticAssembler {
   /// elements' linear stiffness (the law's tangent at rest), element by element
   /// (fem/hyperelastic_element.hpp's Evaluate::excess): no product by K_lin. From the free
   /// displacement alone (the prescribed values the DofMap's); the tet4's inner loop is written for
-  /// a haptic tick. Inverted elements as in force().
+  /// a haptic tick: eight elements at a time in vector instructions (fem/tet4_excess_batch.hpp;
+  /// equal to the element-by-element excess to rounding). Inverted elements as in force().
   void excess_force_free(const Vector& u_free, Eigen::Ref<Vector> g) const;
   /// f_int and K_t at u_full; K_t's values are overwritten in pattern()'s pattern.
   void force_and_tangent(const Vector& u_full, Eigen::Ref<Vector> f_int, SparseMatrix& K_t) const;
@@ -81,8 +83,17 @@ class HyperelasticAssembler {
   /// Per element of a linear mesh, its geometry and law, formed once (a haptic tick evaluates the
   /// force several times a millisecond): 120 bytes an element.
   std::vector<Tet4Geometry> tet4_geometry_;
-  std::vector<std::array<int, 12>> rows_;  ///< per element of a linear mesh, its dofs' free rows (-1: prescribed)
   std::vector<NeoHookean> laws_;
+  /// A linear mesh's elements, kTet4Lanes at a time, for excess_force_free: their geometry and law
+  /// lane by lane, and each dof's free row (-1: prescribed or no element) and full index (-1: no
+  /// element).
+  struct ExcessBatch {
+    Tet4ExcessBatch law;
+    int rows[12][kTet4Lanes];
+    int full[12][kTet4Lanes];
+  };
+  std::vector<ExcessBatch> excess_batches_;
+  void batch_excess();
 };
 
 }  // namespace roifem::fem

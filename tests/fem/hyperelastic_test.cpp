@@ -18,6 +18,7 @@
 #include "fem/hyperelastic_static.hpp"
 #include "fem/neo_hookean.hpp"
 #include "fem/static_solve.hpp"
+#include "fem/tet4_excess_batch.hpp"
 #include "mesh/box_mesh.hpp"
 #include "mesh/mesh_checks.hpp"
 #include "mesh/quadratic_mesh.hpp"
@@ -240,6 +241,70 @@ TEST(HyperelasticElement, TheExcessIsTheForceLessTheLinearElementsAndVanishesQua
   EXPECT_NEAR(small[2] / small[1], 0.1, 0.01);
 }
 
+TEST(HyperelasticElement, TheEightLaneExcessKernelIsTheElementByElementOneFromTinyToLargeStrain) {
+  // tet4_excess_force_batch (the haptic tick's kernel: eight elements at once, J^(1/3) by Halley's
+  // iteration) against tet4_excess_force (std::cbrt, Eigen's 3x3 algebra), lane by lane, on
+  // distorted elements of different materials, from a strain of 1e-6 to J = 0.1 and J = 6 (out of
+  // the iteration's range [1/4, 4]: std::cbrt there too), and a lane with no element.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> draw(-1, 1), stiffness(0.5, 2);
+  double worst = 0, smallest_J = 10, largest_J = 0;
+  for (const double size : {1e-6, 1e-3, 0.05, 0.15}) {
+    for (int round = 0; round < 20; ++round) {
+      Tet4ExcessBatch batch;
+      double u[12][kTet4Lanes] = {}, excess[12][kTet4Lanes], J[kTet4Lanes];
+      std::vector<Tet4Geometry> geometry;
+      std::vector<NeoHookean> laws;
+      std::vector<Eigen::Matrix<double, 12, 1>> displacement;
+      for (int l = 0; l < kTet4Lanes - 1; ++l) {  // the last lane stays empty
+        auto x = skewed_tetrahedron();
+        for (Vec3& p : x) p += 0.2 * Vec3(draw(rng), draw(rng), draw(rng));
+        geometry.push_back(tet4_geometry(x[0], x[1], x[2], x[3]));
+        Material m = neo_hookean_tissue;
+        m.mu *= stiffness(rng);
+        m.lambda *= stiffness(rng);
+        laws.push_back(NeoHookean::of(m));
+        Eigen::Matrix<double, 12, 1> ue;
+        for (int k = 0; k < 12; ++k) ue[k] = size * draw(rng);
+        if (round % 5 == 0)  // a uniform stretch or compression: J far from 1
+          for (int a = 0; a < 4; ++a) ue.segment<3>(3 * a) += (round % 10 == 0 ? 0.8 : -0.55) * x[static_cast<std::size_t>(a)];
+        displacement.push_back(ue);
+        for (int a = 0; a < 4; ++a)
+          for (int i = 0; i < 3; ++i) batch.grad[a][i][l] = geometry.back().grad(a, i);
+        batch.volume[l] = std::abs(geometry.back().volume);
+        batch.mu[l] = m.mu;
+        batch.kappa[l] = laws.back().kappa();
+        batch.lambda[l] = laws.back().kappa() - 2.0 / 3.0 * m.mu;
+        for (int k = 0; k < 12; ++k) u[k][l] = ue[k];
+      }
+      tet4_excess_force_batch(batch, u, excess, J);
+      for (int l = 0; l < kTet4Lanes - 1; ++l) {
+        Eigen::Matrix<double, 12, 1> expected, lane;
+        const double J_expected = tet4_excess_force(geometry[static_cast<std::size_t>(l)], laws[static_cast<std::size_t>(l)],
+                                                    displacement[static_cast<std::size_t>(l)], expected);
+        ASSERT_GT(J_expected, 0) << "an element drawn inverted: the draw needs changing";
+        for (int k = 0; k < 12; ++k) lane[k] = excess[k][l];
+        EXPECT_NEAR(J[l], J_expected, 1e-14 * J_expected);
+        // The scale: the linear element's force at the same displacement.
+        Material m = neo_hookean_tissue;
+        m.mu = 2 * laws[static_cast<std::size_t>(l)].C10;
+        m.lambda = laws[static_cast<std::size_t>(l)].kappa() - 2.0 / 3.0 * m.mu;
+        const double scale = (tet4_stiffness(geometry[static_cast<std::size_t>(l)], m) * displacement[static_cast<std::size_t>(l)]).norm();
+        worst = std::max(worst, (lane - expected).norm() / scale);
+        smallest_J = std::min(smallest_J, J[l]);
+        largest_J = std::max(largest_J, J[l]);
+      }
+      EXPECT_EQ(J[kTet4Lanes - 1], 1.0);
+      for (int k = 0; k < 12; ++k) EXPECT_EQ(excess[k][kTet4Lanes - 1], 0.0);
+    }
+  }
+  std::printf("eight-lane kernel against the element's: %.1e of the linear force; J from %.3f to %.2f\n", worst, smallest_J,
+              largest_J);
+  EXPECT_LT(worst, 1e-13);
+  EXPECT_LT(smallest_J, 0.25);
+  EXPECT_GT(largest_J, 4.0);
+}
+
 /// An unstructured box with its interior nodes jittered, and its boundary nodes.
 mesh::TetMesh distorted_box(bool quadratic) {
   mesh::TetMesh linear = mesh::unstructured_box_mesh(1.0, 0.8, 0.6, 0.25);
@@ -373,6 +438,14 @@ TEST(HyperelasticAssembly, AnInvertedElementIsNamedWithItsNodes) {
   Vector f(dofs.num_free());
   try {
     assembler.force(u, f);
+    FAIL() << "no error";
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find("tetrahedron 0 (nodes"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("inverted: det F = -1"), std::string::npos) << e.what();
+  }
+  try {  // the haptic tick's kernel (nothing held: the free displacement is u) names it the same way
+    ASSERT_EQ(dofs.num_free(), u.size());
+    assembler.excess_force_free(u, f);
     FAIL() << "no error";
   } catch (const ModelError& e) {
     EXPECT_NE(std::string(e.what()).find("tetrahedron 0 (nodes"), std::string::npos) << e.what();
