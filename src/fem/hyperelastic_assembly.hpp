@@ -16,8 +16,8 @@
 #include "fem/hyperelastic_element.hpp"
 #include "fem/material_map.hpp"
 #include "fem/neo_hookean.hpp"
-#include "fem/tet4_excess_batch.hpp"
 #include "fem/tet4.hpp"
+#include "fem/tet4_excess_batch.hpp"
 #include "mesh/tet_mesh.hpp"
 
 namespace roifem::fem {

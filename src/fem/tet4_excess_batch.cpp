@@ -12,7 +12,8 @@ namespace roifem::fem {
 #endif
 
 ROIFEM_VECTOR_CLONES
-void tet4_excess_force_batch(const Tet4ExcessBatch& b, const double (&u)[12][kTet4Lanes], double (&excess)[12][kTet4Lanes], double (&J)[kTet4Lanes]) {
+void tet4_excess_force_batch(const Tet4ExcessBatch& b, const double (&u)[12][kTet4Lanes], double (&excess)[12][kTet4Lanes],
+                             double (&J)[kTet4Lanes]) {
   double H[3][3][kTet4Lanes];  // H_ij = sum_a u_a,i dN_a/dx_j
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)

@@ -289,7 +289,8 @@ TEST(HyperelasticElement, TheEightLaneExcessKernelIsTheElementByElementOneFromTi
         Material m = neo_hookean_tissue;
         m.mu = 2 * laws[static_cast<std::size_t>(l)].C10;
         m.lambda = laws[static_cast<std::size_t>(l)].kappa() - 2.0 / 3.0 * m.mu;
-        const double scale = (tet4_stiffness(geometry[static_cast<std::size_t>(l)], m) * displacement[static_cast<std::size_t>(l)]).norm();
+        const double scale =
+            (tet4_stiffness(geometry[static_cast<std::size_t>(l)], m) * displacement[static_cast<std::size_t>(l)]).norm();
         worst = std::max(worst, (lane - expected).norm() / scale);
         smallest_J = std::min(smallest_J, J[l]);
         largest_J = std::max(largest_J, J[l]);
