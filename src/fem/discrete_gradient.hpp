@@ -1,17 +1,29 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-/// Gonzalez's discrete gradient of the neo-Hookean law (O. Gonzalez, "Exact energy and momentum
-/// conserving algorithms for general models in nonlinear elasticity", CMAME 190, 2000): the stress
-/// between two states a and b whose work on the strain increment is exactly the energy increment,
-///   S_alg = S(E_mid) + [W(b) - W(a) - S(E_mid) : dE] dE / (dE : dE),   E_mid = (E_a + E_b)/2,
-///   dE = E_b - E_a,   so that   S_alg : dE = W(b) - W(a)   for any two states.
-/// A tetrahedron's algorithmic force is then f_a = int F_mid S_alg g_a dV with F_mid = (F_a + F_b)/2:
-/// because E_b - E_a = sym(F_mid^T (F_b - F_a)) exactly, its work on the nodal increment is the
-/// element's energy increment, and, S_alg being symmetric and F_mid a mean, it conserves angular
-/// momentum too (fem/hyperelastic_element.hpp, integrators/energy_momentum.hpp).
+/// A discrete gradient of the neo-Hookean law (O. Gonzalez, "Exact energy and momentum conserving
+/// algorithms for general models in nonlinear elasticity", CMAME 190, 2000): the stress between two
+/// states a and b whose work on the strain increment is exactly the energy increment,
+/// S_alg : dE = W(b) - W(a) for any two states, dE = E_b - E_a. The law's two parts,
+/// W = C10 (I1bar - 3) + (J - 1)^2 / D1, take one each:
+///  - the deviatoric part, Gonzalez's projection:
+///      S_dev,alg = S_dev(E_mid) + [W_dev(b) - W_dev(a) - S_dev(E_mid) : dE] dE / (dE : dE),
+///    E_mid = (E_a + E_b)/2;
+///  - the volumetric part, its own discrete gradient in J:
+///      S_vol,alg = kappa (J_mid - 1) / J_mid G,   G = (cof C_a + 4 cof C_mid + cof C_b) / 6,
+///    J_mid = (J_a + J_b)/2, C_mid = (C_a + C_b)/2: cof C is quadratic along C_a + s (C_b - C_a),
+///    so Simpson's rule makes G : (C_b - C_a) = det C_b - det C_a = J_b^2 - J_a^2 exactly, and
+///    S_vol,alg : dE = kappa (J_mid - 1) (J_b - J_a) = [(J_b - 1)^2 - (J_a - 1)^2] / D1, with no
+///    difference of energies. At a = b it is S_vol = kappa (J - 1) J C^-1.
+/// Gonzalez's projection of the whole law (the first form alone) put the volumetric stiffness,
+/// 333 times the shear's on the brain, into a correction along dE: Newton on the paper brain at
+/// dt = 0.05 s failed at step 23. A tetrahedron's algorithmic force is then f_a = int F_mid S_alg
+/// g_a dV with F_mid = (F_a + F_b)/2: because E_b - E_a = sym(F_mid^T (F_b - F_a)) exactly, its
+/// work on the nodal increment is the element's energy increment, and, S_alg being symmetric and
+/// F_mid a mean, it conserves angular momentum too (fem/hyperelastic_element.hpp,
+/// integrators/energy_momentum.hpp).
 ///
-/// The correction's numerator c = W(b) - W(a) - S(E_mid) : dE is O(|dE|^3), a difference of nearly
-/// equal numbers, computed in three ways by the size of dE:
+/// The projection's numerator c = W(b) - W(a) - S(E_mid) : dE (the deviatoric part's) is
+/// O(|dE|^3), a difference of nearly equal numbers, computed in three ways by the size of dE:
 ///  - |dE| >= large_increment: the energies' difference; its rounding, eps W, puts eps W / |dE|
 ///    into the stress, under 1e3 eps W.
 ///  - below: int_0^1 (S(E_a + s dE) - S(E_mid)) : dE ds by 3-point Gauss-Legendre, whose rounding
