@@ -59,7 +59,7 @@ Mat3 projected_discrete_gradient(const NeoHookean& law, const Mat3& H_a, const M
 }
 
 /// The cofactor matrix of a symmetric C: det C C^-1, with no division.
-Mat3 cofactor(const Mat3& C) {
+Mat3 symmetric_cofactor(const Mat3& C) {
   Mat3 X;
   X(0, 0) = C(1, 1) * C(2, 2) - C(1, 2) * C(2, 1);
   X(1, 1) = C(0, 0) * C(2, 2) - C(0, 2) * C(2, 0);
@@ -93,7 +93,7 @@ void add_volumetric_discrete_gradient(const NeoHookean& law, const Mat3& H_a, co
   const Mat3 C_a = F_a.transpose() * F_a, C_b = F_b.transpose() * F_b, C_mid = 0.5 * (C_a + C_b);
   const double J_b_minus_1 = NeoHookean::J_minus_1(H_b);
   const double J_mid_minus_1 = 0.5 * (NeoHookean::J_minus_1(H_a) + J_b_minus_1), J_mid = 1 + J_mid_minus_1;
-  const Mat3 G = (cofactor(C_a) + 4 * cofactor(C_mid) + cofactor(C_b)) / 6;
+  const Mat3 G = (symmetric_cofactor(C_a) + 4 * symmetric_cofactor(C_mid) + symmetric_cofactor(C_b)) / 6;
   const double phi = J_mid_minus_1 / J_mid;
   S += kappa * phi * G;
   if (!D) return;

@@ -234,9 +234,9 @@ void HyperelasticAssembler::batch_excess() {
       for (int i = 0; i < 3; ++i) b.law.grad[a][i][l] = geometry.grad(a, i);
     b.law.volume[l] = std::abs(geometry.volume);
     const NeoHookean& law = laws_[slot];
-    b.law.mu[l] = 2 * law.C10;
-    b.law.kappa[l] = 2 / law.D1;
-    b.law.lambda[l] = b.law.kappa[l] - 2.0 / 3.0 * b.law.mu[l];
+    b.law.mu[l] = law.mu();
+    b.law.kappa[l] = law.kappa();
+    b.law.lambda[l] = law.kappa() - 2.0 / 3.0 * law.mu();
   }
 }
 

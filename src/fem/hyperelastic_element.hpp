@@ -38,9 +38,10 @@ enum class Evaluate { force, energy, excess, force_and_tangent };
 
 HyperelasticResponse<4> tet4_hyperelastic(const Tet4Geometry& g, const NeoHookean& law, const Eigen::Matrix<double, 12, 1>& u_e,
                                           Evaluate what);
-/// The tet4's excess force alone (Evaluate::excess), written for a haptic tick's inner loop: the
-/// stress difference from H's cofactors, J^(-2/3) by a cube root, no element matrix. Returns
-/// det F; at or below zero the element has inverted and `excess` is left as it was.
+/// The tet4's excess force alone (Evaluate::excess): the stress difference from H's cofactors,
+/// J^(-2/3) by a cube root, no element matrix (a haptic tick's loop runs the same arithmetic eight
+/// elements at a time: fem/tet4_excess_batch.hpp). Returns det F; at or below zero the element has
+/// inverted and `excess` is left as it was.
 double tet4_excess_force(const Tet4Geometry& g, const NeoHookean& law, const Eigen::Matrix<double, 12, 1>& u_e,
                          Eigen::Matrix<double, 12, 1>& excess);
 HyperelasticResponse<10> tet10_hyperelastic(const Tet10Geometry& g, const NeoHookean& law,
