@@ -1,0 +1,73 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "fem/element_removal.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "common/errors.hpp"
+#include "fem/tet4.hpp"
+
+namespace roifem::fem {
+
+ElementRemoval element_removal(const mesh::TetMesh& mesh, const DofMap& dofs, const MaterialMap& materials,
+                               const std::vector<Index>& removed, double c, const std::vector<bool>& still_there) {
+  if (mesh.is_quadratic()) throw InputError("removing elements: only a linear (4-node) mesh is taken so far");
+  const auto elements = static_cast<std::size_t>(mesh.num_tets());
+  std::vector<bool> alive = still_there.empty() ? std::vector<bool>(elements, true) : still_there;
+  if (alive.size() != elements) throw Error("internal: removing elements: the alive mask does not match the mesh");
+  for (const Index e : removed) {
+    if (e < 0 || e >= mesh.num_tets())
+      throw InputError("removing elements: tetrahedron " + std::to_string(e) + " is not in the mesh");
+    if (!alive[static_cast<std::size_t>(e)])
+      throw InputError("removing elements: tetrahedron " + std::to_string(e) + " is removed twice");
+    alive[static_cast<std::size_t>(e)] = false;
+  }
+  // The nodes the removed elements leave with none.
+  std::vector<int> remaining(static_cast<std::size_t>(mesh.num_nodes()), 0);
+  for (std::size_t e = 0; e < elements; ++e)
+    if (alive[e])
+      for (const int n : mesh.tets[e]) ++remaining[static_cast<std::size_t>(n)];
+
+  ElementRemoval r;
+  for (const Index e : removed)
+    for (const int n : mesh.tets[static_cast<std::size_t>(e)])
+      for (int i = 0; i < 3; ++i)
+        if (const int d = dofs.free_dof(n, i); d >= 0) r.dofs.push_back(d);
+  std::sort(r.dofs.begin(), r.dofs.end());
+  r.dofs.erase(std::unique(r.dofs.begin(), r.dofs.end()), r.dofs.end());
+  auto local = [&](int d) {
+    return static_cast<Index>(std::lower_bound(r.dofs.begin(), r.dofs.end(), Index{d}) - r.dofs.begin());
+  };
+  const auto size = static_cast<Index>(r.dofs.size());
+  r.change = DenseMatrix::Zero(size, size);
+  r.mass_change = Vector::Zero(dofs.num_free());
+  Vector orphan_mass = Vector::Zero(size);  // c m_i of an orphan's dofs, their pins
+  for (const Index e : removed) {
+    const auto& nodes = mesh.tets[static_cast<std::size_t>(e)];
+    const Tet4Geometry g = tet4_geometry(mesh.node(nodes[0]), mesh.node(nodes[1]), mesh.node(nodes[2]), mesh.node(nodes[3]));
+    const Material& m = materials.of(e);
+    const ElementMatrix K = tet4_stiffness(g, m);
+    const double quarter = m.rho * std::abs(g.volume) / 4;
+    int row[12];
+    for (int k = 0; k < 12; ++k) row[k] = dofs.free_dof(nodes[static_cast<std::size_t>(k / 3)], k % 3);
+    for (int a = 0; a < 12; ++a) {
+      if (row[a] < 0) continue;
+      const Index i = local(row[a]);
+      for (int b = 0; b < 12; ++b)
+        if (row[b] >= 0) r.change(i, local(row[b])) -= K(a, b);
+      r.change(i, i) -= c * quarter;
+      r.mass_change[row[a]] -= quarter;
+      if (remaining[static_cast<std::size_t>(nodes[static_cast<std::size_t>(a / 3)])] == 0) orphan_mass[i] += c * quarter;
+    }
+  }
+  for (Index i = 0; i < size; ++i) r.change(i, i) += orphan_mass[i];
+  for (const Index e : removed)
+    for (const int n : mesh.tets[static_cast<std::size_t>(e)])
+      if (remaining[static_cast<std::size_t>(n)] == 0) r.orphan_nodes.push_back(n);
+  std::sort(r.orphan_nodes.begin(), r.orphan_nodes.end());
+  r.orphan_nodes.erase(std::unique(r.orphan_nodes.begin(), r.orphan_nodes.end()), r.orphan_nodes.end());
+  return r;
+}
+
+}  // namespace roifem::fem

@@ -1,0 +1,45 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+/// Solves with a matrix that a low-rank change has made from one already factored, without a new
+/// factorization (Woodbury's identity, in its push-through form, which needs no inverse of B):
+///   (A + U B U^T)^-1 b = x - Z (I + B U^T Z)^-1 B U^T x,   x = A^-1 b,   Z = A^-1 U,
+/// where U selects r rows (the dofs a change touches) and B is r x r. A cut that removes
+/// tetrahedra changes the trapezoidal rule's K_eff so (fem/element_removal.hpp): each element a
+/// 12 x 12 block on its dofs. Z costs one solve with A's factor per dof, once per change; a solve
+/// then costs one with A's factor and O(n r) more. Changes accumulate: U is the union of their
+/// dofs, B the sum of their blocks.
+#include <Eigen/LU>
+#include <functional>
+#include <vector>
+
+#include "common/types.hpp"
+
+namespace roifem::solvers {
+
+class LowRankUpdate {
+ public:
+  /// x = A^-1 b with the factor of A (n x n) kept; x does not alias b.
+  using Solve = std::function<void(const Vector& b, Vector& x)>;
+  LowRankUpdate(Solve solve_A, Index n);
+
+  /// Adds B (symmetric, dofs.size() squared) on the rows and columns `dofs` (distinct, in
+  /// [0, n)). Throws InputError for a dof out of range or given twice, SolverError when
+  /// A + U B U^T is singular (the capacitance I + B U^T Z is).
+  void add(const std::vector<Index>& dofs, const DenseMatrix& B);
+  /// x = (A + U B U^T)^-1 b; x does not alias b.
+  void solve(const Vector& b, Vector& x) const;
+  /// r: the dofs the changes touch.
+  Index rank() const { return static_cast<Index>(dofs_.size()); }
+  const std::vector<Index>& dofs() const { return dofs_; }
+
+ private:
+  Solve solve_A_;
+  Index n_;
+  std::vector<Index> dofs_;                       ///< U's rows, in the order they came
+  std::vector<Index> column_;                     ///< per dof of A, its column of U, or -1
+  DenseMatrix B_, Z_;                             ///< r x r and n x r
+  Eigen::PartialPivLU<DenseMatrix> capacitance_;  ///< I + B U^T Z
+  mutable Vector Ux_, s_, t_;                     ///< solve()'s work, sized by add()
+};
+
+}  // namespace roifem::solvers
