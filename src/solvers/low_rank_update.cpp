@@ -15,6 +15,8 @@ void LowRankUpdate::add(const std::vector<Index>& dofs, const DenseMatrix& B) {
   if (B.rows() != static_cast<Index>(dofs.size()) || B.cols() != B.rows())
     throw Error("internal: low-rank update: B is " + std::to_string(B.rows()) + " x " + std::to_string(B.cols()) + " for " +
                 std::to_string(dofs.size()) + " dofs");
+  // Everything is formed aside and kept only when it holds: a refused change leaves the update as it was.
+  const Index r_old = rank();
   std::vector<Index> at(dofs.size());  // each dof's column of U, new ones appended
   std::vector<Index> fresh;
   for (std::size_t k = 0; k < dofs.size(); ++k) {
@@ -22,37 +24,41 @@ void LowRankUpdate::add(const std::vector<Index>& dofs, const DenseMatrix& B) {
     if (d < 0 || d >= n_) throw InputError("low-rank update: dof " + std::to_string(d) + " is not in the system");
     for (std::size_t j = 0; j < k; ++j)
       if (dofs[j] == d) throw InputError("low-rank update: dof " + std::to_string(d) + " is given twice");
-    Index& column = column_[static_cast<std::size_t>(d)];
-    if (column < 0) {
-      column = static_cast<Index>(dofs_.size() + fresh.size());
-      fresh.push_back(d);
-    }
-    at[k] = column;
+    const Index known = column_[static_cast<std::size_t>(d)];
+    at[k] = known >= 0 ? known : r_old + static_cast<Index>(fresh.size());
+    if (known < 0) fresh.push_back(d);
   }
   // Z's new columns: A^-1 e_d, one solve each.
-  const Index r_old = rank(), r = r_old + static_cast<Index>(fresh.size());
-  Z_.conservativeResize(n_, r);
+  const Index r = r_old + static_cast<Index>(fresh.size());
+  DenseMatrix Z(n_, r), B_sum = DenseMatrix::Zero(r, r);
+  Z.leftCols(r_old) = Z_;
   Vector unit = Vector::Zero(n_), column(n_);
   for (std::size_t j = 0; j < fresh.size(); ++j) {
     unit[fresh[j]] = 1;
     solve_A_(unit, column);
-    Z_.col(r_old + static_cast<Index>(j)) = column;
+    Z.col(r_old + static_cast<Index>(j)) = column;
     unit[fresh[j]] = 0;
   }
-  dofs_.insert(dofs_.end(), fresh.begin(), fresh.end());
-  B_.conservativeResize(r, r);
-  B_.bottomRows(r - r_old).setZero();
-  B_.rightCols(r - r_old).setZero();
+  std::vector<Index> all = dofs_;
+  all.insert(all.end(), fresh.begin(), fresh.end());
+  B_sum.topLeftCorner(r_old, r_old) = B_;
   for (std::size_t i = 0; i < dofs.size(); ++i)
-    for (std::size_t j = 0; j < dofs.size(); ++j) B_(at[i], at[j]) += B(static_cast<Index>(i), static_cast<Index>(j));
+    for (std::size_t j = 0; j < dofs.size(); ++j) B_sum(at[i], at[j]) += B(static_cast<Index>(i), static_cast<Index>(j));
   DenseMatrix UtZ(r, r);
-  for (Index i = 0; i < r; ++i) UtZ.row(i) = Z_.row(dofs_[static_cast<std::size_t>(i)]);
-  const DenseMatrix C = DenseMatrix::Identity(r, r) + B_ * UtZ;
-  capacitance_.compute(C);
-  // PartialPivLU does not report singularity: its reciprocal condition estimate does.
-  if (!(capacitance_.rcond() > 1e-14))
-    throw SolverError("low-rank update: the changed matrix is singular (capacitance condition estimate " +
-                      std::to_string(capacitance_.rcond()) + ")");
+  for (Index i = 0; i < r; ++i) UtZ.row(i) = Z.row(all[static_cast<std::size_t>(i)]);
+  Eigen::PartialPivLU<DenseMatrix> capacitance(DenseMatrix::Identity(r, r) + B_sum * UtZ);
+  // PartialPivLU reports no singularity, and its rcond() estimate reads 1 for an exactly singular
+  // matrix: the pivots tell.
+  const Vector pivots = capacitance.matrixLU().diagonal().cwiseAbs();
+  const double pivot_ratio = pivots.minCoeff() / pivots.maxCoeff();
+  if (!(pivot_ratio > 1e-14))
+    throw SolverError("low-rank update: the changed matrix is singular (the capacitance's pivots span a ratio of " +
+                      std::to_string(pivot_ratio) + ")");
+  for (std::size_t j = 0; j < fresh.size(); ++j) column_[static_cast<std::size_t>(fresh[j])] = r_old + static_cast<Index>(j);
+  dofs_ = std::move(all);
+  Z_ = std::move(Z);
+  B_ = std::move(B_sum);
+  capacitance_ = std::move(capacitance);
   Ux_.resize(r);
   s_.resize(r);
   t_.resize(r);

@@ -52,15 +52,21 @@ TEST(LowRankUpdate, SolvesWithTheChangedMatrixAsADenseFactorizationOfItDoes) {
   EXPECT_LT((changed * x - b).norm(), 1e-12 * b.norm());
 }
 
-TEST(LowRankUpdate, ABadDofIsNamed) {
-  LowRankUpdate update([](const Vector& b, Vector& x) { x = b; }, 5);
+TEST(LowRankUpdate, ABadDofIsNamedAndTheUpdateIsLeftAsItWas) {
+  LowRankUpdate update([](const Vector& b, Vector& x) { x = b; }, 5);  // A = I
+  update.add({2}, DenseMatrix::Constant(1, 1, 1.0));                   // A + e_2 e_2^T
   try {
-    update.add({1, 1}, DenseMatrix::Zero(2, 2));
+    update.add({0, 1, 1}, DenseMatrix::Zero(3, 3));
     FAIL() << "no error";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("dof 1 is given twice"), std::string::npos) << e.what();
   }
   EXPECT_THROW(update.add({5}, DenseMatrix::Zero(1, 1)), InputError);
+  EXPECT_THROW(update.add({3}, DenseMatrix::Constant(1, 1, -1.0)), SolverError);  // row 3 zeroed: singular
+  EXPECT_EQ(update.rank(), 1);
+  Vector x(5);
+  update.solve(Vector::Ones(5), x);
+  EXPECT_LT((x - Vector{{1, 1, 0.5, 1, 1}}).norm(), 1e-15) << "the refused changes left no trace";
 }
 
 /// The mesh without the `gone` elements (its nodes all kept).
