@@ -11,7 +11,18 @@ DirectSolve::DirectSolve(const model::SecondOrderSystem& system, const model::Av
 void DirectSolve::solve(const Vector& f, const Vector& w, Vector& x) {
   system_.apply_mass(w, rhs_);
   rhs_ += f;
-  K_eff_.solve(rhs_, x);
+  if (changed_)
+    changed_->solve(rhs_, x);
+  else
+    K_eff_.solve(rhs_, x);
+}
+
+bool DirectSolve::update(const std::vector<Index>& dofs, const DenseMatrix& B) {
+  if (!changed_)
+    changed_ =
+        std::make_unique<solvers::LowRankUpdate>([this](const Vector& b, Vector& x) { K_eff_.solve(b, x); }, system_.size());
+  changed_->add(dofs, B);
+  return true;
 }
 
 ConjugateGradients::ConjugateGradients(const model::SecondOrderSystem& system, const model::AverageAcceleration& rule,

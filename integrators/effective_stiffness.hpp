@@ -13,6 +13,7 @@
 #include "model/second_order_system.hpp"
 #include "solvers/cholesky.hpp"
 #include "solvers/jacobi_cg.hpp"
+#include "solvers/low_rank_update.hpp"
 
 namespace roifem::integrators {
 
@@ -24,6 +25,9 @@ class EffectiveStiffnessSolver {
   virtual bool uses_initial_guess() const { return false; }
   /// Iterations of the last solves, summed (iterative strategies).
   virtual long iterations() const { return 0; }
+  /// K_eff has changed by B on the rows and columns `dofs` (the system with it): takes it without a
+  /// new factorization where the strategy can (returns true), or returns false (the caller re-prepares).
+  virtual bool update(const std::vector<Index>& /*dofs*/, const DenseMatrix& /*B*/) { return false; }
 };
 
 class DirectSolve final : public EffectiveStiffnessSolver {
@@ -31,10 +35,13 @@ class DirectSolve final : public EffectiveStiffnessSolver {
   /// Throws solvers::NotPositiveDefinite.
   DirectSolve(const model::SecondOrderSystem& system, const model::AverageAcceleration& rule);
   void solve(const Vector& f, const Vector& w, Vector& x) override;
+  /// By Woodbury's identity on the factor it holds (solvers/low_rank_update.hpp); changes accumulate.
+  bool update(const std::vector<Index>& dofs, const DenseMatrix& B) override;
 
  private:
   const model::SecondOrderSystem& system_;
   solvers::Cholesky K_eff_;
+  std::unique_ptr<solvers::LowRankUpdate> changed_;  ///< set once K_eff has changed
   Vector rhs_;
 };
 

@@ -39,6 +39,35 @@ void Integrator::advance_to(double t_out, model::State& state) {
   if (watch_) watch_->check(name(), *system_, state, stats().steps);
 }
 
+bool Integrator::take_change(const model::SecondOrderSystem& system, const model::SystemChange& change,
+                             const model::State& state) {
+  if (!bound_) throw Error("internal: " + std::string(name()) + ": take_change before reset");
+  const bool restarted = absorb_change(system, change, state);
+  bound_.emplace(system, state);
+  system_ = &system;
+  return restarted;
+}
+
+bool Integrator::absorb_change(const model::SecondOrderSystem& system, const model::SystemChange&, const model::State& state) {
+  prepare(system, state);
+  return true;
+}
+
+Stats& Stats::operator+=(const Stats& o) {
+  steps += o.steps;
+  rhs_evals += o.rhs_evals;
+  jac_evals += o.jac_evals;
+  lin_setups += o.lin_setups;
+  lin_solves += o.lin_solves;
+  failed_steps += o.failed_steps;
+  lin_iterations += o.lin_iterations;
+  nonlinear_iterations += o.nonlinear_iterations;
+  indefinite_steps += o.indefinite_steps;
+  factorization_s += o.factorization_s;
+  system_changes += o.system_changes;
+  return *this;
+}
+
 double Integrator::smallest_stability_limit() const {
   return watch_ ? watch_->smallest_limit() : std::numeric_limits<double>::infinity();
 }

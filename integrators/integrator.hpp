@@ -18,6 +18,7 @@
 
 #include "model/energy_bound.hpp"
 #include "model/second_order_system.hpp"
+#include "model/system_change.hpp"
 
 namespace roifem::integrators {
 
@@ -31,6 +32,8 @@ struct Stats {
   long nonlinear_iterations = 0;  ///< Newton iterations on a nonlinear system
   long indefinite_steps = 0;      ///< steps whose Newton matrix was indefinite (solved by LU, not Cholesky)
   double factorization_s = 0;     ///< seconds in linear-solver setups: orderings, analyses, factorizations
+  long system_changes = 0;        ///< changes of the system taken in place (cuts), without a restart
+  Stats& operator+=(const Stats& o);
 };
 
 /// What a method that holds the tools' constraints itself (the DAE forms) says of them now.
@@ -58,6 +61,12 @@ class Integrator {
   /// swaps or resizes them, so that views of them (the Python module's arrays) stay valid.
   void advance_to(double t_out, model::State& state);
   virtual Stats stats() const = 0;
+  /// The system has been changed in place at `state` (a cut: model/system_change.hpp), whose time is
+  /// on the method's grid: it goes on from there. A method that can update what it holds does so
+  /// (the trapezoidal rule's factor, by a low-rank correction: Stats::system_changes counts these);
+  /// the others restart from `state`, as reset() does. Returns whether its counters started again
+  /// (the caller then keeps the old ones). The divergence check's bound starts afresh from `state`.
+  bool take_change(const model::SecondOrderSystem& system, const model::SystemChange& change, const model::State& state);
   /// Whether it integrates a nonlinear system (model/internal_force.hpp); the table's `nonlinear`
   /// says the same (a test holds the two together). reset() refuses a nonlinear system otherwise.
   virtual bool takes_nonlinear() const { return false; }
@@ -73,6 +82,9 @@ class Integrator {
   /// What each method implements: reset() and advance_to() without the divergence check.
   virtual void prepare(const model::SecondOrderSystem& system, const model::State& initial) = 0;
   virtual void advance(double t_out, model::State& state) = 0;
+  /// take_change() without the bound: by default a restart (prepare); returns whether the counters restarted.
+  virtual bool absorb_change(const model::SecondOrderSystem& system, const model::SystemChange& change,
+                             const model::State& state);
   /// SolverError when `state` has diverged.
   void check_bounded(const model::State& state);
 

@@ -124,6 +124,24 @@ void Trapezoid::advance(double t_out, model::State& state) {
   while (k_ < target) step(state);
 }
 
+bool Trapezoid::absorb_change(const model::SecondOrderSystem& system, const model::SystemChange& change,
+                              const model::State& state) {
+  // c: K_eff = K + 2/dt C + 4/dt^2 M with C = alpha M (SystemChange::apply keeps it so).
+  const double c = rule_.c_u() + 2.0 * system.damping.alpha / rule_.dt();
+  const Stopwatch clock;
+  if (&system != system_ || !K_eff_ || eliminates_modal_ || !K_eff_->update(change.dofs, change.effective(c))) {
+    const Stats before = stats_;
+    prepare(system, state);  // the grid starts afresh at state.t, a level of the old one
+    stats_ += before;
+    return false;
+  }
+  stats_.factorization_s += clock.seconds();
+  ++stats_.system_changes;
+  // The rule's energy identity needs M a_n = f_n - C v_n - K u_n with the changed operators.
+  a_ = model::AverageAcceleration::consistent_acceleration(system, state);
+  return false;
+}
+
 std::vector<IntegratorInfo> trapezoid_rows() {
   return {
       {.name = "trapezoid",

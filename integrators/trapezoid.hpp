@@ -59,6 +59,10 @@ class Trapezoid final : public Integrator {
   void prepare(const model::SecondOrderSystem& system, const model::State& initial) override;
   /// t_out must lie on the grid t_0 + k dt (within 1e-9 dt).
   void advance(double t_out, model::State& state) override;
+  /// A factored K_eff takes the change by a low-rank correction (EffectiveStiffnessSolver::update),
+  /// and the acceleration is made consistent with the changed system at `state`; else a restart.
+  bool absorb_change(const model::SecondOrderSystem& system, const model::SystemChange& change,
+                     const model::State& state) override;
   model::AverageAcceleration rule_;  // the recurrence; K_eff_ solves its one linear system
   const model::SecondOrderSystem* system_ = nullptr;
   std::optional<solvers::CgSettings> cg_;  // set: K_eff is solved iteratively

@@ -34,6 +34,7 @@
 #include "fem/dof_map.hpp"
 #include "model/second_order_system.hpp"
 #include "model/spectrum.hpp"
+#include "model/system_change.hpp"
 #include "roi/roi.hpp"
 
 namespace roifem::condensation {
@@ -61,6 +62,9 @@ class ReducedModel {
   /// Gives the reduced system a nonlinear internal force in place of K~ u (the hybrid ROI:
   /// model/hyperelastic_force.hpp); the condensation itself stays the linear model's.
   void attach_internal_force(std::shared_ptr<const model::InternalForce> force) { reduced_.internal_force = std::move(force); }
+  /// Changes the reduced system in place on ROI dofs (a cut: model/system_change.hpp); the static
+  /// part, its factor and the interface block stay as they are.
+  void change_system(model::SystemChange& change) { change.apply(reduced_); }
   const roi::Partition& partition() const { return partition_; }
   const Reduction& reduction() const { return reduction_; }
   /// Static-part vectors kept (Craig-Bampton modes or POD vectors), and their (Ritz) frequencies (rad/s).

@@ -69,4 +69,17 @@ void EnergyLedger::record(const State& next) {
   Mv_previous_.swap(Mv_next_);
 }
 
+void EnergyLedger::account_cut(const State& state, double energy_removed) {
+  previous_ = state;
+  f_previous_ = system_.load.at(state.t);
+  system_.apply_mass(state.v, Mv_previous_);
+  kinetic_ = 0.5 * state.v.dot(Mv_previous_);
+  strain_ = strain(state.t, state.u);
+  if (tools_ != nullptr) {
+    tools_previous_ = tool_terms(state);
+    coupling_ = tools_previous_.coupling_energy;
+  }
+  cut_ += energy_removed;
+}
+
 }  // namespace roifem::model

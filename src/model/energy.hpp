@@ -12,6 +12,9 @@
 /// so that E + D = E_0 + W + W_tools, again exactly for the trapezoidal rule. A nonlinear system's
 /// strain energy is its W(t, u) (model/internal_force.hpp), the same ledger then holding to the
 /// rule's O(dt^2) error.
+/// A cut (simulation/scenario_cuts.hpp) changes the system in place between two states: the
+/// energy its removed elements and mass carried is booked as E_cut (account_cut), and from then
+/// on E + D + E_cut = E_0 + W + W_tools, again exactly for the trapezoidal rule.
 #include "model/second_order_system.hpp"
 #include "model/tools.hpp"
 
@@ -33,7 +36,13 @@ class EnergyLedger {
   /// The tools' forces F at the last state recorded (or the initial one): 3 per tool.
   const Vector& tool_forces() const { return tools_previous_.forces; }
   /// E + D - W - W_tools - E_0: zero for an exact discrete balance.
-  double balance_residual() const { return total() + dissipated_ - external_work() - tool_work_ - initial_total_; }
+  double balance_residual() const { return total() + dissipated_ + cut_ - external_work() - tool_work_ - initial_total_; }
+  /// The system has been changed in place (a cut) at `state` (the last recorded one, its held
+  /// dofs' velocity zeroed), taking `energy_removed` (J) with what it removed: E is re-read from
+  /// the changed system and E_cut grows by energy_removed; the balance then says whether the two agree.
+  void account_cut(const State& state, double energy_removed);
+  /// E_cut: the energy the cuts took away (J).
+  double cut() const { return cut_; }
 
  private:
   /// The tools' terms of a state: positions g, coupling u, loads on their nodes, forces F.
@@ -53,7 +62,7 @@ class EnergyLedger {
   Vector Mv_previous_, Mv_next_, Ku_;
   ToolTerms tools_previous_;
   double kinetic_ = 0, strain_ = 0, dissipated_ = 0, work_ = 0, initial_total_ = 0;
-  double coupling_ = 0, tool_work_ = 0;
+  double coupling_ = 0, tool_work_ = 0, cut_ = 0;
   /// The loads' work as the system sees it (work_) counts -K_fp G as a load: this corrects it to
   /// the loads' own work, and adds theirs on the tools' nodes.
   double load_work_at_tools_ = 0;

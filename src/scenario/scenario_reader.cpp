@@ -369,6 +369,59 @@ model::SetTool read_tool(StrictTable t, const toml::node& node, const std::vecto
   return tool;
 }
 
+/// A [[cut]]: its blade's edge, start and path (a straight move over a time, or a trajectory).
+cutting::Blade read_cut(StrictTable t, const toml::node& node, const std::vector<cutting::Blade>& earlier,
+                        const std::filesystem::path& directory) {
+  cutting::Blade blade;
+  blade.where = t.table_where();
+  blade.name = t.string("name").value_or("cut" + std::to_string(earlier.size() + 1));
+  for (const auto& other : earlier)
+    if (other.name == blade.name) throw InputError(t.where(node) + ": two [[cut]] tables are named '" + blade.name + "'");
+  const std::string mode = t.string("mode").value_or("remove");
+  if (mode == "split")
+    throw InputError(t.where(*t.find("mode")) +
+                     ": key 'cut.mode' = \"split\" (an incision that separates faces) is not built yet; \"remove\" deletes the "
+                     "tetrahedra the blade crosses");
+  if (mode != "remove")
+    throw InputError(t.where(*t.find("mode")) + ": key 'cut.mode' must be \"remove\" (got '" + mode + "')" +
+                     did_you_mean(mode, {"remove", "split"}));
+  const auto from = t.vec3("edge_from_mm");
+  const auto to = t.vec3("edge_to_mm");
+  if (!from) t.missing("edge_from_mm");
+  if (!to) t.missing("edge_to_mm");
+  if (*from == *to)
+    throw InputError(t.where(*t.find("edge_to_mm")) +
+                     ": key 'cut.edge_to_mm' equals 'cut.edge_from_mm': the blade's edge has no length and cuts nothing");
+  blade.edge_a = *from * mm;
+  blade.edge_b = *to * mm;
+  blade.start = t.number("start_s", 0.0);
+  if (blade.start < 0)
+    throw InputError(t.where(*t.find("start_s")) + ": key 'cut.start_s' must be >= 0 (got " + number_text(blade.start) + ")");
+  const auto move = t.vec3("move_mm");
+  if (const auto file = t.string("trajectory")) {
+    if (move || t.number("duration_s"))
+      throw InputError(t.where(node) + ": a [[cut]] follows a trajectory or move_mm over duration_s, not both");
+    try {
+      blade.path = read_trajectory(std::filesystem::path(*file).is_absolute() ? std::filesystem::path(*file) : directory / *file);
+    } catch (const InputError& e) {
+      throw InputError(t.where(*t.find("trajectory")) + ": key 'cut.trajectory': " + e.what());
+    }
+  } else {
+    if (!move) t.missing("move_mm", " (or trajectory)");
+    const auto duration = t.number("duration_s");
+    if (!duration) t.missing("duration_s");
+    if (!(*duration > 0))
+      throw InputError(t.where(*t.find("duration_s")) + ": key 'cut.duration_s' must be positive (got " + number_text(*duration) +
+                       "): a blade moves at a finite speed");
+    if (move->norm() == 0)
+      throw InputError(t.where(*t.find("move_mm")) + ": key 'cut.move_mm' is zero: a blade that does not move sweeps nothing");
+    blade.path.displacement = *move * mm;
+    blade.path.ramp.duration = *duration;
+  }
+  t.close();
+  return blade;
+}
+
 std::string toml_number(double v) {
   std::ostringstream s;
   s.precision(17);
@@ -462,6 +515,9 @@ Scenario scenario_from_table(const toml::table& root, const std::string& source,
   if (const toml::array* tools = top.table_array("tool"))
     for (const auto& node : *tools)
       s.tools.push_back(read_tool(StrictTable(*node.as_table(), source, "tool"), node, s.tools, directory));
+  if (const toml::array* cuts = top.table_array("cut"))
+    for (const auto& node : *cuts)
+      s.cuts.push_back(read_cut(StrictTable(*node.as_table(), source, "cut"), node, s.cuts, directory));
   if (const toml::table* t = top.subtable("roi")) {
     StrictTable roi_table(*t, source, "roi");
     s.reduction = read_reduction(roi_table);
@@ -488,7 +544,13 @@ Scenario scenario_from_table(const toml::table& root, const std::string& source,
                        " s, where 4/dt^2 M swamps K in the effective stiffness and the steps mean nothing");
     if (s.steps <= 0) throw InputError(source + ": key 'time.steps' must be positive (got " + std::to_string(s.steps) + ")");
   }
-  s.reduction = s.reduction.trained_on(s.dt, s.steps);  // a POD basis learns from the run's own step and length
+  s.reduction = s.reduction.trained_on(s.dt, s.steps);
+  const double t_end = s.dt * static_cast<double>(s.steps);
+  for (const auto& cut : s.cuts)
+    if (cut.start >= t_end)
+      throw InputError(cut.where + ": " + cut.describe() + " starts at t = " + number_text(cut.start) + " s, when the run (" +
+                       std::to_string(s.steps) + " steps of " + number_text(s.dt) + " s) has ended at t = " + number_text(t_end) +
+                       " s");  // a POD basis learns from the run's own step and length
   if (const toml::table* t = top.subtable("output")) {
     StrictTable output(*t, source, "output");
     s.field_every = output.integer("field_every").value_or(s.field_every);
@@ -540,6 +602,17 @@ std::string Scenario::resolved_toml() const {
       o << "displacement_mm = [" << toml_number(t.path.displacement.x() / mm) << ", " << toml_number(t.path.displacement.y() / mm)
         << ", " << toml_number(t.path.displacement.z() / mm) << "]\n"
         << ramp_toml(t.path.ramp);
+  }
+  for (const auto& c : cuts) {
+    o << "\n[[cut]]\nname = \"" << c.name << "\"\nmode = \"remove\"\nedge_from_mm = [" << toml_number(c.edge_a.x() / mm) << ", "
+      << toml_number(c.edge_a.y() / mm) << ", " << toml_number(c.edge_a.z() / mm) << "]\nedge_to_mm = ["
+      << toml_number(c.edge_b.x() / mm) << ", " << toml_number(c.edge_b.y() / mm) << ", " << toml_number(c.edge_b.z() / mm)
+      << "]\nstart_s = " << toml_number(c.start) << "\n";
+    if (c.path.trajectory)
+      o << "trajectory = \"" << c.path.trajectory_file << "\"\n";
+    else
+      o << "move_mm = [" << toml_number(c.path.displacement.x() / mm) << ", " << toml_number(c.path.displacement.y() / mm) << ", "
+        << toml_number(c.path.displacement.z() / mm) << "]\nduration_s = " << toml_number(c.path.ramp.duration) << "\n";
   }
   if (roi) {
     o << "\n[roi]\n";

@@ -40,6 +40,11 @@ ResultsRecorder::ResultsRecorder(const scenario::Scenario& scenario, const Scena
             .tets = model.mesh.num_tets(),
             .nodes_per_tet = model.mesh.is_quadratic() ? 10 : 4},
       ledger_(model.system(), initial, &model.tools) {
+  topology_tets_ = model.mesh.num_tets();
+  if (!scenario.cuts.empty()) {
+    cut_energy_.emplace(h5_.appendable("energy/cut_J", {}));
+    still_there_.assign(static_cast<std::size_t>(model.mesh.num_tets()), true);
+  }
   if (!model.roi_nodes.empty()) roi_series_.emplace(h5_.appendable("roi/displacement_mm", {model.roi_nodes.size(), 3}, 16));
   roi_position_ = model.roi_components();
   roi_record_.resize(roi_position_.size());
@@ -66,6 +71,10 @@ void ResultsRecorder::record(long k, const model::State& s, double seconds) {
   strain_.append(&energies[1]);
   dissipated_.append(&energies[2]);
   work_.append(&energies[3]);
+  if (cut_energy_) {
+    const double cut = ledger_.cut();
+    cut_energy_->append(&cut);
+  }
   if (tool_work_) {
     const double work = ledger_.tool_work();
     tool_work_->append(&work);
@@ -89,6 +98,10 @@ void ResultsRecorder::record(long k, const model::State& s, double seconds) {
               {static_cast<hsize_t>(model_.mesh.num_nodes()), 3});
     xdmf_.times.push_back(s.t);
     xdmf_.fields.push_back("/" + name);
+    if (topology_varies_) {
+      xdmf_.topologies.push_back(topology_);
+      xdmf_.topology_tets.push_back(topology_tets_);
+    }
   }
   if (k % flush_every == 0) h5_.flush();
 }
@@ -110,7 +123,37 @@ void ResultsRecorder::record_constraints(const integrators::ConstraintReport& re
   }
 }
 
+void ResultsRecorder::record_cut(long step, const CutEvent& event, const model::State& at_cut) {
+  ledger_.account_cut(at_cut, event.energy_removed());
+  for (const Index e : event.elements) {
+    removed_elements_.push_back(static_cast<int>(e));
+    removed_at_step_.push_back(static_cast<int>(step));
+    removed_at_s_.push_back(event.time);
+    still_there_[static_cast<std::size_t>(e)] = false;
+  }
+  // The remaining tetrahedra: the topology of every field from this step on.
+  std::vector<int> tets;
+  for (std::size_t e = 0; e < still_there_.size(); ++e)
+    if (still_there_[e]) tets.insert(tets.end(), model_.mesh.tets[e].begin(), model_.mesh.tets[e].end());
+  topology_ = io::format("/mesh/tets_from_step_%06ld", step);
+  topology_tets_ = static_cast<long>(tets.size() / 4);
+  h5_.write(topology_.substr(1), tets, {tets.size() / 4, 4});
+  if (!topology_varies_) {  // the fields before the first cut: the whole mesh
+    topology_varies_ = true;
+    xdmf_.topologies.assign(xdmf_.times.size(), xdmf_.tets_dataset);
+    xdmf_.topology_tets.assign(xdmf_.times.size(), xdmf_.tets);
+  }
+}
+
+void ResultsRecorder::write_cuts() {
+  if (removed_elements_.empty()) return;
+  h5_.write("cuts/removed_elements", removed_elements_, {removed_elements_.size()});
+  h5_.write("cuts/removed_at_step", removed_at_step_, {removed_at_step_.size()});
+  h5_.write("cuts/removed_at_s", removed_at_s_, {removed_at_s_.size()});
+}
+
 std::vector<std::filesystem::path> ResultsRecorder::finish(const integrators::Stats& st) {
+  write_cuts();
   h5_.attribute(
       "counters",
       io::format("steps=%ld rhs_evals=%ld jac_evals=%ld lin_setups=%ld lin_solves=%ld lin_iterations=%ld failed_steps=%ld",
@@ -133,6 +176,7 @@ std::vector<std::filesystem::path> remove_stale_incomplete(const std::filesystem
 }
 
 void ResultsRecorder::abandon(const std::string& why) {
+  write_cuts();
   h5_.attribute("status", "incomplete: " + why);
   h5_.close();
   file_.commit_as(out_ / "results.incomplete.h5");

@@ -6,6 +6,9 @@
 /// their work, to results.h5 under a temporary name, flushes every 50 steps (what a
 /// kill -9 cannot take away), and on finish() moves the file into place: results.h5 when
 /// complete, results.incomplete.h5 (status attribute: why) beside a good one when not.
+/// With cuts: energy/cut_J per step, /cuts/{removed_elements, removed_at_step, removed_at_s} (each
+/// removed tetrahedron, the step at whose start it went, and that time), and after each cut the
+/// remaining tetrahedra as /mesh/tets_from_step_NNNNNN, the topology of the fields from then on.
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -18,6 +21,7 @@
 #include "io/xdmf.hpp"
 #include "model/energy.hpp"
 #include "scenario/scenario.hpp"
+#include "simulation/scenario_cuts.hpp"
 #include "simulation/scenario_model.hpp"
 
 namespace roifem::simulation {
@@ -32,6 +36,8 @@ class ResultsRecorder {
   /// With a method that holds the tools' constraints itself (a DAE form): its multipliers' force
   /// per tool and its drift, after record() of the same step.
   void record_constraints(const integrators::ConstraintReport& report, double t);
+  /// A cut at `at_cut`, the start of step `step` (ScenarioStepper::on_cut): the ledger books it.
+  void record_cut(long step, const CutEvent& event, const model::State& at_cut);
   /// max over the steps of |F_multipliers - F_residual| / max |F_residual| (0 without a DAE form).
   double multiplier_disagreement() const { return force_peak_ > 0 ? force_gap_ / force_peak_ : 0.0; }
   /// Writes the counters, marks the file complete and moves it into place (with results.xdmf).
@@ -62,6 +68,14 @@ class ResultsRecorder {
   std::vector<double> roi_record_;
   io::XdmfSeries xdmf_;
   model::EnergyLedger ledger_;
+  std::optional<io::AppendableDataset> cut_energy_;
+  std::vector<int> removed_elements_, removed_at_step_;
+  std::vector<double> removed_at_s_;
+  std::vector<bool> still_there_;  ///< per tetrahedron, with cuts
+  std::string topology_ = "/mesh/tets";
+  long topology_tets_ = 0;
+  bool topology_varies_ = false;
+  void write_cuts();
 };
 
 /// Removes out/results.incomplete.{h5,xdmf}, left by an earlier run that was stopped, once a run

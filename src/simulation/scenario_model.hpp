@@ -21,6 +21,13 @@ struct ScenarioModel {
   model::ToolSet tools;        ///< the scenario's tools, in system()'s numbering
 
   const model::SecondOrderSystem& system() const { return condensation ? condensation->system() : full.system; }
+  /// Changes system() in place (a cut: simulation/scenario_cuts.hpp).
+  void change_system(model::SystemChange& change) {
+    if (condensation)
+      condensation->change_system(change);
+    else
+      change.apply(full.system);
+  }
   /// The integrated system's nodes (ROI nodes, or all free nodes) in its numbering
   /// (roi/node_dofs.hpp): errors are measured per node.
   roi::NodeDofs node_positions() const;

@@ -75,6 +75,15 @@ void print_start(const scenario::Scenario& sc, const ScenarioModel& built, doubl
   print_restarts(sc, built, log);
 }
 
+void print_cuts(const scenario::Scenario& sc, const ScenarioStepper& stepper, std::ostream& log) {
+  const auto& schedule = stepper.cuts().schedule();
+  if (schedule.empty()) return;
+  log << format(
+      "cuts: %zu tetrahedra crossed by %zu blade%s within the run, from t = %g s to t = %g s (removed at the start of "
+      "the step that reaches them)\n",
+      schedule.size(), sc.cuts.size(), sc.cuts.size() == 1 ? "" : "s", schedule.front().time, schedule.back().time);
+}
+
 void print_tool_forces(const ScenarioModel& built, const model::State& state, const model::EnergyLedger& ledger,
                        std::ostream& log) {
   if (built.tools.empty()) return;
@@ -85,8 +94,9 @@ void print_tool_forces(const ScenarioModel& built, const model::State& state, co
                   f.x(), f.y(), f.z(), state.t);
   }
   const double scale = std::max(std::abs(ledger.tool_work()), std::abs(ledger.external_work()));
-  log << format("tools' work %.4e J; energy balance |E + D - W - W_tools - E_0| / max(|W|, |W_tools|) = %.1e\n",
-                ledger.tool_work(), scale > 0 ? std::abs(ledger.balance_residual()) / scale : 0.0);
+  log << format("tools' work %.4e J; energy balance |E + D%s - W - W_tools - E_0| / max(|W|, |W_tools|) = %.1e\n",
+                ledger.tool_work(), ledger.cut() != 0 ? " + E_cut" : "",
+                scale > 0 ? std::abs(ledger.balance_residual()) / scale : 0.0);
 }
 
 void print_deformation(const DeformationReport& r, const PeakDisplacement& peak, double dt, std::ostream& log) {
@@ -162,9 +172,14 @@ ScenarioRunSummary run_scenario(const scenario::Scenario& sc, const std::filesys
   summary.dofs = system.size();
   summary.roi_nodes = static_cast<Index>(built->roi_nodes.size());
   print_start(sc, *built, summary.setup_s, log);
+  print_cuts(sc, stepper, log);
   check_results_fit(sc, *built, out);
 
   ResultsRecorder recorder(sc, *built, state, out);
+  stepper.on_cut([&](const CutEvent& event, const model::State& at_cut) {
+    recorder.record_cut(stepper.steps_taken() + 1, event, at_cut);
+    for (const auto& w : event.warnings) log << "\nwarning: " << w << '\n';
+  });
   PeakDisplacement peak(*built);
   const RunSummary run_summary = integrate(sc, stepper, recorder, peak, out, log);
   for (const auto& stale : recorder.finish(run_summary.stats))
@@ -179,6 +194,14 @@ ScenarioRunSummary run_scenario(const scenario::Scenario& sc, const std::filesys
   log << format("done: %ld steps, median %.4f ms per step; final kinetic %.3e J, strain %.3e J, work %.3e J, dissipated %.3e J\n",
                 summary.steps, summary.step_s_median * 1e3, ledger.kinetic(), ledger.strain(), ledger.external_work(),
                 ledger.dissipated());
+  if (!sc.cuts.empty()) {
+    const double scale = std::max({std::abs(ledger.external_work()), std::abs(ledger.tool_work()), ledger.cut()});
+    log << format(
+        "cuts: %zu tetrahedra removed, taking %.4e J (E_cut); energy balance |E + D + E_cut - W - W_tools - E_0| / "
+        "max(|W|, |W_tools|, E_cut) = %.1e; %ld changes taken in place by %s\n",
+        stepper.cuts().schedule().size(), ledger.cut(), scale > 0 ? std::abs(ledger.balance_residual()) / scale : 0.0,
+        summary.stats.system_changes, sc.integrator.c_str());
+  }
   if (system.is_nonlinear())
     log << format("Newton (%s): %ld iterations, %.2f per step, %ld tangents factorized%s\n",
                   system.internal_force->describe().c_str(), summary.stats.nonlinear_iterations,

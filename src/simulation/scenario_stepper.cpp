@@ -14,15 +14,31 @@ ScenarioStepper::ScenarioStepper(const scenario::Scenario& scenario, bool energy
       state_(),
       grid_(0.0, scenario_.dt, scenario_.integrator) {
   model_ = build_scenario_model(scenario_);
+  cuts_ = ScenarioCuts(scenario_, *model_);
   state_ = model::State::at_rest(model_->system().size(), grid_.t0());
   integrator_->reset(model_->system(), state_);
   if (energy) ledger_.emplace(model_->system(), state_, &model_->tools);
   roi_components_ = model_->roi_components();
 }
 
+void ScenarioStepper::cut_due(double t) {
+  const CutEvent event = cuts_.remove_due(t, *model_, state_);
+  const integrators::Stats before = integrator_->stats();
+  if (integrator_->take_change(model_->system(), event.change, state_)) restarted_ += before;
+  if (ledger_) ledger_->account_cut(state_, event.energy_removed());
+  for (const auto& listener : cut_listeners_) listener(event, state_);
+}
+
+integrators::Stats ScenarioStepper::stats() const {
+  integrators::Stats total = restarted_;
+  total += integrator_->stats();
+  return total;
+}
+
 void ScenarioStepper::step() {
   const double* u_storage = state_.u.data();
   const double* v_storage = state_.v.data();
+  if (cuts_.due(next_time())) cut_due(next_time());
   integrator_->advance_to(next_time(), state_);
   ++k_;
   // Views of u and v (the Python module's) rely on this.

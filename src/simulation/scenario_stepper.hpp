@@ -5,14 +5,20 @@
 /// that its states equal the run's bit for bit, without the results file. Between steps the caller
 /// reads the state (u and v keep their storage for the stepper's life: views of them stay valid),
 /// the ROI displacement, the whole field, the energies, the supports' reactions and the tools' forces.
+/// A scenario's cuts take effect at the start of the step during which a blade reaches their
+/// tetrahedra (simulation/scenario_cuts.hpp): the system changes in place, the integrator takes
+/// the change, the ledger books what was removed, and each listener hears of it.
+#include <functional>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "integrators/integrator.hpp"
 #include "model/energy.hpp"
 #include "model/reaction_forces.hpp"
 #include "scenario/scenario.hpp"
 #include "simulation/run_loop.hpp"
+#include "simulation/scenario_cuts.hpp"
 #include "simulation/scenario_model.hpp"
 
 namespace roifem::simulation {
@@ -39,7 +45,14 @@ class ScenarioStepper final : public Stepper {
   const integrators::Integrator& integrator() const { return *integrator_; }
   const model::State& state() const override { return state_; }
   long steps_taken() const override { return k_; }
-  integrators::Stats stats() const override { return integrator_->stats(); }
+  /// The integrator's counters, with those of runs it restarted at a cut.
+  integrators::Stats stats() const override;
+  /// Called at each cut with what it removed and the state it took effect at (the step's start),
+  /// before the step goes on; the stepper's own ledger has booked it already.
+  using CutListener = std::function<void(const CutEvent& event, const model::State& at_cut)>;
+  void on_cut(CutListener listener) { cut_listeners_.push_back(std::move(listener)); }
+  /// The cuts' schedule and which tetrahedra remain.
+  const ScenarioCuts& cuts() const { return cuts_; }
   /// The grid's next time t_{k+1}.
   double next_time() const { return grid_.at(k_ + 1); }
   /// The ledger; nullptr without energy bookkeeping.
@@ -66,6 +79,10 @@ class ScenarioStepper final : public Stepper {
   std::optional<model::EnergyLedger> ledger_;
   std::vector<Index> roi_components_;                 ///< each ROI node's components among the unknowns (-1: fixed)
   std::unique_ptr<model::ReactionForces> reactions_;  ///< made on first use
+  ScenarioCuts cuts_;
+  std::vector<CutListener> cut_listeners_;
+  integrators::Stats restarted_;  ///< counters of the integrator's runs before its restarts at cuts
+  void cut_due(double t);
 };
 
 }  // namespace roifem::simulation

@@ -60,9 +60,9 @@ std::vector<const IntegratorInfo*> explicit_fixed_step_methods() {
 
 TEST(IntegratorSeam, EveryExplicitFixedStepMethodPastItsLimitStopsNamingTheStep) {
   const Cantilever c(-0.02, 0.1);
-  const auto methods = explicit_fixed_step_methods();
-  ASSERT_GE(methods.size(), 5u);  // arkode-erk2..5, gsl-rk4
-  for (const IntegratorInfo* info : methods) {
+  const auto fixed_step = explicit_fixed_step_methods();
+  ASSERT_GE(fixed_step.size(), 5u);  // arkode-erk2..5, gsl-rk4
+  for (const IntegratorInfo* info : fixed_step) {
     // The paper's step, far beyond every explicit method's limit on this model (w_max ~ 1e4 rad/s).
     auto integrator = make_integrator(info->name, 0.05);
     model::State s = c.rest();

@@ -1,0 +1,82 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "model/system_change.hpp"
+
+#include <algorithm>
+
+#include "common/errors.hpp"
+
+namespace roifem::model {
+
+namespace {
+
+/// A + U B U^T for a sparse A (the pattern grows where B has entries A lacks).
+SparseMatrix plus_block(const SparseMatrix& A, const std::vector<Index>& dofs, const DenseMatrix& B) {
+  std::vector<Eigen::Triplet<double, Index>> entries;
+  entries.reserve(dofs.size() * dofs.size());
+  for (std::size_t j = 0; j < dofs.size(); ++j)
+    for (std::size_t i = 0; i < dofs.size(); ++i)
+      if (const double b = B(static_cast<Index>(i), static_cast<Index>(j)); b != 0) entries.emplace_back(dofs[i], dofs[j], b);
+  SparseMatrix change(A.rows(), A.cols());
+  change.setFromTriplets(entries.begin(), entries.end());
+  SparseMatrix out = A + change;
+  return out;
+}
+
+SparseMatrix plus_diagonal(const SparseMatrix& A, const std::vector<Index>& dofs, const Vector& d) {
+  DenseMatrix B = DenseMatrix::Zero(d.size(), d.size());
+  B.diagonal() = d;
+  return plus_block(A, dofs, B);
+}
+
+/// Zeroes the rows and columns `held` of A (stored entries kept, so the pattern stays).
+void zero_rows_and_columns(SparseMatrix& A, const std::vector<bool>& is_held) {
+  for (Index j = 0; j < A.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(A, j); it; ++it)
+      if (is_held[static_cast<std::size_t>(it.row())] || is_held[static_cast<std::size_t>(it.col())]) it.valueRef() = 0;
+}
+
+}  // namespace
+
+DenseMatrix SystemChange::effective(double c) const {
+  DenseMatrix out = stiffness;
+  out.diagonal() += c * mass;
+  return out;
+}
+
+void SystemChange::apply(SecondOrderSystem& system) {
+  if (!system.damping.is_mass_proportional())
+    throw InputError("a cut changes M, and C with it only where C = alpha M: this system's damping is general");
+  if (loads.size() != system.load.terms().size())
+    throw Error("internal: a system change has " + std::to_string(loads.size()) + " load changes for " +
+                std::to_string(system.load.terms().size()) + " load terms");
+  const auto r = static_cast<Index>(dofs.size());
+  // At held dofs dK takes exactly what K holds there, so that K's rows become zero, not round-off.
+  std::vector<bool> is_held(static_cast<std::size_t>(system.size()), false);
+  for (const Index d : held) is_held[static_cast<std::size_t>(d)] = true;
+  for (Index a = 0; a < r; ++a)
+    for (Index b = 0; b < r; ++b)
+      if (is_held[static_cast<std::size_t>(dofs[static_cast<std::size_t>(a)])] ||
+          is_held[static_cast<std::size_t>(dofs[static_cast<std::size_t>(b)])])
+        stiffness(a, b) = -system.K.coeff(dofs[static_cast<std::size_t>(a)], dofs[static_cast<std::size_t>(b)]);
+  system.K = plus_block(system.K, dofs, stiffness);
+  zero_rows_and_columns(system.K, is_held);
+  if (!system.K_split.empty()) {
+    system.K_split.sparse = plus_block(system.K_split.sparse, dofs, stiffness);
+    zero_rows_and_columns(system.K_split.sparse, is_held);
+  }
+  system.M = plus_diagonal(system.M, dofs, mass);
+  if (!system.M_split.empty()) system.M_split.sparse = plus_diagonal(system.M_split.sparse, dofs, mass);
+  system.C = plus_diagonal(system.C, dofs, system.damping.alpha * mass);
+  LoadHistory changed(system.load.size());
+  for (std::size_t k = 0; k < loads.size(); ++k) {
+    const auto& term = system.load.terms()[k];
+    Vector pattern = term.pattern;
+    if (loads[k].size() == r)
+      for (Index a = 0; a < r; ++a) pattern[dofs[static_cast<std::size_t>(a)]] += loads[k][a];
+    for (const Index d : held) pattern[d] = 0;
+    changed.add(std::move(pattern), term.ramp);
+  }
+  system.load = std::move(changed);
+}
+
+}  // namespace roifem::model

@@ -1,0 +1,222 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "simulation/scenario_cuts.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <numeric>
+
+#include "common/errors.hpp"
+#include "common/number_text.hpp"
+#include "condensation/reduced_model.hpp"
+#include "fem/element_removal.hpp"
+#include "integrators/integrator_table.hpp"
+
+namespace roifem::simulation {
+
+namespace {
+
+/// InputError for what cuts are not built on: said once, before the blades are traced.
+void refuse_unsupported(const scenario::Scenario& sc, const ScenarioModel& m) {
+  const std::string cut = sc.cuts.front().where + ": " + sc.cuts.front().describe();
+  if (m.full.element != fem::Element::tet4)
+    throw InputError(cut + ": cuts are built for 4-node tetrahedra (element = \"tet4\"), not element = \"" +
+                     std::string(fem::element_name(m.full.element)) + "\"");
+  if (m.system().is_nonlinear())
+    throw InputError(cut + ": cuts are built for the linear material; this model's is " + m.system().internal_force->describe() +
+                     " (give [material] model = \"linear\")");
+  if (m.condensation && m.condensation->reduction().kind->counted)
+    throw InputError(cut + ": [roi] reduction = \"" + m.condensation->reduction().label() +
+                     "\" keeps modes of the uncut mesh's static part; cuts take reduction = \"static\" or \"guyan\"");
+  const auto& info = integrators::integrator_info(sc.integrator);
+  if (info.needs_tools || info.needs_uncondensed)
+    throw InputError(cut + ": integrator '" + sc.integrator +
+                     "' integrates a DAE form that keeps the uncut system; a cut takes the eliminated form (trapezoid, "
+                     "arkode-*, ida-bdf*, gsl-*)");
+}
+
+/// Union-find over nodes, by the tetrahedra still there.
+std::vector<int> pieces(const mesh::TetMesh& mesh, const std::vector<bool>& still_there) {
+  std::vector<int> parent(static_cast<std::size_t>(mesh.num_nodes()));
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto root = [&](int n) {
+    while (parent[static_cast<std::size_t>(n)] != n)
+      n = parent[static_cast<std::size_t>(n)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(n)])];
+    return n;
+  };
+  for (std::size_t e = 0; e < still_there.size(); ++e)
+    if (still_there[e])
+      for (int k = 1; k < 4; ++k)
+        parent[static_cast<std::size_t>(root(mesh.tets[e][static_cast<std::size_t>(k)]))] = root(mesh.tets[e][0]);
+  for (int n = 0; n < static_cast<int>(parent.size()); ++n) parent[static_cast<std::size_t>(n)] = root(n);
+  return parent;
+}
+
+std::string node_list(const std::vector<int>& nodes) {
+  std::string out;
+  for (std::size_t i = 0; i < nodes.size() && i < 10; ++i) out += (i ? ", " : "") + std::to_string(nodes[i]);
+  if (nodes.size() > 10) out += ", ... (" + std::to_string(nodes.size()) + " in all)";
+  return out;
+}
+
+}  // namespace
+
+ScenarioCuts::ScenarioCuts(const scenario::Scenario& sc, const ScenarioModel& m) {
+  if (sc.cuts.empty()) return;
+  refuse_unsupported(sc, m);
+  const mesh::TetMesh& mesh = m.mesh;
+  const fem::DofMap& dofs = *m.full.dofs;
+  const double t_end = sc.dt * static_cast<double>(sc.steps);
+  time_slack_ = 1e-9 * sc.dt;
+  const auto elements = static_cast<std::size_t>(mesh.num_tets());
+
+  // Each tetrahedron once, at the earliest time a blade reaches it within the run.
+  std::vector<double> when(elements, std::numeric_limits<double>::infinity());
+  std::vector<const cutting::Blade*> by(elements, nullptr);
+  for (const cutting::Blade& blade : sc.cuts) {
+    const std::vector<cutting::Crossing> crossings = cutting::swept_elements(blade, mesh);
+    if (crossings.empty())
+      throw InputError(blade.where + ": " + blade.describe() + " never meets the mesh " + mesh.source +
+                       ": its edge, swept along its path, crosses no tetrahedron");
+    if (crossings.front().time > t_end + time_slack_)
+      throw InputError(blade.where + ": " + blade.describe() + " first reaches the mesh (tetrahedron " +
+                       std::to_string(crossings.front().element) + ") at t = " + number_text(crossings.front().time) +
+                       " s, after the run ends at t = " + number_text(t_end) + " s");
+    for (const auto& c : crossings)
+      if (c.time <= t_end + time_slack_ && c.time < when[static_cast<std::size_t>(c.element)]) {
+        when[static_cast<std::size_t>(c.element)] = c.time;
+        by[static_cast<std::size_t>(c.element)] = &blade;
+      }
+  }
+  for (std::size_t e = 0; e < elements; ++e)
+    if (by[e]) schedule_.push_back({static_cast<Index>(e), when[e]});
+  std::stable_sort(schedule_.begin(), schedule_.end(), [](const auto& a, const auto& b) { return a.time < b.time; });
+
+  // Where the tissue is held, and what the cut may reach.
+  std::vector<std::string> tool_at(static_cast<std::size_t>(mesh.num_nodes()));
+  for (const auto& tool : m.full.tools.tools())
+    for (const int n : tool.nodes) tool_at[static_cast<std::size_t>(n)] = tool.name;
+  std::vector<bool> in_roi(static_cast<std::size_t>(mesh.num_nodes()), m.roi_nodes.empty());
+  for (const int n : m.roi_nodes) in_roi[static_cast<std::size_t>(n)] = true;
+  supported_.assign(static_cast<std::size_t>(mesh.num_nodes()), false);
+  for (int n = 0; n < mesh.num_nodes(); ++n)
+    supported_[static_cast<std::size_t>(n)] =
+        !in_roi[static_cast<std::size_t>(n)] || dofs.free_dof(n, 0) < 0 || dofs.free_dof(n, 1) < 0 || dofs.free_dof(n, 2) < 0;
+  for (const auto& c : schedule_) {
+    const cutting::Blade& blade = *by[static_cast<std::size_t>(c.element)];
+    for (const int n : mesh.tets[static_cast<std::size_t>(c.element)]) {
+      const std::string at = blade.where + ": " + blade.describe() + " reaches tetrahedron " + std::to_string(c.element) +
+                             " at t = " + number_text(c.time) + " s, ";
+      if (!tool_at[static_cast<std::size_t>(n)].empty())
+        throw InputError(at + "which holds node " + std::to_string(n) + " of tool '" + tool_at[static_cast<std::size_t>(n)] +
+                         "': a cut stays clear of the tools' nodes");
+      if (!in_roi[static_cast<std::size_t>(n)])
+        throw InputError(at + "which touches node " + std::to_string(n) +
+                         " of the static part: a cut stays inside the ROI, whose condensation it changes in place (a larger "
+                         "[roi], or move the blade)");
+    }
+  }
+  Index inside = 0;
+  for (const auto& tet : mesh.tets)
+    inside += std::all_of(tet.begin(), tet.end(), [&](int n) { return in_roi[static_cast<std::size_t>(n)]; }) ? 1 : 0;
+  if (static_cast<Index>(schedule_.size()) == inside)
+    throw InputError(sc.cuts.front().where + ": the cuts remove all " + std::to_string(inside) + " tetrahedra of the " +
+                     (m.roi_nodes.empty() ? "mesh" : "ROI") + ": nothing would be left to move");
+
+  system_dof_.assign(static_cast<std::size_t>(dofs.num_free()), -1);
+  if (m.condensation) {
+    const auto& d = m.condensation->partition().d;
+    for (std::size_t i = 0; i < d.size(); ++i) system_dof_[static_cast<std::size_t>(d[i])] = static_cast<Index>(i);
+  } else {
+    std::iota(system_dof_.begin(), system_dof_.end(), Index{0});
+  }
+  for (std::size_t k = 0; k < sc.loads.size(); ++k)
+    if (sc.loads[k].gravity) gravity_.emplace_back(k, *sc.loads[k].gravity);
+  still_there_.assign(elements, true);
+}
+
+CutEvent ScenarioCuts::remove_due(double t, ScenarioModel& m, model::State& state) {
+  CutEvent event;
+  event.time = state.t;
+  while (due(t)) event.elements.push_back(schedule_[next_++].element);
+  std::sort(event.elements.begin(), event.elements.end());
+  const fem::DofMap& dofs = *m.full.dofs;
+  const fem::ElementRemoval removal = fem::element_removal(m.mesh, dofs, m.full.materials, event.elements, 0.0, still_there_);
+  for (const Index e : event.elements) {
+    still_there_[static_cast<std::size_t>(e)] = false;
+    event.mass_removed += m.full.materials.of(e).rho * mesh::signed_volume(m.mesh, e);
+  }
+  event.orphan_nodes = removal.orphan_nodes;
+
+  model::SystemChange& change = event.change;
+  const auto r = static_cast<Index>(removal.dofs.size());
+  std::vector<bool> held_free(static_cast<std::size_t>(dofs.num_free()), false);
+  for (const int n : removal.orphan_nodes)
+    for (int c = 0; c < 3; ++c)
+      if (const int d = dofs.free_dof(n, c); d >= 0) held_free[static_cast<std::size_t>(d)] = true;
+  change.stiffness = removal.change;
+  change.mass.resize(r);
+  Vector u(r), v(r);
+  for (Index a = 0; a < r; ++a) {
+    const Index free = removal.dofs[static_cast<std::size_t>(a)];
+    const Index d = system_dof_[static_cast<std::size_t>(free)];
+    if (d < 0) throw Error("internal: a cut reached a dof of the static part");
+    change.dofs.push_back(d);
+    const double dm = removal.mass_change[free];
+    change.mass[a] = held_free[static_cast<std::size_t>(free)] ? 0.0 : dm;
+    if (held_free[static_cast<std::size_t>(free)]) change.held.push_back(d);
+    u[a] = state.u[d];
+    v[a] = state.v[d];
+    event.kinetic_energy -= 0.5 * dm * v[a] * v[a];
+  }
+  event.strain_energy = -0.5 * u.dot(change.stiffness * u);
+  const model::SecondOrderSystem& system = m.system();
+  change.loads.assign(system.load.terms().size(), Vector());
+  for (const auto& [k, g] : gravity_) {
+    Vector dp(r);
+    for (Index a = 0; a < r; ++a) {
+      const Index full = dofs.full_dof(removal.dofs[static_cast<std::size_t>(a)]);
+      dp[a] = removal.mass_change[removal.dofs[static_cast<std::size_t>(a)]] * g[static_cast<int>(full % 3)];
+    }
+    change.loads[k] = std::move(dp);
+  }
+  // A load on a node left with no element has nothing to act on: it is dropped, and said.
+  for (const Index d : change.held)
+    for (std::size_t k = 0; k < system.load.terms().size(); ++k)
+      if (change.loads[k].size() == 0 && system.load.terms()[k].pattern[d] != 0) {
+        const Index full = dofs.full_dof(removal.dofs[static_cast<std::size_t>(
+            std::lower_bound(change.dofs.begin(), change.dofs.end(), d) - change.dofs.begin())]);
+        event.warnings.push_back("load " + std::to_string(k + 1) + " acted on node " + std::to_string(full / 3) +
+                                 ", which the cut left with no tetrahedron: its share is dropped");
+        break;
+      }
+  for (const Index d : change.held) state.v[d] = 0;
+  m.change_system(change);
+
+  // Pieces the cut freed from every support move rigidly: said, with their nodes.
+  const std::vector<int> piece = pieces(m.mesh, still_there_);
+  std::vector<int> touched;
+  for (const Index e : event.elements)
+    for (const int n : m.mesh.tets[static_cast<std::size_t>(e)]) touched.push_back(piece[static_cast<std::size_t>(n)]);
+  std::sort(touched.begin(), touched.end());
+  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+  std::vector<bool> has_element(piece.size(), false);
+  for (std::size_t e = 0; e < still_there_.size(); ++e)
+    if (still_there_[e]) has_element[static_cast<std::size_t>(piece[static_cast<std::size_t>(m.mesh.tets[e][0])])] = true;
+  for (const int root : touched) {
+    if (!has_element[static_cast<std::size_t>(root)]) continue;  // an orphan node: held at rest
+    std::vector<int> nodes;
+    bool held = false;
+    for (int n = 0; n < static_cast<int>(piece.size()); ++n)
+      if (piece[static_cast<std::size_t>(n)] == root) {
+        nodes.push_back(n);
+        held = held || supported_[static_cast<std::size_t>(n)];
+      }
+    if (!held)
+      event.warnings.push_back("the cut at t = " + number_text(event.time) + " s set loose a piece of " +
+                               std::to_string(nodes.size()) + " nodes (" + node_list(nodes) +
+                               ") held by no support: it moves as a free body under its loads");
+  }
+  return event;
+}
+
+}  // namespace roifem::simulation
