@@ -28,6 +28,8 @@ declare -A sources=(
   [nifti_header]="src/anatomy/image_volume.cpp"
 )
 declare -A libraries=([nifti_header]="-I /usr/include/nifti -lnifti2 -lznz -lz")
+# Dictionaries: the keys, tables and values a reader recognizes (fuzz/NAME.dict), where one helps.
+declare -A dictionaries=([scenario_reader]="-dict=fuzz/scenario_reader.dict")
 core=build/release/src
 [ -e "$core/libroifem_core.so" ] || { cmake --preset release >/dev/null && cmake --build --preset release --target roifem_core; }
 for name in scenario_reader mesh_checks trajectory_reader nifti_header; do
@@ -46,7 +48,8 @@ for name in scenario_reader mesh_checks trajectory_reader nifti_header; do
   echo "fuzzing $name: ${limits[*]} (corpus: $(ls "$work" | wc -l) inputs)"
   rm -f "$out"/crash-* "$out"/leak-* "$out"/timeout-* "$out"/oom-*
   status=0
-  "$out/${name}_fuzzer" "${limits[@]}" -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$out/" "$work" \
+  # shellcheck disable=SC2086
+  "$out/${name}_fuzzer" "${limits[@]}" ${dictionaries[$name]:-} -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$out/" "$work" \
     > "$out/$name.log" 2>&1 || status=$?
   grep -E "^(stat::number_of_executed_units|stat::peak_rss_mb)|ERROR|SUMMARY" "$out/$name.log" || true
   if [ "$status" -ne 0 ]; then

@@ -36,7 +36,7 @@ double mean_edge_length(const mesh::TetMesh& mesh) {
 
 }  // namespace
 
-DeformationReport check_deformation(ScenarioModel& model, const PeakDisplacement& peak) {
+DeformationReport check_deformation(ScenarioModel& model, const PeakDisplacement& peak, const std::vector<bool>& still_there) {
   using io::format;
   DeformationReport r;
   const mesh::TetMesh& mesh = model.mesh;
@@ -55,6 +55,7 @@ DeformationReport check_deformation(ScenarioModel& model, const PeakDisplacement
     }
   }
   for (Index e = 0; e < mesh.num_tets(); ++e) {
+    if (!still_there.empty() && !still_there[static_cast<std::size_t>(e)]) continue;
     const auto& t = mesh.tets[static_cast<std::size_t>(e)];
     auto x = [&](int a) -> Vec3 { return mesh.node(t[a]) + u.segment<3>(3 * static_cast<Index>(t[a])); };
     const Vec3 p0 = x(0);

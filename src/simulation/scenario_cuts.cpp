@@ -97,10 +97,16 @@ ScenarioCuts::ScenarioCuts(const scenario::Scenario& sc, const ScenarioModel& m)
     for (const int n : tool.nodes) tool_at[static_cast<std::size_t>(n)] = tool.name;
   std::vector<bool> in_roi(static_cast<std::size_t>(mesh.num_nodes()), m.roi_nodes.empty());
   for (const int n : m.roi_nodes) in_roi[static_cast<std::size_t>(n)] = true;
+  // A node fixed in every component has no unknown to be in the ROI or the static part: a cut may
+  // reach it (the tetrahedron's free dofs are the ROI's), and it supports what it belongs to.
   supported_.assign(static_cast<std::size_t>(mesh.num_nodes()), false);
-  for (int n = 0; n < mesh.num_nodes(); ++n)
-    supported_[static_cast<std::size_t>(n)] =
-        !in_roi[static_cast<std::size_t>(n)] || dofs.free_dof(n, 0) < 0 || dofs.free_dof(n, 1) < 0 || dofs.free_dof(n, 2) < 0;
+  std::vector<bool> in_static_part(static_cast<std::size_t>(mesh.num_nodes()), false);
+  for (int n = 0; n < mesh.num_nodes(); ++n) {
+    const bool fixed_somewhere = dofs.free_dof(n, 0) < 0 || dofs.free_dof(n, 1) < 0 || dofs.free_dof(n, 2) < 0;
+    const bool free_somewhere = dofs.free_dof(n, 0) >= 0 || dofs.free_dof(n, 1) >= 0 || dofs.free_dof(n, 2) >= 0;
+    in_static_part[static_cast<std::size_t>(n)] = free_somewhere && !in_roi[static_cast<std::size_t>(n)];
+    supported_[static_cast<std::size_t>(n)] = fixed_somewhere || in_static_part[static_cast<std::size_t>(n)];
+  }
   for (const auto& c : schedule_) {
     const cutting::Blade& blade = *by[static_cast<std::size_t>(c.element)];
     for (const int n : mesh.tets[static_cast<std::size_t>(c.element)]) {
@@ -109,7 +115,7 @@ ScenarioCuts::ScenarioCuts(const scenario::Scenario& sc, const ScenarioModel& m)
       if (!tool_at[static_cast<std::size_t>(n)].empty())
         throw InputError(at + "which holds node " + std::to_string(n) + " of tool '" + tool_at[static_cast<std::size_t>(n)] +
                          "': a cut stays clear of the tools' nodes");
-      if (!in_roi[static_cast<std::size_t>(n)])
+      if (in_static_part[static_cast<std::size_t>(n)])
         throw InputError(at + "which touches node " + std::to_string(n) +
                          " of the static part: a cut stays inside the ROI, whose condensation it changes in place (a larger "
                          "[roi], or move the blade)");
@@ -117,7 +123,7 @@ ScenarioCuts::ScenarioCuts(const scenario::Scenario& sc, const ScenarioModel& m)
   }
   Index inside = 0;
   for (const auto& tet : mesh.tets)
-    inside += std::all_of(tet.begin(), tet.end(), [&](int n) { return in_roi[static_cast<std::size_t>(n)]; }) ? 1 : 0;
+    inside += std::none_of(tet.begin(), tet.end(), [&](int n) { return in_static_part[static_cast<std::size_t>(n)]; }) ? 1 : 0;
   if (static_cast<Index>(schedule_.size()) == inside)
     throw InputError(sc.cuts.front().where + ": the cuts remove all " + std::to_string(inside) + " tetrahedra of the " +
                      (m.roi_nodes.empty() ? "mesh" : "ROI") + ": nothing would be left to move");

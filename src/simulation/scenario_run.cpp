@@ -217,7 +217,7 @@ ScenarioRunSummary run_scenario(const scenario::Scenario& sc, const std::filesys
   if (const auto held = stepper.integrator().constraints())
     log << format("%s: the multipliers' tool forces differ from the residual's by at most %.1e of their peak; drift %.1e mm\n",
                   sc.integrator.c_str(), recorder.multiplier_disagreement(), held->position_drift / mm);
-  print_deformation(check_deformation(built_model, peak), peak, sc.dt, log);
+  print_deformation(check_deformation(built_model, peak, stepper.cuts().still_there()), peak, sc.dt, log);
   log << "results: " << (out / "results.h5").string() << (recorder.has_fields() ? " (ParaView: results.xdmf)" : "") << '\n';
   return summary;
 }

@@ -11,6 +11,8 @@
 ///       the multipliers, and the constraint's drift)
 ///   /roi/nodes (R), /roi/displacement_mm (K+1 x R x 3)             (with an ROI)
 ///   /fields/displacement_mm_NNNNNN (N x 3) every output.field_every steps, static part recovered
+///   /energy/cut_J, /cuts/{removed_elements, removed_at_step, removed_at_s}, /mesh/tets_from_step_NNNNNN
+///       (with [[cut]]s: the energy they took, what they removed and when, the tetrahedra left)
 ///   attributes: scenario (the resolved TOML), integrator, counters, status
 /// Series are extendible, chunked, Fletcher32-checksummed datasets appended step by step.
 #include <filesystem>

@@ -8,8 +8,8 @@
 
 namespace roifem::solvers {
 
-LowRankUpdate::LowRankUpdate(Solve solve_A, Index n)
-    : solve_A_(std::move(solve_A)), n_(n), column_(static_cast<std::size_t>(n), -1), Z_(n, 0) {}
+LowRankUpdate::LowRankUpdate(Solve solve_A, Index n, SolveMany solve_many)
+    : solve_A_(std::move(solve_A)), solve_many_(std::move(solve_many)), n_(n), column_(static_cast<std::size_t>(n), -1), Z_(n, 0) {}
 
 void LowRankUpdate::add(const std::vector<Index>& dofs, const DenseMatrix& B) {
   if (B.rows() != static_cast<Index>(dofs.size()) || B.cols() != B.rows())
@@ -28,16 +28,22 @@ void LowRankUpdate::add(const std::vector<Index>& dofs, const DenseMatrix& B) {
     at[k] = known >= 0 ? known : r_old + static_cast<Index>(fresh.size());
     if (known < 0) fresh.push_back(d);
   }
-  // Z's new columns: A^-1 e_d, one solve each.
+  // Z's new columns: A^-1 e_d, in one multi-column solve or one solve each.
   const Index r = r_old + static_cast<Index>(fresh.size());
   DenseMatrix Z(n_, r), B_sum = DenseMatrix::Zero(r, r);
   Z.leftCols(r_old) = Z_;
-  Vector unit = Vector::Zero(n_), column(n_);
-  for (std::size_t j = 0; j < fresh.size(); ++j) {
-    unit[fresh[j]] = 1;
-    solve_A_(unit, column);
-    Z.col(r_old + static_cast<Index>(j)) = column;
-    unit[fresh[j]] = 0;
+  if (solve_many_ && !fresh.empty()) {
+    DenseMatrix units = DenseMatrix::Zero(n_, static_cast<Index>(fresh.size()));
+    for (std::size_t j = 0; j < fresh.size(); ++j) units(fresh[j], static_cast<Index>(j)) = 1;
+    Z.rightCols(static_cast<Index>(fresh.size())) = solve_many_(units);
+  } else {
+    Vector unit = Vector::Zero(n_), column(n_);
+    for (std::size_t j = 0; j < fresh.size(); ++j) {
+      unit[fresh[j]] = 1;
+      solve_A_(unit, column);
+      Z.col(r_old + static_cast<Index>(j)) = column;
+      unit[fresh[j]] = 0;
+    }
   }
   std::vector<Index> all = dofs_;
   all.insert(all.end(), fresh.begin(), fresh.end());

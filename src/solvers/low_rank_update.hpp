@@ -5,8 +5,9 @@
 ///   (A + U B U^T)^-1 b = x - Z (I + B U^T Z)^-1 B U^T x,   x = A^-1 b,   Z = A^-1 U,
 /// where U selects r rows (the dofs a change touches) and B is r x r. A cut that removes
 /// tetrahedra changes the trapezoidal rule's K_eff so (fem/element_removal.hpp): each element a
-/// 12 x 12 block on its dofs. Z costs one solve with A's factor per dof, once per change; a solve
-/// then costs one with A's factor and O(n r) more. Changes accumulate: U is the union of their
+/// 12 x 12 block on its dofs. Z costs one solve with A's factor per dof, once per change (all of a
+/// change's columns in one multi-column solve where one is given: BLAS-3 in a supernodal factor);
+/// a solve then costs one with A's factor and O(n r) more. Changes accumulate: U is the union of their
 /// dofs, B the sum of their blocks.
 #include <Eigen/LU>
 #include <functional>
@@ -20,7 +21,9 @@ class LowRankUpdate {
  public:
   /// x = A^-1 b with the factor of A (n x n) kept; x does not alias b.
   using Solve = std::function<void(const Vector& b, Vector& x)>;
-  LowRankUpdate(Solve solve_A, Index n);
+  /// X = A^-1 B for several columns at once.
+  using SolveMany = std::function<DenseMatrix(const DenseMatrix& B)>;
+  LowRankUpdate(Solve solve_A, Index n, SolveMany solve_many = {});
 
   /// Adds B (symmetric, dofs.size() squared) on the rows and columns `dofs` (distinct, in
   /// [0, n)). Throws InputError for a dof out of range or given twice, SolverError when
@@ -34,6 +37,7 @@ class LowRankUpdate {
 
  private:
   Solve solve_A_;
+  SolveMany solve_many_;
   Index n_;
   std::vector<Index> dofs_;                       ///< U's rows, in the order they came
   std::vector<Index> column_;                     ///< per dof of A, its column of U, or -1

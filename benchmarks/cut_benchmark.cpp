@@ -1,0 +1,187 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Cut: what removing tetrahedra inside the ROI costs the trapezoidal rule on condensed brains, at
+// the haptic tick's step (dt = 1 ms). Per brain and ROI (each in its own child process), for cuts
+// of 1, 10 and 100 tetrahedra nearest the surgical target: forming the change (the removed
+// elements' blocks, fem/element_removal.hpp), taking it into the factor of K_eff by Woodbury's
+// correction (solvers/low_rank_update.hpp: Z = K_eff^-1 U in one multi-column solve and the
+// capacitance), a solve after it against a solve before (medians of 51), and the alternatives: a
+// numeric refactorization of the changed K_eff (its pattern analysed beforehand) and the whole
+// condensation that a cut touching the static part would need. The corrected solve is checked
+// against the refactorized one. Writes DIR/cut.csv.
+//   compile with: cmake --build --preset release --target roifem_cut_benchmark
+//   sample run:   build/release/benchmarks/roifem_cut_benchmark --nodes 20000 100000 --rois 300 1000 --out results/cut
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <random>
+
+#include "brain_meshes.hpp"
+#include "common/timer.hpp"
+#include "fem/element_removal.hpp"
+#include "io/csv.hpp"
+#include "model/average_acceleration.hpp"
+#include "scale/brain_model.hpp"
+#include "scale/child_process.hpp"
+#include "scale/machine_bounds.hpp"
+#include "simulation/run_loop.hpp"
+#include "solvers/cholesky.hpp"
+#include "solvers/low_rank_update.hpp"
+
+namespace roifem::bench {
+namespace {
+
+struct Options {
+  std::vector<long> nodes{20000, 100000};
+  std::vector<long> rois{300, 1000};
+  std::vector<long> cuts{1, 10, 100};
+  std::filesystem::path out = "cut-results";
+  double model_timeout_s = 1800;
+  bool machine_bounds = true;
+};
+
+/// The ROI's tetrahedra (every node in the ROI or fixed), nearest the target first.
+std::vector<Index> roi_tetrahedra(const Brain& brain, const roi::Partition& partition) {
+  const fem::DofMap& dofs = *brain.model.dofs;
+  std::vector<bool> movable(static_cast<std::size_t>(brain.mesh.num_nodes()), false);
+  for (const Index d : partition.s) movable[static_cast<std::size_t>(dofs.full_dof(d) / 3)] = true;  // the static part's
+  std::vector<std::pair<double, Index>> near;
+  const Vec3 target(0, 0, 0.040);
+  for (Index e = 0; e < brain.mesh.num_tets(); ++e) {
+    const auto& t = brain.mesh.tets[static_cast<std::size_t>(e)];
+    if (std::any_of(t.begin(), t.end(), [&](int n) { return movable[static_cast<std::size_t>(n)]; })) continue;
+    Vec3 centre = Vec3::Zero();
+    for (const int n : t) centre += brain.mesh.node(n) / 4;
+    near.emplace_back((centre - target).norm(), e);
+  }
+  std::sort(near.begin(), near.end());
+  std::vector<Index> out;
+  for (const auto& [distance, e] : near) out.push_back(e);
+  return out;
+}
+
+template <class F>
+double median_seconds(int repeats, F&& f) {
+  std::vector<double> s;
+  for (int i = 0; i < repeats; ++i) {
+    const Stopwatch clock;
+    f();
+    s.push_back(clock.seconds());
+  }
+  return simulation::median(s);
+}
+
+/// The child's work: one line per cut size, "table|csv".
+std::string measure(const std::filesystem::path& mesh_file, long roi_nodes, const std::vector<long>& cuts) {
+  const auto brain = build_brain(mesh_file);
+  const Stopwatch condense_clock;
+  const Condensed condensed = condense(*brain, roi_nodes);
+  const double condense_s = condense_clock.seconds();
+  const model::SecondOrderSystem& system = condensed.condensation->system();
+  const roi::Partition& partition = condensed.condensation->partition();
+  const model::AverageAcceleration rule(1e-3);
+  const double c = rule.c_u() + 2 * system.damping.alpha / rule.dt();
+  const SparseMatrix K_eff = rule.effective_stiffness(system);
+  const std::vector<Index> last = system.dense_block_dofs();
+  solvers::Cholesky factor;
+  factor.compute(K_eff, last);
+  const Index n = system.size();
+  std::vector<Index> position(static_cast<std::size_t>(brain->model.dofs->num_free()), -1);
+  for (std::size_t i = 0; i < partition.d.size(); ++i) position[static_cast<std::size_t>(partition.d[i])] = static_cast<Index>(i);
+  const std::vector<Index> tetrahedra = roi_tetrahedra(*brain, partition);
+
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> uniform(-1, 1);
+  Vector b(n), x(n), x_after(n), x_refactored(n);
+  for (Index i = 0; i < n; ++i) b[i] = uniform(random);
+  const double solve_s = median_seconds(51, [&] { factor.solve(b, x); });
+  std::string lines;
+  for (const long k : cuts) {
+    if (static_cast<std::size_t>(k) > tetrahedra.size()) continue;
+    const std::vector<Index> removed(tetrahedra.begin(), tetrahedra.begin() + k);
+    const Stopwatch form_clock;
+    const fem::ElementRemoval removal = fem::element_removal(brain->mesh, *brain->model.dofs, brain->model.materials, removed, c);
+    std::vector<Index> dofs;
+    for (const Index d : removal.dofs) dofs.push_back(position[static_cast<std::size_t>(d)]);
+    const double form_s = form_clock.seconds();
+    solvers::LowRankUpdate update([&](const Vector& rhs, Vector& out) { factor.solve(rhs, out); }, n,
+                                  [&](const DenseMatrix& B) { return factor.solve_matrix(B); });
+    const Stopwatch update_clock;
+    update.add(dofs, removal.change);
+    const double update_s = update_clock.seconds();
+    const double after_s = median_seconds(51, [&] { update.solve(b, x_after); });
+    // The alternative: K_eff changed and factorized again (its pattern analysed beforehand, untimed).
+    std::vector<Eigen::Triplet<double, Index>> entries;
+    for (std::size_t i = 0; i < dofs.size(); ++i)
+      for (std::size_t j = 0; j < dofs.size(); ++j)
+        entries.emplace_back(dofs[i], dofs[j], removal.change(static_cast<Index>(i), static_cast<Index>(j)));
+    SparseMatrix change(n, n);
+    change.setFromTriplets(entries.begin(), entries.end());
+    const SparseMatrix K_changed = K_eff + change;
+    solvers::Cholesky refactored;
+    refactored.analyze(K_changed, last);
+    const Stopwatch refactor_clock;
+    refactored.factorize(K_changed);
+    const double refactor_s = refactor_clock.seconds();
+    refactored.solve(b, x_refactored);
+    const double gap = (x_after - x_refactored).norm() / x_refactored.norm();
+    lines += io::format("%8lld %5ld %6lld %6ld %5ld %5lld %8.3f %9.2f %8.3f %8.3f %10.1f %9.2f  %.1e|", static_cast<long long>(brain->mesh.num_nodes()),
+                        roi_nodes, static_cast<long long>(n), condensed.interface_dofs, k, static_cast<long long>(dofs.size()),
+                        form_s * 1e3, update_s * 1e3, solve_s * 1e3, after_s * 1e3, refactor_s * 1e3, condense_s, gap) +
+             io::format("%lld,%ld,%lld,%ld,%ld,%lld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.3g\n",
+                        static_cast<long long>(brain->mesh.num_nodes()), roi_nodes, static_cast<long long>(n),
+                        condensed.interface_dofs, k, static_cast<long long>(dofs.size()), form_s * 1e3, update_s * 1e3,
+                        solve_s * 1e3, after_s * 1e3, refactor_s * 1e3, condense_s, gap);
+  }
+  return lines;
+}
+
+int run(const Options& o) {
+  std::filesystem::create_directories(o.out);
+  if (o.machine_bounds) report_machine_bounds(o.out);
+  io::CsvWriter csv(o.out / "cut.csv",
+                    "nodes,roi_nodes,system_dofs,interface_dofs,removed,changed_dofs,form_ms,update_ms,solve_ms,"
+                    "solve_after_ms,refactor_ms,condense_s,gap_vs_refactored");
+  std::printf(
+      "Cut: tetrahedra nearest the target removed from the condensed ROI's K_eff (trapezoid, dt = 1 ms); the change "
+      "taken by Woodbury's correction of the factor, against a numeric refactorization and the whole condensation\n");
+  std::printf("%8s %5s %6s %6s %5s %5s %8s %9s %8s %8s %10s %9s  %s\n", "nodes", "ROI", "dofs", "iface", "cut", "r", "form ms",
+              "update ms", "solve ms", "after ms", "refactor ms", "condense s", "|x - x_refactored| / |x|");
+  for (const long n : o.nodes) {
+    const auto mesh_file = brain_mesh_file(n);
+    for (const long roi : o.rois) {
+      const ChildResult child = run_in_child([&] { return measure(mesh_file, roi, o.cuts); }, o.model_timeout_s);
+      if (!child.ok) {
+        std::printf("%8ld %5ld  failed: %s\n", n, roi, child.output.c_str());
+        continue;
+      }
+      std::size_t at = 0;
+      while (at < child.output.size()) {
+        const std::size_t bar = child.output.find('|', at), end = child.output.find('\n', bar);
+        std::printf("%s\n", child.output.substr(at, bar - at).c_str());
+        csv.row(child.output.substr(bar + 1, end - bar - 1));
+        at = end + 1;
+      }
+      std::fflush(stdout);
+    }
+  }
+  std::printf("wrote %s\n", (o.out / "cut.csv").c_str());
+  return 0;
+}
+
+}  // namespace
+}  // namespace roifem::bench
+
+int main(int argc, char** argv) {
+  roifem::bench::Options o;
+  CLI::App app(
+      "roifem cut benchmark: a cut of 1, 10 and 100 tetrahedra inside the ROI of condensed brains, taken into the\n"
+      "trapezoidal rule's factor by Woodbury's correction, against refactorizing and re-condensing");
+  app.add_option("--nodes", o.nodes, "brain sizes (nodes; meshes cached in $ROIFEM_MESH_CACHE)");
+  app.add_option("--rois", o.rois, "ROI sizes (nodes nearest the target)");
+  app.add_option("--cuts", o.cuts, "tetrahedra removed per cut");
+  app.add_option("--out", o.out, "output directory (cut.csv)");
+  app.add_flag("!--no-machine-bounds", o.machine_bounds, "skip measuring the machine's bounds (smoke tests)");
+  CLI11_PARSE(app, argc, argv);
+  return roifem::bench::run(o);
+}
