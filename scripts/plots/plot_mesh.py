@@ -1,12 +1,15 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""A picture of a tetrahedral mesh's surface, coloured by its named surface sets.
+"""A picture of a tetrahedral mesh's surface, coloured by its named surface sets, or of a cut mesh.
 
 usage: /usr/bin/python3 plot_mesh.py MESH.msh OUT.png [SET ...]
-reads a Gmsh MSH 4.1 ASCII file (as `roifem mesh` writes it); draws its boundary triangles (those
-of the 'surface' set, else every triangle in the file) from the left, from above and from behind,
-shaded by the light on them, with the named 2D sets given (default: every 2D set but 'surface')
-in colour.
+       /usr/bin/python3 plot_mesh.py results.h5 OUT.png [STEP]
+The first reads a Gmsh MSH 4.1 ASCII file (as `roifem mesh` writes it); draws its boundary
+triangles (those of the 'surface' set, else every triangle in the file) from the left, from above
+and from behind, shaded by the light on them, with the named 2D sets given (default: every 2D set
+but 'surface') in colour. The second draws a run's mesh as its cuts left it (the tetrahedra after
+the last cut at or before STEP, default the run's last; `roifem run` with [[cut]]s), deformed by
+the last displacement field at or before that step, with the faces the cuts laid open in colour.
 """
 import os
 import sys
@@ -97,7 +100,68 @@ def main(path, out, wanted):
     print(out)
 
 
+def boundary(tets):
+    """The faces that belong to one tetrahedron only, as sorted node triples, each with its tetrahedron's order."""
+    faces = {}
+    for t in tets:
+        for f in ((t[0], t[1], t[2]), (t[0], t[3], t[1]), (t[1], t[3], t[2]), (t[0], t[2], t[3])):
+            key = tuple(sorted(f))
+            faces[key] = None if key in faces else f
+    return {k: f for k, f in faces.items() if f is not None}
+
+
+def main_cut(path, out, step):
+    import h5py
+    with h5py.File(path, "r") as h5:
+        nodes = h5["mesh/nodes_mm"][:]
+        uncut = h5["mesh/tets"][:]
+        cuts = sorted(int(k.rsplit("_", 1)[1]) for k in h5["mesh"] if k.startswith("tets_from_step_"))
+        steps = h5["time_s"].shape[0] - 1
+        step = steps if step is None else step
+        at = [k for k in cuts if k <= step]
+        if not at:
+            sys.exit(f"{path}: no cut at or before step {step} (cuts at steps {cuts or 'none'})")
+        tets = h5[f"mesh/tets_from_step_{at[-1]:06d}"][:]
+        fields = sorted(int(k.rsplit("_", 1)[1]) for k in h5.get("fields", {}) if int(k.rsplit("_", 1)[1]) <= step)
+        shown = nodes + (h5[f"fields/displacement_mm_{fields[-1]:06d}"][:] if fields else 0)
+        removed = len(h5["cuts/removed_elements"]) if "cuts" in h5 else len(uncut) - len(tets)
+    before = boundary(uncut)
+    after = boundary(tets)
+    opened = [f for k, f in after.items() if k not in before]
+    surface = list(after.values())
+    tri = shown[np.array(surface)]
+    is_open = np.array([k not in before for k in after])
+    views = [("from the left", (0, 180)), ("from above", (90, -90)), ("from behind", (0, -90))]
+    fig = plt.figure(figsize=(15, 5.4))
+    light = np.array([0.3, -0.5, 0.8]) / np.linalg.norm([0.3, -0.5, 0.8])
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+    for v, (title, (elev, azim)) in enumerate(views):
+        ax = fig.add_subplot(1, 3, v + 1, projection="3d")
+        normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+        normal /= np.maximum(np.linalg.norm(normal, axis=1)[:, None], 1e-300)
+        shade = 0.35 + 0.6 * np.clip(np.abs(normal @ light), 0, 1)
+        face = np.stack([shade, shade, shade * 0.97, np.ones_like(shade)], axis=1)
+        face[is_open, :3] = np.array([0.85, 0.2, 0.15]) * (0.5 + 0.5 * shade[is_open, None])
+        ax.add_collection3d(Poly3DCollection(tri, facecolors=face, edgecolors=(0, 0, 0, 0.15), linewidths=0.2))
+        lo, hi = tri.reshape(-1, 3).min(axis=0), tri.reshape(-1, 3).max(axis=0)
+        centre, half = (lo + hi) / 2, (hi - lo).max() / 2
+        for axis, setter in enumerate((ax.set_xlim, ax.set_ylim, ax.set_zlim)):
+            setter(centre[axis] - half, centre[axis] + half)
+        ax.view_init(elev=elev, azim=azim)
+        ax.set_axis_off()
+        ax.set_title(title)
+    fig.legend([plt.Rectangle((0, 0), 1, 1, color=(0.85, 0.2, 0.15))], [f"laid open by the cuts ({len(opened)} faces)"],
+               loc="lower center")
+    fig.suptitle(f"{os.path.basename(path)}: {removed} tetrahedra removed by step {step}"
+                 f"{f', deformed as at step {fields[-1]}' if fields else ''} (mm)")
+    save(fig, out)
+    print(out)
+
+
 if __name__ == "__main__":
     if len(sys.argv) < 3:
         sys.exit(__doc__)
-    main(sys.argv[1], sys.argv[2], sys.argv[3:])
+    if sys.argv[1].endswith(".h5"):
+        main_cut(sys.argv[1], sys.argv[2], int(sys.argv[3]) if len(sys.argv) > 3 else None)
+    else:
+        main(sys.argv[1], sys.argv[2], sys.argv[3:])

@@ -10,25 +10,27 @@
 
 namespace roifem::fem {
 
-ElementRemoval element_removal(const mesh::TetMesh& mesh, const DofMap& dofs, const MaterialMap& materials,
-                               const std::vector<Index>& removed, double c, const std::vector<bool>& still_there) {
+namespace {
+
+/// InputError unless `removed` are distinct tetrahedra of the mesh, all still there.
+void check_removable(const mesh::TetMesh& mesh, const std::vector<bool>& alive, const std::vector<Index>& removed) {
   if (mesh.is_quadratic()) throw InputError("removing elements: only a linear (4-node) mesh is taken so far");
-  const auto elements = static_cast<std::size_t>(mesh.num_tets());
-  std::vector<bool> alive = still_there.empty() ? std::vector<bool>(elements, true) : still_there;
-  if (alive.size() != elements) throw Error("internal: removing elements: the alive mask does not match the mesh");
-  for (const Index e : removed) {
+  std::vector<Index> sorted = removed;
+  std::sort(sorted.begin(), sorted.end());
+  for (std::size_t k = 0; k < sorted.size(); ++k) {
+    const Index e = sorted[k];
     if (e < 0 || e >= mesh.num_tets())
       throw InputError("removing elements: tetrahedron " + std::to_string(e) + " is not in the mesh");
-    if (!alive[static_cast<std::size_t>(e)])
+    if (!alive[static_cast<std::size_t>(e)] || (k > 0 && sorted[k - 1] == e))
       throw InputError("removing elements: tetrahedron " + std::to_string(e) + " is removed twice");
-    alive[static_cast<std::size_t>(e)] = false;
   }
-  // The nodes the removed elements leave with none.
-  std::vector<int> remaining(static_cast<std::size_t>(mesh.num_nodes()), 0);
-  for (std::size_t e = 0; e < elements; ++e)
-    if (alive[e])
-      for (const int n : mesh.tets[e]) ++remaining[static_cast<std::size_t>(n)];
+}
 
+/// The change; `elements_at` (per node, the tetrahedra holding it before) is decremented.
+ElementRemoval removal_change(const mesh::TetMesh& mesh, const DofMap& dofs, const MaterialMap& materials,
+                              const std::vector<Index>& removed, double c, std::vector<int>& elements_at) {
+  for (const Index e : removed)
+    for (const int n : mesh.tets[static_cast<std::size_t>(e)]) --elements_at[static_cast<std::size_t>(n)];
   ElementRemoval r;
   for (const Index e : removed)
     for (const int n : mesh.tets[static_cast<std::size_t>(e)])
@@ -41,7 +43,7 @@ ElementRemoval element_removal(const mesh::TetMesh& mesh, const DofMap& dofs, co
   };
   const auto size = static_cast<Index>(r.dofs.size());
   r.change = DenseMatrix::Zero(size, size);
-  r.mass_change = Vector::Zero(dofs.num_free());
+  r.mass_change = Vector::Zero(size);
   Vector orphan_mass = Vector::Zero(size);  // c m_i of an orphan's dofs, their pins
   for (const Index e : removed) {
     const auto& nodes = mesh.tets[static_cast<std::size_t>(e)];
@@ -57,16 +59,50 @@ ElementRemoval element_removal(const mesh::TetMesh& mesh, const DofMap& dofs, co
       for (int b = 0; b < 12; ++b)
         if (row[b] >= 0) r.change(i, local(row[b])) -= K(a, b);
       r.change(i, i) -= c * quarter;
-      r.mass_change[row[a]] -= quarter;
-      if (remaining[static_cast<std::size_t>(nodes[static_cast<std::size_t>(a / 3)])] == 0) orphan_mass[i] += c * quarter;
+      r.mass_change[i] -= quarter;
+      if (elements_at[static_cast<std::size_t>(nodes[static_cast<std::size_t>(a / 3)])] == 0) orphan_mass[i] += c * quarter;
     }
   }
   for (Index i = 0; i < size; ++i) r.change(i, i) += orphan_mass[i];
   for (const Index e : removed)
     for (const int n : mesh.tets[static_cast<std::size_t>(e)])
-      if (remaining[static_cast<std::size_t>(n)] == 0) r.orphan_nodes.push_back(n);
+      if (elements_at[static_cast<std::size_t>(n)] == 0) r.orphan_nodes.push_back(n);
   std::sort(r.orphan_nodes.begin(), r.orphan_nodes.end());
   r.orphan_nodes.erase(std::unique(r.orphan_nodes.begin(), r.orphan_nodes.end()), r.orphan_nodes.end());
+  return r;
+}
+
+std::vector<int> elements_at_nodes(const mesh::TetMesh& mesh, const std::vector<bool>& alive) {
+  std::vector<int> count(static_cast<std::size_t>(mesh.num_nodes()), 0);
+  for (std::size_t e = 0; e < alive.size(); ++e)
+    if (alive[e])
+      for (const int n : mesh.tets[e]) ++count[static_cast<std::size_t>(n)];
+  return count;
+}
+
+}  // namespace
+
+ElementRemoval element_removal(const mesh::TetMesh& mesh, const DofMap& dofs, const MaterialMap& materials,
+                               const std::vector<Index>& removed, double c, const std::vector<bool>& still_there) {
+  const auto elements = static_cast<std::size_t>(mesh.num_tets());
+  const std::vector<bool> alive = still_there.empty() ? std::vector<bool>(elements, true) : still_there;
+  if (alive.size() != elements) throw Error("internal: removing elements: the alive mask does not match the mesh");
+  check_removable(mesh, alive, removed);
+  std::vector<int> count = elements_at_nodes(mesh, alive);
+  return removal_change(mesh, dofs, materials, removed, c, count);
+}
+
+ElementRemover::ElementRemover(const mesh::TetMesh& mesh, const DofMap& dofs, const MaterialMap& materials)
+    : mesh_(&mesh),
+      dofs_(&dofs),
+      materials_(&materials),
+      alive_(static_cast<std::size_t>(mesh.num_tets()), true),
+      elements_at_(elements_at_nodes(mesh, alive_)) {}
+
+ElementRemoval ElementRemover::remove(const std::vector<Index>& removed, double c) {
+  check_removable(*mesh_, alive_, removed);
+  ElementRemoval r = removal_change(*mesh_, *dofs_, *materials_, removed, c, elements_at_);
+  for (const Index e : removed) alive_[static_cast<std::size_t>(e)] = false;
   return r;
 }
 

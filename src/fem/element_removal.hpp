@@ -21,7 +21,7 @@ namespace roifem::fem {
 struct ElementRemoval {
   std::vector<Index> dofs;        ///< the free dofs the removed elements touch, ascending
   DenseMatrix change;             ///< dK_eff on them (symmetric), the orphans' pins included
-  Vector mass_change;             ///< per free dof of the DofMap: the lumped mass removed (kg, <= 0)
+  Vector mass_change;             ///< per entry of dofs: the lumped mass removed there (kg, <= 0)
   std::vector<int> orphan_nodes;  ///< nodes left with no element, ascending
 };
 
@@ -30,5 +30,24 @@ struct ElementRemoval {
 /// for an element out of range, removed twice or already gone, or a quadratic mesh.
 ElementRemoval element_removal(const mesh::TetMesh& mesh, const DofMap& dofs, const MaterialMap& materials,
                                const std::vector<Index>& removed, double c, const std::vector<bool>& still_there = {});
+
+/// The mesh as cuts leave it: which tetrahedra remain and how many meet at each node, so that a
+/// removal costs its own elements (element_removal scans the whole mesh for the nodes it orphans).
+/// The mesh, dofs and materials must outlive it.
+class ElementRemover {
+ public:
+  ElementRemover(const mesh::TetMesh& mesh, const DofMap& dofs, const MaterialMap& materials);
+  /// Removes `removed` (distinct, still there) and returns the change, as element_removal does;
+  /// InputError as it does, nothing removed then.
+  ElementRemoval remove(const std::vector<Index>& removed, double c);
+  const std::vector<bool>& still_there() const { return alive_; }
+
+ private:
+  const mesh::TetMesh* mesh_;
+  const DofMap* dofs_;
+  const MaterialMap* materials_;
+  std::vector<bool> alive_;
+  std::vector<int> elements_at_;  ///< per node, the tetrahedra still there that hold it
+};
 
 }  // namespace roifem::fem

@@ -137,7 +137,7 @@ ScenarioCuts::ScenarioCuts(const scenario::Scenario& sc, const ScenarioModel& m)
   }
   for (std::size_t k = 0; k < sc.loads.size(); ++k)
     if (sc.loads[k].gravity) gravity_.emplace_back(k, *sc.loads[k].gravity);
-  still_there_.assign(elements, true);
+  remover_.emplace(mesh, dofs, m.full.materials);
 }
 
 CutEvent ScenarioCuts::remove_due(double t, ScenarioModel& m, model::State& state) {
@@ -146,11 +146,8 @@ CutEvent ScenarioCuts::remove_due(double t, ScenarioModel& m, model::State& stat
   while (due(t)) event.elements.push_back(schedule_[next_++].element);
   std::sort(event.elements.begin(), event.elements.end());
   const fem::DofMap& dofs = *m.full.dofs;
-  const fem::ElementRemoval removal = fem::element_removal(m.mesh, dofs, m.full.materials, event.elements, 0.0, still_there_);
-  for (const Index e : event.elements) {
-    still_there_[static_cast<std::size_t>(e)] = false;
-    event.mass_removed += m.full.materials.of(e).rho * mesh::signed_volume(m.mesh, e);
-  }
+  const fem::ElementRemoval removal = remover_->remove(event.elements, 0.0);
+  for (const Index e : event.elements) event.mass_removed += m.full.materials.of(e).rho * mesh::signed_volume(m.mesh, e);
   event.orphan_nodes = removal.orphan_nodes;
 
   model::SystemChange& change = event.change;
@@ -167,7 +164,7 @@ CutEvent ScenarioCuts::remove_due(double t, ScenarioModel& m, model::State& stat
     const Index d = system_dof_[static_cast<std::size_t>(free)];
     if (d < 0) throw Error("internal: a cut reached a dof of the static part");
     change.dofs.push_back(d);
-    const double dm = removal.mass_change[free];
+    const double dm = removal.mass_change[a];
     change.mass[a] = held_free[static_cast<std::size_t>(free)] ? 0.0 : dm;
     if (held_free[static_cast<std::size_t>(free)]) change.held.push_back(d);
     u[a] = state.u[d];
@@ -181,7 +178,7 @@ CutEvent ScenarioCuts::remove_due(double t, ScenarioModel& m, model::State& stat
     Vector dp(r);
     for (Index a = 0; a < r; ++a) {
       const Index full = dofs.full_dof(removal.dofs[static_cast<std::size_t>(a)]);
-      dp[a] = removal.mass_change[removal.dofs[static_cast<std::size_t>(a)]] * g[static_cast<int>(full % 3)];
+      dp[a] = removal.mass_change[a] * g[static_cast<int>(full % 3)];
     }
     change.loads[k] = std::move(dp);
   }
@@ -199,15 +196,15 @@ CutEvent ScenarioCuts::remove_due(double t, ScenarioModel& m, model::State& stat
   m.change_system(change);
 
   // Pieces the cut freed from every support move rigidly: said, with their nodes.
-  const std::vector<int> piece = pieces(m.mesh, still_there_);
+  const std::vector<int> piece = pieces(m.mesh, remover_->still_there());
   std::vector<int> touched;
   for (const Index e : event.elements)
     for (const int n : m.mesh.tets[static_cast<std::size_t>(e)]) touched.push_back(piece[static_cast<std::size_t>(n)]);
   std::sort(touched.begin(), touched.end());
   touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
   std::vector<bool> has_element(piece.size(), false);
-  for (std::size_t e = 0; e < still_there_.size(); ++e)
-    if (still_there_[e]) has_element[static_cast<std::size_t>(piece[static_cast<std::size_t>(m.mesh.tets[e][0])])] = true;
+  for (std::size_t e = 0; e < remover_->still_there().size(); ++e)
+    if (remover_->still_there()[e]) has_element[static_cast<std::size_t>(piece[static_cast<std::size_t>(m.mesh.tets[e][0])])] = true;
   for (const int root : touched) {
     if (!has_element[static_cast<std::size_t>(root)]) continue;  // an orphan node: held at rest
     std::vector<int> nodes;

@@ -17,7 +17,10 @@
 #include <string>
 #include <vector>
 
+#include <optional>
+
 #include "cutting/blade.hpp"
+#include "fem/element_removal.hpp"
 #include "model/system_change.hpp"
 #include "scenario/scenario.hpp"
 #include "simulation/scenario_model.hpp"
@@ -50,14 +53,15 @@ class ScenarioCuts {
   CutEvent remove_due(double t, ScenarioModel& model, model::State& state);
   /// The tetrahedra the blades cross within the run, with the time each is reached, ascending.
   const std::vector<cutting::Crossing>& schedule() const { return schedule_; }
-  /// Per tetrahedron, whether it is still in the mesh.
-  const std::vector<bool>& still_there() const { return still_there_; }
+  /// Per tetrahedron, whether it is still in the mesh (empty without cuts).
+  const std::vector<bool>& still_there() const { return remover_ ? remover_->still_there() : no_cuts_; }
 
  private:
   std::vector<cutting::Crossing> schedule_;
   std::size_t next_ = 0;
   double time_slack_ = 0;  ///< 1e-9 dt: a blade reaching a tetrahedron at t_k is due at t_k
-  std::vector<bool> still_there_;
+  std::optional<fem::ElementRemover> remover_;  ///< the mesh as the cuts leave it
+  std::vector<bool> no_cuts_;
   std::vector<Index> system_dof_;  ///< per free dof of the full model: its unknown in the system (-1: static part)
   std::vector<std::pair<std::size_t, Vec3>> gravity_;  ///< load terms that are gravity, and g
   std::vector<bool> supported_;                        ///< per node: fixed, held by a tool or in the static part
