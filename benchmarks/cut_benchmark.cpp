@@ -7,18 +7,23 @@
 // capacitance), a solve after it against a solve before (medians of 51; the others of 5), and the alternatives: a
 // numeric refactorization of the changed K_eff (its pattern analysed beforehand) and the whole
 // condensation that a cut touching the static part would need. The corrected solve is checked
-// against the refactorized one. Writes DIR/cut.csv.
+// against the refactorized one (gap: |x - x_refactored| / |x|). Then the haptic loop (a tool on 10
+// wall nodes, integrators/haptic_trapezoid.hpp): the cut taken between two ticks (the factor's
+// correction and the compliance's: the event, and the ticks of 1 ms it spans), and the tick's
+// median before and after. Writes DIR/cut.csv.
 //   compile with: cmake --build --preset release --target roifem_cut_benchmark
 //   sample run:   build/release/benchmarks/roifem_cut_benchmark --nodes 20000 100000 --rois 300 1000 --out results/cut
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <random>
 
 #include "brain_meshes.hpp"
 #include "common/timer.hpp"
 #include "fem/element_removal.hpp"
+#include "integrators/haptic_trapezoid.hpp"
 #include "io/csv.hpp"
 #include "model/average_acceleration.hpp"
 #include "scale/brain_model.hpp"
@@ -40,11 +45,25 @@ struct Options {
   bool machine_bounds = true;
 };
 
-/// The ROI's tetrahedra (every node in the ROI or fixed), nearest the target first.
-std::vector<Index> roi_tetrahedra(const Brain& brain, const roi::Partition& partition) {
+/// The haptic tool: the ROI's nodes of the right wall nearest the target (as the haptic benchmark's).
+std::vector<int> tool_nodes(const Brain& brain, const roi::Partition& partition, std::size_t count) {
+  std::vector<int> wall;
+  for (const int n : brain.mesh.set("opening_right").nodes)
+    if (std::binary_search(partition.roi_nodes.begin(), partition.roi_nodes.end(), n)) wall.push_back(n);
+  const Vec3 target(0, 0, 0.040);
+  std::sort(wall.begin(), wall.end(), [&](int a, int b) {
+    return (brain.mesh.node(a) - target).squaredNorm() < (brain.mesh.node(b) - target).squaredNorm();
+  });
+  wall.resize(std::min(wall.size(), count));
+  return wall;
+}
+
+/// The ROI's tetrahedra (every node in the ROI or fixed) clear of the tool's nodes, nearest the target first.
+std::vector<Index> roi_tetrahedra(const Brain& brain, const roi::Partition& partition, const std::vector<int>& tool) {
   const fem::DofMap& dofs = *brain.model.dofs;
   std::vector<bool> movable(static_cast<std::size_t>(brain.mesh.num_nodes()), false);
   for (const Index d : partition.s) movable[static_cast<std::size_t>(dofs.full_dof(d) / 3)] = true;  // the static part's
+  for (const int n : tool) movable[static_cast<std::size_t>(n)] = true;
   std::vector<std::pair<double, Index>> near;
   const Vec3 target(0, 0, 0.040);
   for (Index e = 0; e < brain.mesh.num_tets(); ++e) {
@@ -71,7 +90,7 @@ double median_seconds(int repeats, F&& f) {
   return simulation::median(s);
 }
 
-/// The child's work: one line per cut size, "table|csv".
+/// The child's work: one line per cut size, "table<TAB>csv".
 std::string measure(const std::filesystem::path& mesh_file, long roi_nodes, const std::vector<long>& cuts) {
   const auto brain = build_brain(mesh_file);
   const Stopwatch condense_clock;
@@ -88,7 +107,16 @@ std::string measure(const std::filesystem::path& mesh_file, long roi_nodes, cons
   const Index n = system.size();
   std::vector<Index> position(static_cast<std::size_t>(brain->model.dofs->num_free()), -1);
   for (std::size_t i = 0; i < partition.d.size(); ++i) position[static_cast<std::size_t>(partition.d[i])] = static_cast<Index>(i);
-  const std::vector<Index> tetrahedra = roi_tetrahedra(*brain, partition);
+  const std::vector<int> tool = tool_nodes(*brain, partition, 10);
+  const std::vector<Index> tetrahedra = roi_tetrahedra(*brain, partition, tool);
+  std::vector<std::array<Index, 3>> held;
+  for (const int node : tool) {
+    std::array<Index, 3> d{};
+    for (int component = 0; component < 3; ++component)
+      d[static_cast<std::size_t>(component)] = position[static_cast<std::size_t>(brain->model.dofs->free_dof(node, component))];
+    held.push_back(d);
+  }
+  const auto hand = [](long tick) { return Vec3(0.001 * std::min(static_cast<double>(tick) / 50.0, 1.0), 0, 0); };
 
   std::mt19937 random(3);
   std::uniform_real_distribution<double> uniform(-1, 1);
@@ -127,21 +155,52 @@ std::string measure(const std::filesystem::path& mesh_file, long roi_nodes, cons
     for (std::size_t i = 0; i < dofs.size(); ++i)
       for (std::size_t j = 0; j < dofs.size(); ++j)
         entries.emplace_back(dofs[i], dofs[j], removal.change(static_cast<Index>(i), static_cast<Index>(j)));
-    SparseMatrix change(n, n);
-    change.setFromTriplets(entries.begin(), entries.end());
-    const SparseMatrix K_changed = K_eff + change;
+    SparseMatrix K_change(n, n);
+    K_change.setFromTriplets(entries.begin(), entries.end());
+    const SparseMatrix K_changed = K_eff + K_change;
     solvers::Cholesky refactored;
     refactored.analyze(K_changed, last);
     const double refactor_s = median_seconds(5, [&] { refactored.factorize(K_changed); });
     refactored.solve(b, x_refactored);
     const double gap = (x_after - x_refactored).norm() / x_refactored.norm();
-    lines += io::format("%8lld %5ld %6lld %6ld %5ld %5lld %8.3f %9.2f %8.3f %8.3f %10.1f %9.2f  %.1e|", static_cast<long long>(brain->mesh.num_nodes()),
-                        roi_nodes, static_cast<long long>(n), condensed.interface_dofs, k, static_cast<long long>(dofs.size()),
-                        form_s * 1e3, update_s * 1e3, solve_s * 1e3, after_s * 1e3, refactor_s * 1e3, condense_s, gap) +
-             io::format("%lld,%ld,%lld,%ld,%ld,%lld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.3g\n",
+
+    // The haptic loop: the same cut taken between two ticks (HapticTrapezoid::take_change), on a
+    // copy of the system that the cut changes: the event's cost, and the tick before and after.
+    model::SecondOrderSystem cut_system = system;
+    integrators::HapticTrapezoid haptic(cut_system, rule.dt());
+    haptic.attach(held);
+    model::State state = model::State::at_rest(n);
+    haptic.reset(state);
+    long tick = 0;
+    const double tick_before_s = median_seconds(51, [&] { haptic.tick(hand(++tick), state); });
+    fem::ElementRemover remover = uncut;
+    const fem::ElementRemoval stiffness_change = remover.remove(removed, 0.0);
+    model::SystemChange change;
+    change.dofs = dofs;
+    change.stiffness = stiffness_change.change;
+    change.mass = stiffness_change.mass_change;
+    change.loads.assign(cut_system.load.terms().size(), Vector());
+    for (const int orphan : stiffness_change.orphan_nodes)
+      for (int component = 0; component < 3; ++component)
+        if (const int d = brain->model.dofs->free_dof(orphan, component); d >= 0) change.held.push_back(position[static_cast<std::size_t>(d)]);
+    std::sort(change.held.begin(), change.held.end());
+    for (std::size_t a = 0; a < change.dofs.size(); ++a)
+      if (std::binary_search(change.held.begin(), change.held.end(), change.dofs[a])) change.mass[static_cast<Index>(a)] = 0;
+    for (const Index d : change.held) state.v[d] = 0;
+    change.apply(cut_system);
+    haptic.take_change(change, state);
+    const double event_s = haptic.change_seconds();
+    const double tick_after_s = median_seconds(51, [&] { haptic.tick(hand(++tick), state); });
+    lines += io::format("%8lld %5ld %6lld %6ld %5ld %5lld %8.3f %9.2f %8.3f %8.3f %10.1f %9.2f  %.1e | %8.2f %5.0f %7.3f %7.3f\t",
                         static_cast<long long>(brain->mesh.num_nodes()), roi_nodes, static_cast<long long>(n),
                         condensed.interface_dofs, k, static_cast<long long>(dofs.size()), form_s * 1e3, update_s * 1e3,
-                        solve_s * 1e3, after_s * 1e3, refactor_s * 1e3, condense_s, gap);
+                        solve_s * 1e3, after_s * 1e3, refactor_s * 1e3, condense_s, gap, event_s * 1e3,
+                        std::ceil(event_s / rule.dt()), tick_before_s * 1e3, tick_after_s * 1e3) +
+             io::format("%lld,%ld,%lld,%ld,%ld,%lld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.3g,%.6g,%.6g,%.6g\n",
+                        static_cast<long long>(brain->mesh.num_nodes()), roi_nodes, static_cast<long long>(n),
+                        condensed.interface_dofs, k, static_cast<long long>(dofs.size()), form_s * 1e3, update_s * 1e3,
+                        solve_s * 1e3, after_s * 1e3, refactor_s * 1e3, condense_s, gap, event_s * 1e3, tick_before_s * 1e3,
+                        tick_after_s * 1e3);
   }
   return lines;
 }
@@ -151,12 +210,14 @@ int run(const Options& o) {
   if (o.machine_bounds) report_machine_bounds(o.out);
   io::CsvWriter csv(o.out / "cut.csv",
                     "nodes,roi_nodes,system_dofs,interface_dofs,removed,changed_dofs,form_ms,update_ms,solve_ms,"
-                    "solve_after_ms,refactor_ms,condense_s,gap_vs_refactored");
+                    "solve_after_ms,refactor_ms,condense_s,gap_vs_refactored,haptic_event_ms,tick_before_ms,tick_after_ms");
   std::printf(
-      "Cut: tetrahedra nearest the target removed from the condensed ROI's K_eff (trapezoid, dt = 1 ms); the change "
-      "taken by Woodbury's correction of the factor, against a numeric refactorization and the whole condensation\n");
-  std::printf("%8s %5s %6s %6s %5s %5s %8s %9s %8s %8s %10s %9s  %s\n", "nodes", "ROI", "dofs", "iface", "cut", "r", "form ms",
-              "update ms", "solve ms", "after ms", "refactor ms", "condense s", "|x - x_refactored| / |x|");
+      "Cut: tetrahedra nearest the target (clear of the tool) removed from the condensed ROI's K_eff (trapezoid, dt = 1 ms); "
+      "the change taken by Woodbury's correction of the factor, against a numeric refactorization and the whole "
+      "condensation; then in the haptic loop (a tool on 10 wall nodes): the event, the ticks it spans, the tick before and after\n");
+  std::printf("%8s %5s %6s %6s %5s %5s %8s %9s %8s %8s %10s %9s  %7s | %8s %5s %7s %7s\n", "nodes", "ROI", "dofs", "iface", "cut",
+              "r", "form ms", "update ms", "solve ms", "after ms", "refactor ms", "condense s", "gap", "event ms", "ticks",
+              "tick ms", "after ms");
   for (const long n : o.nodes) {
     const auto mesh_file = brain_mesh_file(n);
     for (const long roi : o.rois) {
@@ -167,7 +228,7 @@ int run(const Options& o) {
       }
       std::size_t at = 0;
       while (at < child.output.size()) {
-        const std::size_t bar = child.output.find('|', at), end = child.output.find('\n', bar);
+        const std::size_t bar = child.output.find('\t', at), end = child.output.find('\n', bar);
         std::printf("%s\n", child.output.substr(at, bar - at).c_str());
         csv.row(child.output.substr(bar + 1, end - bar - 1));
         at = end + 1;

@@ -37,6 +37,8 @@ class DirectSolve final : public EffectiveStiffnessSolver {
   void solve(const Vector& f, const Vector& w, Vector& x) override;
   /// By Woodbury's identity on the factor it holds (solvers/low_rank_update.hpp); changes accumulate.
   bool update(const std::vector<Index>& dofs, const DenseMatrix& B) override;
+  /// The changes taken so far (null before any): corrects solutions with the factored K_eff.
+  const solvers::LowRankUpdate* correction() const { return changed_.get(); }
 
  private:
   const model::SecondOrderSystem& system_;

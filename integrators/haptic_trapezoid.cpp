@@ -46,6 +46,7 @@ void HapticTrapezoid::attach(const std::vector<std::array<Index, 3>>& node_dofs)
   const Stopwatch clock;
   const Index n = system_.size();
   if (node_dofs.empty()) throw InputError("haptic tool: holds no node");
+  if (K_eff_.correction() != nullptr) throw InputError("haptic tool: attach it before the model is cut");
   std::vector<Index> held;
   for (const auto& dofs : node_dofs)
     for (const Index d : dofs) {
@@ -85,6 +86,7 @@ void HapticTrapezoid::attach(const std::vector<std::array<Index, 3>>& node_dofs)
   is_held_.assign(static_cast<std::size_t>(n), false);
   for (const Index d : held) is_held_[static_cast<std::size_t>(d)] = true;
   held_ = std::move(held);
+  Z0_ = Z;
   Z_ = std::move(Z);
   W_ = std::move(W);
   W_factor_ = std::move(W_factor);
@@ -99,6 +101,31 @@ void HapticTrapezoid::reset(const model::State& initial) {
   k_ = 0;
   a_ = model::AverageAcceleration::consistent_acceleration(system_, initial);
   if (system_.is_nonlinear()) system_.internal_force->excess_force(initial.u, excess_);
+}
+
+void HapticTrapezoid::take_change(const model::SystemChange& change, const model::State& state) {
+  if (held_.empty()) throw Error("internal: haptic trapezoid: take_change before attach");
+  if (system_.is_nonlinear()) throw InputError("haptic tool: cutting a nonlinear model is not built");
+  if (!system_.M_split.empty() || system_.M.nonZeros() > system_.size() || !system_.damping.is_mass_proportional())
+    throw InputError("haptic tool: a cut needs a lumped (diagonal) mass and C = alpha M");
+  for (const Index d : change.dofs)
+    if (is_held_[static_cast<std::size_t>(d)])
+      throw InputError("haptic tool: the cut reaches dof " + std::to_string(d) +
+                       ", which the tool holds: a cut stays clear of the tool's nodes");
+  const Stopwatch clock;
+  const double c = rule_.c_u() + 2.0 * system_.damping.alpha / rule_.dt();
+  K_eff_.update(change.dofs, change.effective(c));
+  Z_ = Z0_;
+  K_eff_.correction()->correct(Z_);
+  for (std::size_t i = 0; i < held_.size(); ++i) W_.row(static_cast<Index>(i)) = Z_.row(held_[i]);
+  W_ = 0.5 * (W_ + W_.transpose()).eval();
+  W_factor_.compute(W_);
+  if (W_factor_.info() != Eigen::Success) throw SolverError("haptic tool: its compliance became singular after the cut");
+  // The free dofs' acceleration from the changed equation; the held dofs' is the tool's, as before.
+  const Vector before = a_;
+  a_ = model::AverageAcceleration::consistent_acceleration(system_, state);
+  for (const Index d : held_) a_[d] = before[d];
+  change_s_ = clock.seconds();
 }
 
 Vec3 HapticTrapezoid::tick(const Vec3& g, model::State& s) {

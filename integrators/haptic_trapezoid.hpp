@@ -39,6 +39,7 @@
 
 #include "integrators/effective_stiffness.hpp"
 #include "model/average_acceleration.hpp"
+#include "model/system_change.hpp"
 
 namespace roifem::integrators {
 
@@ -63,6 +64,14 @@ class HapticTrapezoid {
   void attach(const std::vector<std::array<Index, 3>>& node_dofs);
   /// Starts from `initial` (the held nodes where the tool is), acceleration consistent with it.
   void reset(const model::State& initial);
+  /// The system has been changed in place (a cut: model/system_change.hpp) after the last tick,
+  /// at `state`: K_eff's factor takes the change by Woodbury's correction (DirectSolve::update),
+  /// the tool's compliance follows by the same identity from attach's Z, with no solve:
+  ///   Z = Z_0 - K_eff^-1 U (I + B U^T K_eff^-1 U)^-1 B U^T Z_0,   W = H Z,
+  /// and the acceleration is made consistent with the changed system at the free dofs (the held
+  /// dofs' stays the tool's). InputError when the change reaches a held dof (the tool's rows of
+  /// K would change), on a nonlinear model or with a mass that is not diagonal.
+  void take_change(const model::SystemChange& change, const model::State& state);
   /// One tick: the tool at g (m) at t_{n+1} = t_0 + (n + 1) dt; advances `state` and returns the
   /// tool's force on the tissue (N). Allocates nothing.
   Vec3 tick(const Vec3& g, model::State& state);
@@ -75,6 +84,8 @@ class HapticTrapezoid {
   double last_residual() const { return last_residual_; }
   double dt() const { return rule_.dt(); }
   double attach_seconds() const { return attach_s_; }
+  /// The last take_change's time (s): the factor's correction and the compliance's.
+  double change_seconds() const { return change_s_; }
 
  private:
   const model::SecondOrderSystem& system_;
@@ -82,9 +93,10 @@ class HapticTrapezoid {
   DirectSolve K_eff_;
   std::vector<Index> held_;  // 3m dofs, x, y, z of each node in turn
   DenseMatrix W_, Z_;
+  DenseMatrix Z0_;  ///< Z with the factored K_eff, before any change
   Eigen::LLT<DenseMatrix> W_factor_;
   Eigen::SparseMatrix<double, Eigen::RowMajor> rows_;  // 3 x n: the held dofs' rows of K summed per component
-  double attach_s_ = 0, t0_ = 0;
+  double attach_s_ = 0, change_s_ = 0, t0_ = 0;
   long k_ = 0;
   Vector a_, f_, w_, u_next_, work_, gap_;
   // A nonlinear model's modified Newton.

@@ -79,4 +79,12 @@ void LowRankUpdate::solve(const Vector& b, Vector& x) const {
   x.noalias() -= Z_ * t_;
 }
 
+void LowRankUpdate::correct(DenseMatrix& X) const {
+  if (dofs_.empty()) return;
+  DenseMatrix UtX(rank(), X.cols());
+  for (std::size_t i = 0; i < dofs_.size(); ++i) UtX.row(static_cast<Index>(i)) = X.row(dofs_[i]);
+  const DenseMatrix T = capacitance_.solve(B_ * UtX);
+  X.noalias() -= Z_ * T;
+}
+
 }  // namespace roifem::solvers

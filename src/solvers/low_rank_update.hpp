@@ -31,6 +31,8 @@ class LowRankUpdate {
   void add(const std::vector<Index>& dofs, const DenseMatrix& B);
   /// x = (A + U B U^T)^-1 b; x does not alias b.
   void solve(const Vector& b, Vector& x) const;
+  /// X = A^-1 R for some R, in place: becomes (A + U B U^T)^-1 R (no solve with A's factor).
+  void correct(DenseMatrix& X) const;
   /// r: the dofs the changes touch.
   Index rank() const { return static_cast<Index>(dofs_.size()); }
   const std::vector<Index>& dofs() const { return dofs_; }

@@ -8,8 +8,10 @@
 
 #include <Eigen/LU>
 #include <cmath>
+#include <iostream>
 
 #include "common/errors.hpp"
+#include "fem/element_removal.hpp"
 #include "condensation/reduced_model.hpp"
 #include "integrators/trapezoid.hpp"
 #include "simulation/scenario_model.hpp"
@@ -239,6 +241,94 @@ TEST(HapticTrapezoid, RefusesAToolOnNoNodeOutsideTheSystemOrHeldTwice) {
   model::State s = model::State::at_rest(n);
   haptic.reset(s);
   EXPECT_THROW(haptic.tick(Vec3::Zero(), s), Error);  // nothing attached
+}
+
+
+/// The beam's tetrahedra in the cell x in [20, 30] mm, z above 10 mm: a cut halfway through.
+std::vector<Index> beam_cut(const mesh::TetMesh& mesh) {
+  std::vector<Index> out;
+  for (Index e = 0; e < mesh.num_tets(); ++e) {
+    Vec3 centre = Vec3::Zero();
+    for (const int n : mesh.tets[static_cast<std::size_t>(e)]) centre += mesh.node(n) / 4;
+    if (centre.x() > 0.020 && centre.x() < 0.030 && centre.z() > 0.010) out.push_back(e);
+  }
+  return out;
+}
+
+/// The change removing `removed` makes to `dofs`' system (no node left without an element).
+model::SystemChange beam_change(const test::Beam& beam, const std::vector<Index>& removed) {
+  fem::ElementRemover remover(beam.mesh, *beam.model.dofs, beam.model.materials);
+  const fem::ElementRemoval removal = remover.remove(removed, 0.0);
+  EXPECT_TRUE(removal.orphan_nodes.empty());
+  model::SystemChange change;
+  change.dofs = removal.dofs;
+  change.stiffness = removal.change;
+  change.mass = removal.mass_change;
+  change.loads.assign(beam.model.system.load.terms().size(), Vector());
+  return change;
+}
+
+TEST(HapticTrapezoid, ACutTakenByTheCorrectionFeelsAsTheModelRebuiltFromTheCutMesh) {
+  // The beam's far end held by the hand; a cut halfway through its middle, at rest and mid-run.
+  // Against the model assembled from the cut mesh, with the tool attached afresh there: the
+  // compliance W to round-off, and from rest the whole run's force.
+  const test::Beam beam;
+  const std::vector<Index> removed = beam_cut(beam.mesh);
+  ASSERT_EQ(removed.size(), 12u);
+  mesh::TetMesh cut_mesh = beam.mesh;
+  cut_mesh.tets.clear();
+  for (Index e = 0; e < beam.mesh.num_tets(); ++e)
+    if (std::find(removed.begin(), removed.end(), e) == removed.end()) cut_mesh.tets.push_back(beam.mesh.tets[static_cast<std::size_t>(e)]);
+  cut_mesh.sets.erase("box");
+  const model::FemModel rebuilt = model::build_fem_model(cut_mesh, beam.model.material, {"x0"}, {});
+  ASSERT_EQ(rebuilt.system.size(), beam.model.system.size());  // the same free numbering
+  const auto held = node_dofs(*beam.model.dofs, beam.mesh.set("x1").nodes);
+  const double dt = 1e-3;
+  const auto hand = [](double t) { return Vec3(0, 0.0005 * std::sin(20 * t), 0.001 * std::min(t / 0.02, 1.0)); };
+
+  for (const long cut_after : {0L, 15L}) {
+    model::SecondOrderSystem system = beam.model.system;
+    system.load = model::LoadHistory(system.size());  // the hand alone
+    HapticTrapezoid haptic(system, dt);
+    haptic.attach(held);
+    model::State s = model::State::at_rest(system.size());
+    haptic.reset(s);
+    for (long n = 0; n < cut_after; ++n) haptic.tick(hand(static_cast<double>(n + 1) * dt), s);
+    model::SystemChange change = beam_change(beam, removed);
+    change.loads.assign(system.load.terms().size(), Vector());
+    change.apply(system);
+    haptic.take_change(change, s);
+
+    HapticTrapezoid fresh(rebuilt.system, dt);
+    fresh.attach(held);
+    const double W_gap = (haptic.compliance() - fresh.compliance()).cwiseAbs().maxCoeff() / fresh.compliance().cwiseAbs().maxCoeff();
+    EXPECT_LT(W_gap, 1e-13) << "cut after " << cut_after << " ticks";
+    if (cut_after > 0) continue;
+    model::State r = model::State::at_rest(rebuilt.system.size());
+    fresh.reset(r);
+    double worst = 0, largest = 0;
+    for (long n = 1; n <= 60; ++n) {
+      const Vec3 F = haptic.tick(hand(static_cast<double>(n) * dt), s), F_rebuilt = fresh.tick(hand(static_cast<double>(n) * dt), r);
+      worst = std::max(worst, (F - F_rebuilt).norm());
+      largest = std::max(largest, F_rebuilt.norm());
+    }
+    EXPECT_LT(worst, 1e-10 * largest);
+    std::cout << "haptic cut: W against the rebuilt model's " << W_gap << ", force over 60 ticks " << worst / largest << '\n';
+  }
+}
+
+TEST(HapticTrapezoid, ACutReachingTheToolIsRefused) {
+  const test::Beam beam;
+  model::SecondOrderSystem system = beam.model.system;
+  HapticTrapezoid haptic(system, 1e-3);
+  haptic.attach(node_dofs(*beam.model.dofs, beam.mesh.set("x1").nodes));
+  model::State s = model::State::at_rest(system.size());
+  haptic.reset(s);
+  std::vector<Index> at_the_end;
+  for (Index e = 0; e < beam.mesh.num_tets(); ++e)
+    for (const int n : beam.mesh.tets[static_cast<std::size_t>(e)])
+      if (beam.mesh.node(n).x() > 0.0599 && std::find(at_the_end.begin(), at_the_end.end(), e) == at_the_end.end()) at_the_end.push_back(e);
+  EXPECT_THROW(haptic.take_change(beam_change(beam, {at_the_end.front()}), s), InputError);
 }
 
 }  // namespace
