@@ -2,12 +2,11 @@
 // Cut: what removing tetrahedra inside the ROI costs the trapezoidal rule on condensed brains, at
 // the haptic tick's step (dt = 1 ms). Per brain and ROI (each in its own child process), for cuts
 // of 1, 10 and 100 tetrahedra nearest the surgical target: forming the change (the removed
-// elements' blocks and the nodes they orphan, fem/element_removal.hpp's ElementRemover), taking it into the factor of K_eff by Woodbury's
-// correction (solvers/low_rank_update.hpp: Z = K_eff^-1 U in one multi-column solve and the
-// capacitance), a solve after it against a solve before (medians of 51; the others of 5), and the alternatives: a
-// numeric refactorization of the changed K_eff (its pattern analysed beforehand) and the whole
-// condensation that a cut touching the static part would need. The corrected solve is checked
-// against the refactorized one (gap: |x - x_refactored| / |x|). Then the haptic loop (a tool on 10
+// elements' blocks and the nodes they orphan, fem/element_removal.hpp's ElementRemover), taking it into the factor of K_eff by
+// Woodbury's correction (solvers/low_rank_update.hpp: Z = K_eff^-1 U in one multi-column solve and the capacitance), a solve
+// after it against a solve before (medians of 51; the others of 5), and the alternatives: a numeric refactorization of the
+// changed K_eff (its pattern analysed beforehand) and the whole condensation that a cut touching the static part would need. The
+// corrected solve is checked against the refactorized one (gap: |x - x_refactored| / |x|). Then the haptic loop (a tool on 10
 // wall nodes, integrators/haptic_trapezoid.hpp): the cut taken between two ticks (the factor's
 // correction and the compliance's: the event, and the ticks of 1 ms it spans), and the tick's
 // median before and after. Writes DIR/cut.csv.
@@ -182,7 +181,8 @@ std::string measure(const std::filesystem::path& mesh_file, long roi_nodes, cons
     change.loads.assign(cut_system.load.terms().size(), Vector());
     for (const int orphan : stiffness_change.orphan_nodes)
       for (int component = 0; component < 3; ++component)
-        if (const int d = brain->model.dofs->free_dof(orphan, component); d >= 0) change.held.push_back(position[static_cast<std::size_t>(d)]);
+        if (const int d = brain->model.dofs->free_dof(orphan, component); d >= 0)
+          change.held.push_back(position[static_cast<std::size_t>(d)]);
     std::sort(change.held.begin(), change.held.end());
     for (std::size_t a = 0; a < change.dofs.size(); ++a)
       if (std::binary_search(change.held.begin(), change.held.end(), change.dofs[a])) change.mass[static_cast<Index>(a)] = 0;
@@ -191,16 +191,16 @@ std::string measure(const std::filesystem::path& mesh_file, long roi_nodes, cons
     haptic.take_change(change, state);
     const double event_s = haptic.change_seconds();
     const double tick_after_s = median_seconds(51, [&] { haptic.tick(hand(++tick), state); });
-    lines += io::format("%8lld %5ld %6lld %6ld %5ld %5lld %8.3f %9.2f %8.3f %8.3f %10.1f %9.2f  %.1e | %8.2f %5.0f %7.3f %7.3f\t",
-                        static_cast<long long>(brain->mesh.num_nodes()), roi_nodes, static_cast<long long>(n),
-                        condensed.interface_dofs, k, static_cast<long long>(dofs.size()), form_s * 1e3, update_s * 1e3,
-                        solve_s * 1e3, after_s * 1e3, refactor_s * 1e3, condense_s, gap, event_s * 1e3,
-                        std::ceil(event_s / rule.dt()), tick_before_s * 1e3, tick_after_s * 1e3) +
-             io::format("%lld,%ld,%lld,%ld,%ld,%lld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.3g,%.6g,%.6g,%.6g\n",
-                        static_cast<long long>(brain->mesh.num_nodes()), roi_nodes, static_cast<long long>(n),
-                        condensed.interface_dofs, k, static_cast<long long>(dofs.size()), form_s * 1e3, update_s * 1e3,
-                        solve_s * 1e3, after_s * 1e3, refactor_s * 1e3, condense_s, gap, event_s * 1e3, tick_before_s * 1e3,
-                        tick_after_s * 1e3);
+    lines +=
+        io::format("%8lld %5ld %6lld %6ld %5ld %5lld %8.3f %9.2f %8.3f %8.3f %10.1f %9.2f  %.1e | %8.2f %5.0f %7.3f %7.3f\t",
+                   static_cast<long long>(brain->mesh.num_nodes()), roi_nodes, static_cast<long long>(n),
+                   condensed.interface_dofs, k, static_cast<long long>(dofs.size()), form_s * 1e3, update_s * 1e3, solve_s * 1e3,
+                   after_s * 1e3, refactor_s * 1e3, condense_s, gap, event_s * 1e3, std::ceil(event_s / rule.dt()),
+                   tick_before_s * 1e3, tick_after_s * 1e3) +
+        io::format("%lld,%ld,%lld,%ld,%ld,%lld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.3g,%.6g,%.6g,%.6g\n",
+                   static_cast<long long>(brain->mesh.num_nodes()), roi_nodes, static_cast<long long>(n),
+                   condensed.interface_dofs, k, static_cast<long long>(dofs.size()), form_s * 1e3, update_s * 1e3, solve_s * 1e3,
+                   after_s * 1e3, refactor_s * 1e3, condense_s, gap, event_s * 1e3, tick_before_s * 1e3, tick_after_s * 1e3);
   }
   return lines;
 }
@@ -214,7 +214,8 @@ int run(const Options& o) {
   std::printf(
       "Cut: tetrahedra nearest the target (clear of the tool) removed from the condensed ROI's K_eff (trapezoid, dt = 1 ms); "
       "the change taken by Woodbury's correction of the factor, against a numeric refactorization and the whole "
-      "condensation; then in the haptic loop (a tool on 10 wall nodes): the event, the ticks it spans, the tick before and after\n");
+      "condensation; then in the haptic loop (a tool on 10 wall nodes): the event, the ticks it spans, the tick before and "
+      "after\n");
   std::printf("%8s %5s %6s %6s %5s %5s %8s %9s %8s %8s %10s %9s  %7s | %8s %5s %7s %7s\n", "nodes", "ROI", "dofs", "iface", "cut",
               "r", "form ms", "update ms", "solve ms", "after ms", "refactor ms", "condense s", "gap", "event ms", "ticks",
               "tick ms", "after ms");

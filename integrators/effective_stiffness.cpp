@@ -19,9 +19,9 @@ void DirectSolve::solve(const Vector& f, const Vector& w, Vector& x) {
 
 bool DirectSolve::update(const std::vector<Index>& dofs, const DenseMatrix& B) {
   if (!changed_)
-    changed_ = std::make_unique<solvers::LowRankUpdate>([this](const Vector& b, Vector& x) { K_eff_.solve(b, x); },
-                                                        system_.size(),
-                                                        [this](const DenseMatrix& columns) { return K_eff_.solve_matrix(columns); });
+    changed_ =
+        std::make_unique<solvers::LowRankUpdate>([this](const Vector& b, Vector& x) { K_eff_.solve(b, x); }, system_.size(),
+                                                 [this](const DenseMatrix& columns) { return K_eff_.solve_matrix(columns); });
   changed_->add(dofs, B);
   return true;
 }

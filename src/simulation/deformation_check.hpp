@@ -46,6 +46,7 @@ struct DeformationReport {
 /// Warns when the peak exceeds a tenth of the mesh's smallest extent or three mean edge lengths,
 /// or when tetrahedra invert.
 /// `still_there`: per tetrahedron, whether it is in the mesh at the end (cuts); empty: all are.
-DeformationReport check_deformation(ScenarioModel& model, const PeakDisplacement& peak, const std::vector<bool>& still_there = {});
+DeformationReport check_deformation(ScenarioModel& model, const PeakDisplacement& peak,
+                                    const std::vector<bool>& still_there = {});
 
 }  // namespace roifem::simulation

@@ -204,7 +204,8 @@ CutEvent ScenarioCuts::remove_due(double t, ScenarioModel& m, model::State& stat
   touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
   std::vector<bool> has_element(piece.size(), false);
   for (std::size_t e = 0; e < remover_->still_there().size(); ++e)
-    if (remover_->still_there()[e]) has_element[static_cast<std::size_t>(piece[static_cast<std::size_t>(m.mesh.tets[e][0])])] = true;
+    if (remover_->still_there()[e])
+      has_element[static_cast<std::size_t>(piece[static_cast<std::size_t>(m.mesh.tets[e][0])])] = true;
   for (const int root : touched) {
     if (!has_element[static_cast<std::size_t>(root)]) continue;  // an orphan node: held at rest
     std::vector<int> nodes;

@@ -59,7 +59,7 @@ class ScenarioCuts {
  private:
   std::vector<cutting::Crossing> schedule_;
   std::size_t next_ = 0;
-  double time_slack_ = 0;  ///< 1e-9 dt: a blade reaching a tetrahedron at t_k is due at t_k
+  double time_slack_ = 0;                       ///< 1e-9 dt: a blade reaching a tetrahedron at t_k is due at t_k
   std::optional<fem::ElementRemover> remover_;  ///< the mesh as the cuts leave it
   std::vector<bool> no_cuts_;
   std::vector<Index> system_dof_;  ///< per free dof of the full model: its unknown in the system (-1: static part)

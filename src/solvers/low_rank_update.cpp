@@ -9,7 +9,11 @@
 namespace roifem::solvers {
 
 LowRankUpdate::LowRankUpdate(Solve solve_A, Index n, SolveMany solve_many)
-    : solve_A_(std::move(solve_A)), solve_many_(std::move(solve_many)), n_(n), column_(static_cast<std::size_t>(n), -1), Z_(n, 0) {}
+    : solve_A_(std::move(solve_A)),
+      solve_many_(std::move(solve_many)),
+      n_(n),
+      column_(static_cast<std::size_t>(n), -1),
+      Z_(n, 0) {}
 
 void LowRankUpdate::add(const std::vector<Index>& dofs, const DenseMatrix& B) {
   if (B.rows() != static_cast<Index>(dofs.size()) || B.cols() != B.rows())

@@ -11,8 +11,8 @@
 #include <iostream>
 
 #include "common/errors.hpp"
-#include "fem/element_removal.hpp"
 #include "condensation/reduced_model.hpp"
+#include "fem/element_removal.hpp"
 #include "integrators/trapezoid.hpp"
 #include "simulation/scenario_model.hpp"
 #include "test_models.hpp"
@@ -243,7 +243,6 @@ TEST(HapticTrapezoid, RefusesAToolOnNoNodeOutsideTheSystemOrHeldTwice) {
   EXPECT_THROW(haptic.tick(Vec3::Zero(), s), Error);  // nothing attached
 }
 
-
 /// The beam's tetrahedra in the cell x in [20, 30] mm, z above 10 mm: a cut halfway through.
 std::vector<Index> beam_cut(const mesh::TetMesh& mesh) {
   std::vector<Index> out;
@@ -278,7 +277,8 @@ TEST(HapticTrapezoid, ACutTakenByTheCorrectionFeelsAsTheModelRebuiltFromTheCutMe
   mesh::TetMesh cut_mesh = beam.mesh;
   cut_mesh.tets.clear();
   for (Index e = 0; e < beam.mesh.num_tets(); ++e)
-    if (std::find(removed.begin(), removed.end(), e) == removed.end()) cut_mesh.tets.push_back(beam.mesh.tets[static_cast<std::size_t>(e)]);
+    if (std::find(removed.begin(), removed.end(), e) == removed.end())
+      cut_mesh.tets.push_back(beam.mesh.tets[static_cast<std::size_t>(e)]);
   cut_mesh.sets.erase("box");
   const model::FemModel rebuilt = model::build_fem_model(cut_mesh, beam.model.material, {"x0"}, {});
   ASSERT_EQ(rebuilt.system.size(), beam.model.system.size());  // the same free numbering
@@ -301,14 +301,16 @@ TEST(HapticTrapezoid, ACutTakenByTheCorrectionFeelsAsTheModelRebuiltFromTheCutMe
 
     HapticTrapezoid fresh(rebuilt.system, dt);
     fresh.attach(held);
-    const double W_gap = (haptic.compliance() - fresh.compliance()).cwiseAbs().maxCoeff() / fresh.compliance().cwiseAbs().maxCoeff();
+    const double W_gap =
+        (haptic.compliance() - fresh.compliance()).cwiseAbs().maxCoeff() / fresh.compliance().cwiseAbs().maxCoeff();
     EXPECT_LT(W_gap, 1e-13) << "cut after " << cut_after << " ticks";
     if (cut_after > 0) continue;
     model::State r = model::State::at_rest(rebuilt.system.size());
     fresh.reset(r);
     double worst = 0, largest = 0;
     for (long n = 1; n <= 60; ++n) {
-      const Vec3 F = haptic.tick(hand(static_cast<double>(n) * dt), s), F_rebuilt = fresh.tick(hand(static_cast<double>(n) * dt), r);
+      const Vec3 F = haptic.tick(hand(static_cast<double>(n) * dt), s),
+                 F_rebuilt = fresh.tick(hand(static_cast<double>(n) * dt), r);
       worst = std::max(worst, (F - F_rebuilt).norm());
       largest = std::max(largest, F_rebuilt.norm());
     }
@@ -327,7 +329,8 @@ TEST(HapticTrapezoid, ACutReachingTheToolIsRefused) {
   std::vector<Index> at_the_end;
   for (Index e = 0; e < beam.mesh.num_tets(); ++e)
     for (const int n : beam.mesh.tets[static_cast<std::size_t>(e)])
-      if (beam.mesh.node(n).x() > 0.0599 && std::find(at_the_end.begin(), at_the_end.end(), e) == at_the_end.end()) at_the_end.push_back(e);
+      if (beam.mesh.node(n).x() > 0.0599 && std::find(at_the_end.begin(), at_the_end.end(), e) == at_the_end.end())
+        at_the_end.push_back(e);
   EXPECT_THROW(haptic.take_change(beam_change(beam, {at_the_end.front()}), s), InputError);
 }
 

@@ -16,6 +16,7 @@
 #include "mesh/box_mesh.hpp"
 #include "mesh/msh_writer.hpp"
 #include "model/fem_model.hpp"
+#include "roi/node_dofs.hpp"
 #include "simulation/scenario_stepper.hpp"
 #include "test_support.hpp"
 
@@ -367,6 +368,47 @@ TEST(CutKnownAnswer, AToolHoldingAPieceCutOffFromItsSupportEndsUpHoldingNothing)
   EXPECT_GT(std::abs(held.z()), 1e-4);  // N: it was stretching the bar
   EXPECT_LT(stepper.tool_forces().norm(), 1e-8 * held.norm());
   EXPECT_LT(std::abs(stepper.energy()->balance_residual()), 1e-12 * std::abs(stepper.energy()->tool_work()));
+}
+
+TEST(CutKnownAnswer, TheCondensedRoiFollowsTheFullModelThroughTheSameCut) {
+  // The paper's comparison with a cut inside the ROI: the bar's condensed model (static
+  // condensation) against the full dynamic model, both cut by the same blades. The reduction
+  // error (the static part's missing inertia) before and after the cut, beside what the cut
+  // itself changes (the uncut full model against the cut one): the condensed model must follow
+  // the cut, not the uncut bar.
+  test::TempDir dir;
+  mesh::write_msh(mesh::structured_box_mesh(6, 2, 2, 0.03, 0.01, 0.01), dir / "bar.msh", mm);
+  const std::string roi = "[roi]\nkind = \"ball\"\ncenter_mm = [22.5, 5.0, 5.0]\nradius_mm = 11.0\n";
+  std::string uncut = bar_scenario("");
+  uncut.erase(uncut.find("[[cut]]"), uncut.find("[time]") - uncut.find("[[cut]]"));
+  ScenarioStepper condensed(scenario_on(dir / "bar.msh", bar_scenario(roi))),
+      full(scenario_on(dir / "bar.msh", bar_scenario(""))), full_uncut(scenario_on(dir / "bar.msh", uncut));
+  const roi::NodeDofs in_condensed = condensed.model().node_positions();
+  const roi::NodeDofs in_full = roi::node_dofs_in_full(condensed.model().roi_nodes, *full.model().full.dofs);
+  double first_cut = -1;
+  condensed.on_cut([&](const CutEvent& e, const model::State&) {
+    if (first_cut < 0) first_cut = e.time;
+  });
+  double before = 0, after = 0, cut_effect = 0, peak = 0;
+  for (int k = 0; k < 40; ++k) {
+    condensed.step();
+    full.step();
+    full_uncut.step();
+    for (std::size_t i = 0; i < in_full.size(); ++i)
+      for (std::size_t c = 0; c < 3; ++c) {
+        const Index a = in_condensed[i][c], b = in_full[i][c];
+        if (a < 0) continue;
+        const double u = full.state().u[b], gap = std::abs(condensed.state().u[a] - u);
+        peak = std::max(peak, std::abs(u));
+        (first_cut < 0 ? before : after) = std::max(first_cut < 0 ? before : after, gap);
+        if (first_cut >= 0) cut_effect = std::max(cut_effect, std::abs(full_uncut.state().u[b] - u));
+      }
+  }
+  ASSERT_GT(first_cut, 0.0);
+  std::cout << "condensed against full, the same cut: reduction error " << before / peak << " of the peak before the cut, "
+            << after / peak << " after; the cut itself changes the ROI's motion by " << cut_effect / peak << '\n';
+  EXPECT_LT(after, 0.2 * cut_effect);
+  EXPECT_GT(before, 0.0);
 }
 
 /// The refusal `pattern` for the bar scenario with `replace` done in it.

@@ -127,7 +127,8 @@ TEST(ElementRemoval, TheUpdatedEffectiveStiffnessIsTheOneRebuiltFromTheCutMesh) 
     const fem::ElementRemoval removal = fem::element_removal(mesh, dofs, materials, cuts[k], c, still_there);
     update.add(removal.dofs, removal.change);
     const Vector mass_before = M + mass_change;  // an orphan's pin: c times its mass before this cut
-    for (std::size_t a = 0; a < removal.dofs.size(); ++a) mass_change[removal.dofs[a]] += removal.mass_change[static_cast<Index>(a)];
+    for (std::size_t a = 0; a < removal.dofs.size(); ++a)
+      mass_change[removal.dofs[a]] += removal.mass_change[static_cast<Index>(a)];
     for (const Index e : cuts[k]) {
       gone[static_cast<std::size_t>(e)] = true;
       removed_mass += 1000 * std::abs(mesh::signed_volume(mesh, e));
