@@ -63,6 +63,19 @@ def read_msh(path):
     return nodes, triangles
 
 
+def draw(ax, tri, face, title, elev, azim):
+    """The triangles `tri` in colours `face` on a 3D axis, to scale, seen from (elev, azim)."""
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+    ax.add_collection3d(Poly3DCollection(tri, facecolors=face, edgecolors=(0, 0, 0, 0.15), linewidths=0.2))
+    lo, hi = tri.reshape(-1, 3).min(axis=0), tri.reshape(-1, 3).max(axis=0)
+    centre, half = (lo + hi) / 2, (hi - lo).max() / 2
+    for axis, setter in enumerate((ax.set_xlim, ax.set_ylim, ax.set_zlim)):
+        setter(centre[axis] - half, centre[axis] + half)
+    ax.view_init(elev=elev, azim=azim)
+    ax.set_axis_off()
+    ax.set_title(title)
+
+
 def main(path, out, wanted):
     nodes, sets = read_msh(path)
     surface = sets.get("surface") or [t for ts in sets.values() for t in ts]
@@ -84,15 +97,7 @@ def main(path, out, wanted):
                 k = key.get(tuple(sorted(t)))
                 if k is not None:
                     face[k, :3] = np.array(colours(c % 10)[:3]) * (0.5 + 0.5 * shade[k])
-        from mpl_toolkits.mplot3d.art3d import Poly3DCollection
-        ax.add_collection3d(Poly3DCollection(tri, facecolors=face, edgecolors=(0, 0, 0, 0.15), linewidths=0.2))
-        lo, hi = tri.reshape(-1, 3).min(axis=0), tri.reshape(-1, 3).max(axis=0)
-        centre, half = (lo + hi) / 2, (hi - lo).max() / 2
-        for axis, setter in enumerate((ax.set_xlim, ax.set_ylim, ax.set_zlim)):
-            setter(centre[axis] - half, centre[axis] + half)
-        ax.view_init(elev=elev, azim=azim)
-        ax.set_axis_off()
-        ax.set_title(title)
+        draw(ax, tri, face, title, elev, azim)
     handles = [plt.Rectangle((0, 0), 1, 1, color=colours(c % 10)) for c in range(len(coloured))]
     fig.legend(handles, coloured, loc="lower center", ncol=max(1, len(coloured)))
     fig.suptitle(f"{os.path.basename(path)}: {len(nodes)} nodes, {len(surface)} boundary triangles (mm)")
@@ -134,7 +139,6 @@ def main_cut(path, out, step):
     views = [("from the left", (0, 180)), ("from above", (90, -90)), ("from behind", (0, -90))]
     fig = plt.figure(figsize=(15, 5.4))
     light = np.array([0.3, -0.5, 0.8]) / np.linalg.norm([0.3, -0.5, 0.8])
-    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
     for v, (title, (elev, azim)) in enumerate(views):
         ax = fig.add_subplot(1, 3, v + 1, projection="3d")
         normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
@@ -142,14 +146,7 @@ def main_cut(path, out, step):
         shade = 0.35 + 0.6 * np.clip(np.abs(normal @ light), 0, 1)
         face = np.stack([shade, shade, shade * 0.97, np.ones_like(shade)], axis=1)
         face[is_open, :3] = np.array([0.85, 0.2, 0.15]) * (0.5 + 0.5 * shade[is_open, None])
-        ax.add_collection3d(Poly3DCollection(tri, facecolors=face, edgecolors=(0, 0, 0, 0.15), linewidths=0.2))
-        lo, hi = tri.reshape(-1, 3).min(axis=0), tri.reshape(-1, 3).max(axis=0)
-        centre, half = (lo + hi) / 2, (hi - lo).max() / 2
-        for axis, setter in enumerate((ax.set_xlim, ax.set_ylim, ax.set_zlim)):
-            setter(centre[axis] - half, centre[axis] + half)
-        ax.view_init(elev=elev, azim=azim)
-        ax.set_axis_off()
-        ax.set_title(title)
+        draw(ax, tri, face, title, elev, azim)
     fig.legend([plt.Rectangle((0, 0), 1, 1, color=(0.85, 0.2, 0.15))], [f"laid open by the cuts ({len(opened)} faces)"],
                loc="lower center")
     fig.suptitle(f"{os.path.basename(path)}: {removed} tetrahedra removed by step {step}"

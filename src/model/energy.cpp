@@ -31,14 +31,18 @@ EnergyLedger::EnergyLedger(const SecondOrderSystem& system, const State& initial
       Mv_previous_(initial.v.size()),
       Mv_next_(initial.v.size()),
       Ku_(initial.u.size()) {
-  system_.apply_mass(initial.v, Mv_previous_);
-  kinetic_ = 0.5 * initial.v.dot(Mv_previous_);
-  strain_ = strain(initial.t, initial.u);
+  read_energies(initial);
+  initial_total_ = total();
+}
+
+void EnergyLedger::read_energies(const State& s) {
+  system_.apply_mass(s.v, Mv_previous_);
+  kinetic_ = 0.5 * s.v.dot(Mv_previous_);
+  strain_ = strain(s.t, s.u);
   if (tools_ != nullptr) {
-    tools_previous_ = tool_terms(initial);
+    tools_previous_ = tool_terms(s);
     coupling_ = tools_previous_.coupling_energy;
   }
-  initial_total_ = total();
 }
 
 void EnergyLedger::record(const State& next) {
@@ -72,13 +76,7 @@ void EnergyLedger::record(const State& next) {
 void EnergyLedger::account_cut(const State& state, double energy_removed) {
   previous_ = state;
   f_previous_ = system_.load.at(state.t);
-  system_.apply_mass(state.v, Mv_previous_);
-  kinetic_ = 0.5 * state.v.dot(Mv_previous_);
-  strain_ = strain(state.t, state.u);
-  if (tools_ != nullptr) {
-    tools_previous_ = tool_terms(state);
-    coupling_ = tools_previous_.coupling_energy;
-  }
+  read_energies(state);
   cut_ += energy_removed;
 }
 

@@ -52,6 +52,8 @@ class EnergyLedger {
   };
   ToolTerms tool_terms(const State& s) const;
   /// The strain energy u^T K u / 2, or a nonlinear system's W(t, u).
+  /// E of state s from the system as it is now (M v kept as the previous state's).
+  void read_energies(const State& s);
   double strain(double t, const Vector& u);
 
   const SecondOrderSystem& system_;
