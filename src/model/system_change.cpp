@@ -29,7 +29,8 @@ SparseMatrix plus_diagonal(const SparseMatrix& A, const std::vector<Index>& dofs
 }
 
 /// Zeroes the rows and columns `held` of A (stored entries kept, so the pattern stays).
-void zero_rows_and_columns(SparseMatrix& A, const std::vector<bool>& is_held) {
+void zero_rows_and_columns(SparseMatrix& A, const std::vector<bool>& is_held, bool any) {
+  if (!any) return;
   for (Index j = 0; j < A.outerSize(); ++j)
     for (SparseMatrix::InnerIterator it(A, j); it; ++it)
       if (is_held[static_cast<std::size_t>(it.row())] || is_held[static_cast<std::size_t>(it.col())]) it.valueRef() = 0;
@@ -59,10 +60,10 @@ void SystemChange::apply(SecondOrderSystem& system) {
           is_held[static_cast<std::size_t>(dofs[static_cast<std::size_t>(b)])])
         stiffness(a, b) = -system.K.coeff(dofs[static_cast<std::size_t>(a)], dofs[static_cast<std::size_t>(b)]);
   system.K = plus_block(system.K, dofs, stiffness);
-  zero_rows_and_columns(system.K, is_held);
+  zero_rows_and_columns(system.K, is_held, !held.empty());
   if (!system.K_split.empty()) {
     system.K_split.sparse = plus_block(system.K_split.sparse, dofs, stiffness);
-    zero_rows_and_columns(system.K_split.sparse, is_held);
+    zero_rows_and_columns(system.K_split.sparse, is_held, !held.empty());
   }
   system.M = plus_diagonal(system.M, dofs, mass);
   if (!system.M_split.empty()) system.M_split.sparse = plus_diagonal(system.M_split.sparse, dofs, mass);
