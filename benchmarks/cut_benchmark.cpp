@@ -98,7 +98,7 @@ std::string measure(const std::filesystem::path& mesh_file, long roi_nodes, cons
   const model::SecondOrderSystem& system = condensed.condensation->system();
   const roi::Partition& partition = condensed.condensation->partition();
   const model::AverageAcceleration rule(1e-3);
-  const double c = rule.c_u() + 2 * system.damping.alpha / rule.dt();
+  const double c = rule.mass_factor(system.damping);
   const SparseMatrix K_eff = rule.effective_stiffness(system);
   const std::vector<Index> last = system.dense_block_dofs();
   solvers::Cholesky factor;
@@ -174,18 +174,8 @@ std::string measure(const std::filesystem::path& mesh_file, long roi_nodes, cons
     const double tick_before_s = median_seconds(51, [&] { haptic.tick(hand(++tick), state); });
     fem::ElementRemover remover = uncut;
     const fem::ElementRemoval stiffness_change = remover.remove(removed, 0.0);
-    model::SystemChange change;
-    change.dofs = dofs;
-    change.stiffness = stiffness_change.change;
-    change.mass = stiffness_change.mass_change;
-    change.loads.assign(cut_system.load.terms().size(), Vector());
-    for (const int orphan : stiffness_change.orphan_nodes)
-      for (int component = 0; component < 3; ++component)
-        if (const int d = brain->model.dofs->free_dof(orphan, component); d >= 0)
-          change.held.push_back(position[static_cast<std::size_t>(d)]);
-    std::sort(change.held.begin(), change.held.end());
-    for (std::size_t a = 0; a < change.dofs.size(); ++a)
-      if (std::binary_search(change.held.begin(), change.held.end(), change.dofs[a])) change.mass[static_cast<Index>(a)] = 0;
+    model::SystemChange change =
+        model::SystemChange::from_removal(stiffness_change, *brain->model.dofs, position, cut_system.load.terms().size());
     for (const Index d : change.held) state.v[d] = 0;
     change.apply(cut_system);
     haptic.take_change(change, state);

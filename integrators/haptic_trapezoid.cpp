@@ -113,8 +113,7 @@ void HapticTrapezoid::take_change(const model::SystemChange& change, const model
       throw InputError("haptic tool: the cut reaches dof " + std::to_string(d) +
                        ", which the tool holds: a cut stays clear of the tool's nodes");
   const Stopwatch clock;
-  const double c = rule_.c_u() + 2.0 * system_.damping.alpha / rule_.dt();
-  K_eff_.update(change.dofs, change.effective(c));
+  K_eff_.update(change.dofs, change.effective(rule_.mass_factor(system_.damping)));
   Z_ = Z0_;
   K_eff_.correction()->correct(Z_);
   for (std::size_t i = 0; i < held_.size(); ++i) W_.row(static_cast<Index>(i)) = Z_.row(held_[i]);

@@ -126,10 +126,10 @@ void Trapezoid::advance(double t_out, model::State& state) {
 
 bool Trapezoid::absorb_change(const model::SecondOrderSystem& system, const model::SystemChange& change,
                               const model::State& state) {
-  // c: K_eff = K + 2/dt C + 4/dt^2 M with C = alpha M (SystemChange::apply keeps it so).
-  const double c = rule_.c_u() + 2.0 * system.damping.alpha / rule_.dt();
+  // K_eff = K + c M with C = alpha M (SystemChange::apply keeps it so).
   const Stopwatch clock;
-  if (&system != system_ || !K_eff_ || eliminates_modal_ || !K_eff_->update(change.dofs, change.effective(c))) {
+  if (&system != system_ || !K_eff_ || eliminates_modal_ ||
+      !K_eff_->update(change.dofs, change.effective(rule_.mass_factor(system.damping)))) {
     const Stats before = stats_;
     prepare(system, state);  // the grid starts afresh at state.t, a level of the old one
     stats_ += before;

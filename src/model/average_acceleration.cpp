@@ -20,7 +20,7 @@ SparseMatrix AverageAcceleration::effective_stiffness(const SecondOrderSystem& s
 void AverageAcceleration::history(const SecondOrderSystem& system, const State& s, const Vector& a, Vector& f, Vector& w) const {
   const Damping& damping = system.damping;
   if (damping.is_mass_proportional()) {
-    w = (c_u() + damping.alpha * 2.0 / dt_) * s.u + (c_v() + damping.alpha) * s.v + a;
+    w = mass_factor(damping) * s.u + (c_v() + damping.alpha) * s.v + a;
   } else {
     w = (2.0 / dt_) * s.u + s.v;
     f.noalias() += system.C * w;

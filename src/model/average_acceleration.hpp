@@ -19,6 +19,8 @@ class AverageAcceleration {
   double c_u() const { return 4.0 / (dt_ * dt_); }
   double c_v() const { return 4.0 / dt_; }
 
+  /// c in K_eff = K + c M where C = alpha M: 4/dt^2 + 2 alpha/dt.
+  double mass_factor(const Damping& damping) const { return c_u() + damping.alpha * 2.0 / dt_; }
   /// K + 2/dt C + 4/dt^2 M.
   SparseMatrix effective_stiffness(const SecondOrderSystem& system) const;
   /// The right-hand side as f + M w: with C = alpha M the damping history folds into w

@@ -38,6 +38,25 @@ void zero_rows_and_columns(SparseMatrix& A, const std::vector<bool>& is_held, bo
 
 }  // namespace
 
+SystemChange SystemChange::from_removal(const fem::ElementRemoval& removal, const fem::DofMap& dofs,
+                                        const std::vector<Index>& system_dof, std::size_t load_terms) {
+  SystemChange change;
+  change.stiffness = removal.change;
+  change.mass = removal.mass_change;
+  for (std::size_t a = 0; a < removal.dofs.size(); ++a) {
+    const Index free = removal.dofs[a];
+    const Index d = system_dof[static_cast<std::size_t>(free)];
+    if (d < 0) throw Error("internal: a removal reaches a dof the system does not have");
+    change.dofs.push_back(d);
+    if (std::binary_search(removal.orphan_nodes.begin(), removal.orphan_nodes.end(), static_cast<int>(dofs.full_dof(free) / 3))) {
+      change.held.push_back(d);
+      change.mass[static_cast<Index>(a)] = 0;
+    }
+  }
+  change.loads.assign(load_terms, Vector());
+  return change;
+}
+
 DenseMatrix SystemChange::effective(double c) const {
   DenseMatrix out = stiffness;
   out.diagonal() += c * mass;

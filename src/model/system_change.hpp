@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "common/types.hpp"
+#include "fem/dof_map.hpp"
+#include "fem/element_removal.hpp"
 #include "model/second_order_system.hpp"
 
 namespace roifem::model {
@@ -21,6 +23,12 @@ struct SystemChange {
   std::vector<Vector> loads;  ///< per load term of the system, the change of its pattern on dofs
   std::vector<Index> held;    ///< dofs left with no element, ascending (a subset of dofs)
 
+  /// What removing tetrahedra makes of a system (`removal` formed with c = 0: dK alone, no pins):
+  /// its dofs renumbered by `system_dof` (per free dof of `dofs`, the system's unknown; each
+  /// removal dof must have one), its orphans' dofs held (their mass change zero), `load_terms` empty
+  /// load changes (the caller adds gravity's).
+  static SystemChange from_removal(const fem::ElementRemoval& removal, const fem::DofMap& dofs,
+                                   const std::vector<Index>& system_dof, std::size_t load_terms);
   /// The change of K + c M: dK + c diag(dM).
   DenseMatrix effective(double c) const;
   /// Applies it in place: K (and K_split's sparse part), M (and M_split's sparse part), C by

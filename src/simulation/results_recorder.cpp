@@ -41,10 +41,7 @@ ResultsRecorder::ResultsRecorder(const scenario::Scenario& scenario, const Scena
             .nodes_per_tet = model.mesh.is_quadratic() ? 10 : 4},
       ledger_(model.system(), initial, &model.tools) {
   topology_tets_ = model.mesh.num_tets();
-  if (!scenario.cuts.empty()) {
-    cut_energy_.emplace(h5_.appendable("energy/cut_J", {}));
-    still_there_.assign(static_cast<std::size_t>(model.mesh.num_tets()), true);
-  }
+  if (!scenario.cuts.empty()) cut_energy_.emplace(h5_.appendable("energy/cut_J", {}));
   if (!model.roi_nodes.empty()) roi_series_.emplace(h5_.appendable("roi/displacement_mm", {model.roi_nodes.size(), 3}, 16));
   roi_position_ = model.roi_components();
   roi_record_.resize(roi_position_.size());
@@ -123,18 +120,18 @@ void ResultsRecorder::record_constraints(const integrators::ConstraintReport& re
   }
 }
 
-void ResultsRecorder::record_cut(long step, const CutEvent& event, const model::State& at_cut) {
+void ResultsRecorder::record_cut(long step, const CutEvent& event, const model::State& at_cut,
+                                 const std::vector<bool>& still_there) {
   ledger_.account_cut(at_cut, event.energy_removed());
   for (const Index e : event.elements) {
     removed_elements_.push_back(static_cast<int>(e));
     removed_at_step_.push_back(static_cast<int>(step));
     removed_at_s_.push_back(event.time);
-    still_there_[static_cast<std::size_t>(e)] = false;
   }
   // The remaining tetrahedra: the topology of every field from this step on.
   std::vector<int> tets;
-  for (std::size_t e = 0; e < still_there_.size(); ++e)
-    if (still_there_[e]) tets.insert(tets.end(), model_.mesh.tets[e].begin(), model_.mesh.tets[e].end());
+  for (std::size_t e = 0; e < still_there.size(); ++e)
+    if (still_there[e]) tets.insert(tets.end(), model_.mesh.tets[e].begin(), model_.mesh.tets[e].end());
   topology_ = io::format("/mesh/tets_from_step_%06ld", step);
   topology_tets_ = static_cast<long>(tets.size() / 4);
   h5_.write(topology_.substr(1), tets, {tets.size() / 4, 4});

@@ -36,8 +36,9 @@ class ResultsRecorder {
   /// With a method that holds the tools' constraints itself (a DAE form): its multipliers' force
   /// per tool and its drift, after record() of the same step.
   void record_constraints(const integrators::ConstraintReport& report, double t);
-  /// A cut at `at_cut`, the start of step `step` (ScenarioStepper::on_cut): the ledger books it.
-  void record_cut(long step, const CutEvent& event, const model::State& at_cut);
+  /// A cut at `at_cut`, the start of step `step` (ScenarioStepper::on_cut): the ledger books it;
+  /// `still_there` (per tetrahedron, after it) is the topology of the fields from then on.
+  void record_cut(long step, const CutEvent& event, const model::State& at_cut, const std::vector<bool>& still_there);
   /// max over the steps of |F_multipliers - F_residual| / max |F_residual| (0 without a DAE form).
   double multiplier_disagreement() const { return force_peak_ > 0 ? force_gap_ / force_peak_ : 0.0; }
   /// Writes the counters, marks the file complete and moves it into place (with results.xdmf).
@@ -71,7 +72,6 @@ class ResultsRecorder {
   std::optional<io::AppendableDataset> cut_energy_;
   std::vector<int> removed_elements_, removed_at_step_;
   std::vector<double> removed_at_s_;
-  std::vector<bool> still_there_;  ///< per tetrahedron, with cuts
   std::string topology_ = "/mesh/tets";
   long topology_tets_ = 0;
   bool topology_varies_ = false;

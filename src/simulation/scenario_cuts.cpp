@@ -150,30 +150,18 @@ CutEvent ScenarioCuts::remove_due(double t, ScenarioModel& m, model::State& stat
   for (const Index e : event.elements) event.mass_removed += m.full.materials.of(e).rho * mesh::signed_volume(m.mesh, e);
   event.orphan_nodes = removal.orphan_nodes;
 
+  const model::SecondOrderSystem& system = m.system();
+  event.change = model::SystemChange::from_removal(removal, dofs, system_dof_, system.load.terms().size());
   model::SystemChange& change = event.change;
   const auto r = static_cast<Index>(removal.dofs.size());
-  std::vector<bool> held_free(static_cast<std::size_t>(dofs.num_free()), false);
-  for (const int n : removal.orphan_nodes)
-    for (int c = 0; c < 3; ++c)
-      if (const int d = dofs.free_dof(n, c); d >= 0) held_free[static_cast<std::size_t>(d)] = true;
-  change.stiffness = removal.change;
-  change.mass.resize(r);
-  Vector u(r), v(r);
+  Vector u(r);
   for (Index a = 0; a < r; ++a) {
-    const Index free = removal.dofs[static_cast<std::size_t>(a)];
-    const Index d = system_dof_[static_cast<std::size_t>(free)];
-    if (d < 0) throw Error("internal: a cut reached a dof of the static part");
-    change.dofs.push_back(d);
-    const double dm = removal.mass_change[a];
-    change.mass[a] = held_free[static_cast<std::size_t>(free)] ? 0.0 : dm;
-    if (held_free[static_cast<std::size_t>(free)]) change.held.push_back(d);
+    const Index d = change.dofs[static_cast<std::size_t>(a)];
     u[a] = state.u[d];
-    v[a] = state.v[d];
-    event.kinetic_energy -= 0.5 * dm * v[a] * v[a];
+    // The mass removed, held dofs' included (their stand-in carries nothing from now on).
+    event.kinetic_energy -= 0.5 * removal.mass_change[a] * state.v[d] * state.v[d];
   }
   event.strain_energy = -0.5 * u.dot(change.stiffness * u);
-  const model::SecondOrderSystem& system = m.system();
-  change.loads.assign(system.load.terms().size(), Vector());
   for (const auto& [k, g] : gravity_) {
     Vector dp(r);
     for (Index a = 0; a < r; ++a) {

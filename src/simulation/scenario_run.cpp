@@ -177,7 +177,7 @@ ScenarioRunSummary run_scenario(const scenario::Scenario& sc, const std::filesys
 
   ResultsRecorder recorder(sc, *built, state, out);
   stepper.on_cut([&](const CutEvent& event, const model::State& at_cut) {
-    recorder.record_cut(stepper.steps_taken() + 1, event, at_cut);
+    recorder.record_cut(stepper.steps_taken() + 1, event, at_cut, stepper.cuts().still_there());
     for (const auto& w : event.warnings) log << "\nwarning: " << w << '\n';
   });
   PeakDisplacement peak(*built);

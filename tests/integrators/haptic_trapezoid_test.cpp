@@ -9,6 +9,7 @@
 #include <Eigen/LU>
 #include <cmath>
 #include <iostream>
+#include <numeric>
 
 #include "common/errors.hpp"
 #include "condensation/reduced_model.hpp"
@@ -259,12 +260,9 @@ model::SystemChange beam_change(const test::Beam& beam, const std::vector<Index>
   fem::ElementRemover remover(beam.mesh, *beam.model.dofs, beam.model.materials);
   const fem::ElementRemoval removal = remover.remove(removed, 0.0);
   EXPECT_TRUE(removal.orphan_nodes.empty());
-  model::SystemChange change;
-  change.dofs = removal.dofs;
-  change.stiffness = removal.change;
-  change.mass = removal.mass_change;
-  change.loads.assign(beam.model.system.load.terms().size(), Vector());
-  return change;
+  std::vector<Index> same(static_cast<std::size_t>(beam.model.dofs->num_free()));
+  std::iota(same.begin(), same.end(), Index{0});
+  return model::SystemChange::from_removal(removal, *beam.model.dofs, same, beam.model.system.load.terms().size());
 }
 
 TEST(HapticTrapezoid, ACutTakenByTheCorrectionFeelsAsTheModelRebuiltFromTheCutMesh) {
