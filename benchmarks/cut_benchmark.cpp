@@ -9,7 +9,7 @@
 // corrected solve is checked against the refactorized one (gap: |x - x_refactored| / |x|). Then the haptic loop (a tool on 10
 // wall nodes, integrators/haptic_trapezoid.hpp): the cut taken between two ticks (the factor's
 // correction and the compliance's: the event, and the ticks of 1 ms it spans), and the tick's
-// median before and after. Writes DIR/cut.csv.
+// median before and after. Then split mode (measure_split below). Writes DIR/cut.csv and DIR/split.csv.
 //   compile with: cmake --build --preset release --target roifem_cut_benchmark
 //   sample run:   build/release/benchmarks/roifem_cut_benchmark --nodes 20000 100000 --rois 300 1000 --out results/cut
 #include <CLI/CLI.hpp>
@@ -17,9 +17,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <random>
 
 #include "brain_meshes.hpp"
+#include "common/errors.hpp"
 #include "common/timer.hpp"
 #include "fem/element_removal.hpp"
 #include "integrators/haptic_trapezoid.hpp"
@@ -28,7 +30,9 @@
 #include "scale/brain_model.hpp"
 #include "scale/child_process.hpp"
 #include "scale/machine_bounds.hpp"
+#include "scenario/scenario.hpp"
 #include "simulation/run_loop.hpp"
+#include "simulation/scenario_stepper.hpp"
 #include "solvers/cholesky.hpp"
 #include "solvers/low_rank_update.hpp"
 
@@ -39,6 +43,7 @@ struct Options {
   std::vector<long> nodes{20000, 100000};
   std::vector<long> rois{300, 1000};
   std::vector<long> cuts{1, 10, 100};
+  std::vector<double> split_sizes{2, 4, 8};
   std::filesystem::path out = "cut-results";
   double model_timeout_s = 1800;
   bool machine_bounds = true;
@@ -195,6 +200,84 @@ std::string measure(const std::filesystem::path& mesh_file, long roi_nodes, cons
   return lines;
 }
 
+/// Split mode on the same brain and ROI, run as a scenario (the copies are the model's from the
+/// start): a blade beside the opening whose edge and depth are `size` mm, through in one step at
+/// t = 4.5 ms. The step that takes the split (separating the faces, splitting the nodes, Woodbury's
+/// correction of the factor, the step) against the steps before and after, and a numeric
+/// refactorization of the split K_eff (pattern analysed beforehand). One line per size.
+std::string measure_split(const std::filesystem::path& mesh_file, long roi_nodes, const std::vector<double>& sizes) {
+  std::string lines;
+  for (const double size : sizes) {
+    const double x = 6, top = 40 + size / 2;
+    const std::string text = io::format(
+        "mesh = \"%s\"\n[material]\npreset = \"paper\"\n[boundary]\nfixed = [\"base\"]\n"
+        "[[load]]\nset = \"opening_left\"\nforce_N = [-0.01601, 0.0, 0.0]\nramp_s = 0.5\n"
+        "[[load]]\nset = \"opening_right\"\nforce_N = [0.01601, 0.0, 0.0]\nramp_s = 0.5\n"
+        "[roi]\nkind = \"nearest\"\ntarget_mm = [0.0, 0.0, 40.0]\nnodes = %ld\n"
+        "[[cut]]\nmode = \"split\"\nedge_from_mm = [%g, %g, %g]\nedge_to_mm = [%g, %g, %g]\nmove_mm = [0.0, 0.0, %g]\n"
+        "start_s = 0.0045\nduration_s = 0.000001\n[time]\nintegrator = \"trapezoid\"\ndt_s = 0.001\nsteps = 12\n",
+        std::filesystem::absolute(mesh_file).c_str(), roi_nodes, x, -size / 2, top, x, size / 2, top, -size);
+    const scenario::Scenario sc = scenario::parse_scenario(text, "split-benchmark.toml", mesh_file.parent_path());
+    std::unique_ptr<simulation::ScenarioStepper> stepper;
+    try {
+      stepper = std::make_unique<simulation::ScenarioStepper>(sc, false);
+    } catch (const InputError& e) {
+      lines += io::format("%8s %5ld %5g  refused: %s\t\n", "-", roi_nodes, size, e.what());
+      continue;
+    }
+    std::size_t faces = 0, splits = 0, changed = 0;
+    stepper->on_cut([&](const simulation::CutEvent& e, const model::State&) {
+      faces += e.faces_separated;
+      splits += e.splits.size();
+      changed += e.change.dofs.size();
+    });
+    std::vector<double> before, after;
+    double event_s = 0;
+    for (int k = 0; k < 12; ++k) {
+      const Stopwatch clock;
+      stepper->step();
+      (k < 5 ? before : after).push_back(clock.seconds());
+      if (k == 5) event_s = clock.seconds(), after.pop_back();
+    }
+    const model::SecondOrderSystem& system = stepper->model().system();
+    const model::AverageAcceleration rule(sc.dt);
+    const SparseMatrix K_eff = rule.effective_stiffness(system);
+    solvers::Cholesky refactored;
+    refactored.analyze(K_eff, system.dense_block_dofs());
+    const double refactor_s = median_seconds(3, [&] { refactored.factorize(K_eff); });
+    const auto nodes = static_cast<long long>(stepper->model().split_plan->num_nodes);
+    lines +=
+        io::format("%8lld %5ld %5g %6zu %6zu %5zu %9.3f %9.3f %8.3f %10.1f\t", nodes, roi_nodes, size, faces, splits, changed,
+                   simulation::median(before) * 1e3, event_s * 1e3, simulation::median(after) * 1e3, refactor_s * 1e3) +
+        io::format("%lld,%ld,%g,%zu,%zu,%zu,%.6g,%.6g,%.6g,%.6g\n", nodes, roi_nodes, size, faces, splits, changed,
+                   simulation::median(before) * 1e3, event_s * 1e3, simulation::median(after) * 1e3, refactor_s * 1e3);
+  }
+  return lines;
+}
+
+/// Runs `work` in a child per brain and ROI, printing its table lines and writing its CSV rows.
+void each_model(const Options& o, io::CsvWriter& csv,
+                const std::function<std::string(const std::filesystem::path&, long)>& work) {
+  for (const long n : o.nodes) {
+    const auto mesh_file = brain_mesh_file(n);
+    for (const long roi : o.rois) {
+      const ChildResult child = run_in_child([&] { return work(mesh_file, roi); }, o.model_timeout_s);
+      if (!child.ok) {
+        std::printf("%8ld %5ld  failed: %s\n", n, roi, child.output.c_str());
+        continue;
+      }
+      std::size_t at = 0;
+      while (at < child.output.size()) {
+        const std::size_t bar = child.output.find('\t', at), end = child.output.find('\n', bar);
+        std::printf("%s\n", child.output.substr(at, bar - at).c_str());
+        if (end > bar + 1) csv.row(child.output.substr(bar + 1, end - bar - 1));
+        at = end + 1;
+      }
+      std::fflush(stdout);
+    }
+  }
+}
+
 int run(const Options& o) {
   std::filesystem::create_directories(o.out);
   if (o.machine_bounds) report_machine_bounds(o.out);
@@ -209,23 +292,20 @@ int run(const Options& o) {
   std::printf("%8s %5s %6s %6s %5s %5s %8s %9s %8s %8s %10s %9s  %7s | %8s %5s %7s %7s\n", "nodes", "ROI", "dofs", "iface", "cut",
               "r", "form ms", "update ms", "solve ms", "after ms", "refactor ms", "condense s", "gap", "event ms", "ticks",
               "tick ms", "after ms");
-  for (const long n : o.nodes) {
-    const auto mesh_file = brain_mesh_file(n);
-    for (const long roi : o.rois) {
-      const ChildResult child = run_in_child([&] { return measure(mesh_file, roi, o.cuts); }, o.model_timeout_s);
-      if (!child.ok) {
-        std::printf("%8ld %5ld  failed: %s\n", n, roi, child.output.c_str());
-        continue;
-      }
-      std::size_t at = 0;
-      while (at < child.output.size()) {
-        const std::size_t bar = child.output.find('\t', at), end = child.output.find('\n', bar);
-        std::printf("%s\n", child.output.substr(at, bar - at).c_str());
-        csv.row(child.output.substr(bar + 1, end - bar - 1));
-        at = end + 1;
-      }
-      std::fflush(stdout);
-    }
+  each_model(o, csv, [&](const std::filesystem::path& mesh_file, long roi) { return measure(mesh_file, roi, o.cuts); });
+  if (!o.split_sizes.empty()) {
+    io::CsvWriter split_csv(
+        o.out / "split.csv",
+        "nodes,roi_nodes,blade_mm,faces,splits,changed_dofs,step_before_ms,split_step_ms,step_after_ms,refactor_ms");
+    std::printf(
+        "\nSplit: a blade beside the opening (edge and depth `blade` mm) through in one step, as a scenario (trapezoid, dt = "
+        "1 ms): the faces it separates, the node splits, the changed dofs r; a step before, the step taking the split "
+        "(Woodbury's correction), a step after, against a numeric refactorization of the split K_eff\n");
+    std::printf("%8s %5s %5s %6s %6s %5s %9s %9s %8s %10s\n", "nodes", "ROI", "blade", "faces", "splits", "r", "before ms",
+                "split ms", "after ms", "refactor ms");
+    each_model(o, split_csv,
+               [&](const std::filesystem::path& mesh_file, long roi) { return measure_split(mesh_file, roi, o.split_sizes); });
+    std::printf("wrote %s\n", (o.out / "split.csv").c_str());
   }
   std::printf("wrote %s\n", (o.out / "cut.csv").c_str());
   return 0;
@@ -242,6 +322,7 @@ int main(int argc, char** argv) {
   app.add_option("--nodes", o.nodes, "brain sizes (nodes; meshes cached in $ROIFEM_MESH_CACHE)");
   app.add_option("--rois", o.rois, "ROI sizes (nodes nearest the target)");
   app.add_option("--cuts", o.cuts, "tetrahedra removed per cut");
+  app.add_option("--split-sizes", o.split_sizes, "split mode: blade edge and depth (mm), one scenario each (none: skip)");
   app.add_option("--out", o.out, "output directory (cut.csv)");
   app.add_flag("!--no-machine-bounds", o.machine_bounds, "skip measuring the machine's bounds (smoke tests)");
   CLI11_PARSE(app, argc, argv);

@@ -9,7 +9,8 @@ triangles (those of the 'surface' set, else every triangle in the file) from the
 and from behind, shaded by the light on them, with the named 2D sets given (default: every 2D set
 but 'surface') in colour. The second draws a run's mesh as its cuts left it (the tetrahedra after
 the last cut at or before STEP, default the run's last; `roifem run` with [[cut]]s), deformed by
-the last displacement field at or before that step, with the faces the cuts laid open in colour.
+the last displacement field at or before that step, with the faces the cuts laid open in colour (removed
+tetrahedra gone, or split nodes parted: their copies are the mesh's last nodes).
 """
 import os
 import sys
@@ -129,7 +130,12 @@ def main_cut(path, out, step):
         tets = h5[f"mesh/tets_from_step_{at[-1]:06d}"][:]
         fields = sorted(int(k.rsplit("_", 1)[1]) for k in h5.get("fields", {}) if int(k.rsplit("_", 1)[1]) <= step)
         shown = nodes + (h5[f"fields/displacement_mm_{fields[-1]:06d}"][:] if fields else 0)
-        removed = len(h5["cuts/removed_elements"]) if "cuts" in h5 else len(uncut) - len(tets)
+        if "cuts/split_nodes" in h5:
+            split = int((h5["cuts/split_at_step"][:] <= step).sum())
+            what = f"{split} node splits"
+        else:
+            removed = len(h5["cuts/removed_elements"]) if "cuts/removed_elements" in h5 else len(uncut) - len(tets)
+            what = f"{removed} tetrahedra removed"
     before = boundary(uncut)
     after = boundary(tets)
     opened = [f for k, f in after.items() if k not in before]
@@ -149,7 +155,7 @@ def main_cut(path, out, step):
         draw(ax, tri, face, title, elev, azim)
     fig.legend([plt.Rectangle((0, 0), 1, 1, color=(0.85, 0.2, 0.15))], [f"laid open by the cuts ({len(opened)} faces)"],
                loc="lower center")
-    fig.suptitle(f"{os.path.basename(path)}: {removed} tetrahedra removed by step {step}"
+    fig.suptitle(f"{os.path.basename(path)}: {what} by step {step}"
                  f"{f', deformed as at step {fields[-1]}' if fields else ''} (mm)")
     save(fig, out)
     print(out)

@@ -55,19 +55,14 @@ double area(const Polygon& polygon) {
 /// Below this in barycentric terms a surface grazes a tetrahedron rather than cuts it.
 constexpr double graze = 1e-9;
 
-/// One straight stretch of the sweep: X(s, sigma) = origin + s edge + sigma move, over [t0, t1].
-struct Parallelogram {
-  Vec3 origin, edge, move;
-  double t0, t1;
-  Eigen::AlignedBox3d box() const {
-    Eigen::AlignedBox3d b(origin);
-    b.extend(origin + edge).extend(origin + move).extend(origin + edge + move);
-    return b;
-  }
-};
+Eigen::AlignedBox3d box_of(const SweptStrip& p) {
+  Eigen::AlignedBox3d b(p.origin);
+  b.extend(p.origin + p.edge).extend(p.origin + p.move).extend(p.origin + p.edge + p.move);
+  return b;
+}
 
 /// The least sigma at which the parallelogram's part inside the tetrahedron starts, or none (NaN).
-double first_reach(const Parallelogram& p, const mesh::TetMesh& mesh, const mesh::Tet& tet) {
+double first_reach(const SweptStrip& p, const mesh::TetMesh& mesh, const mesh::Tet& tet) {
   const Vec3 x0 = mesh.node(tet[0]);
   Mat3 J;
   for (std::size_t k = 0; k < 3; ++k) J.col(static_cast<Index>(k)) = mesh.node(tet[k + 1]) - x0;
@@ -99,6 +94,16 @@ std::vector<double> Blade::knots() const {
   return t;
 }
 
+std::vector<SweptStrip> Blade::strips() const {
+  const std::vector<double> t = knots();
+  std::vector<SweptStrip> out;
+  for (std::size_t j = 0; j + 1 < t.size(); ++j) {
+    const Vec3 from = path.at(t[j]), to = path.at(t[j + 1]);
+    out.push_back({edge_a + from, edge_b - edge_a, to - from, t[j], t[j + 1]});
+  }
+  return out;
+}
+
 double Blade::end() const { return start + knots().back(); }
 
 std::string Blade::describe() const { return "cut '" + name + "'" + (where.empty() ? "" : " (" + where + ")"); }
@@ -106,12 +111,9 @@ std::string Blade::describe() const { return "cut '" + name + "'" + (where.empty
 std::vector<Crossing> swept_elements(const Blade& blade, const mesh::TetMesh& mesh) {
   if (mesh.is_quadratic())
     throw InputError(mesh.source + ": " + blade.describe() + ": cuts are built for 4-node tetrahedra only");
-  const std::vector<double> knots = blade.knots();
   std::vector<double> reached(static_cast<std::size_t>(mesh.num_tets()), std::numeric_limits<double>::infinity());
-  for (std::size_t j = 0; j + 1 < knots.size(); ++j) {
-    const Vec3 from = blade.path.at(knots[j]), to = blade.path.at(knots[j + 1]);
-    const Parallelogram p{blade.edge_a + from, blade.edge_b - blade.edge_a, to - from, knots[j], knots[j + 1]};
-    const Eigen::AlignedBox3d box = p.box();
+  for (const SweptStrip& p : blade.strips()) {
+    const Eigen::AlignedBox3d box = box_of(p);
     for (Index e = 0; e < mesh.num_tets(); ++e) {
       const mesh::Tet& tet = mesh.tets[static_cast<std::size_t>(e)];
       Eigen::AlignedBox3d tet_box(mesh.node(tet[0]));

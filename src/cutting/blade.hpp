@@ -20,7 +20,14 @@ namespace roifem::cutting {
 /// What a cut does to the tetrahedra its blade crosses.
 enum class CutMode {
   remove,  ///< deletes them (element deletion, as SOFA's carving does)
-  split,   ///< separates their faces along the surface, removing no material (not built)
+  split,   ///< separates faces along the surface, removing no material (cutting/node_splitter.hpp)
+};
+
+/// One straight stretch of the sweep: the surface X(s, sigma) = origin + s edge + sigma move
+/// (s, sigma in [0, 1]), which the blade covers between times t0 and t1 after its start.
+struct SweptStrip {
+  Vec3 origin, edge, move;
+  double t0 = 0, t1 = 0;
 };
 
 struct Blade {
@@ -32,6 +39,8 @@ struct Blade {
   std::string where;                                  ///< "file:line" of its [[cut]] table, for messages
   /// The path's corners, from 0 to the last (times after `start`, ascending): where it is straight between.
   std::vector<double> knots() const;
+  /// The surface its edge sweeps, a strip per straight stretch of the path, in order.
+  std::vector<SweptStrip> strips() const;
   /// When the blade stops: start + the last knot.
   double end() const;
   /// "cut 'name' (file:line)".

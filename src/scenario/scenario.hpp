@@ -28,7 +28,7 @@ struct Scenario {
   std::vector<std::string> fixed_sets{"base"};
   std::vector<model::SetLoad> loads;
   std::vector<model::SetTool> tools;  ///< [[tool]]: attached nodes follow a prescribed path
-  std::vector<cutting::Blade> cuts;   ///< [[cut]]: blades that remove the tetrahedra they cross
+  std::vector<cutting::Blade> cuts;   ///< [[cut]]: blades that remove the tetrahedra they cross, or split along faces
   std::optional<roi::RoiSpec> roi;    ///< none: the full dynamic model
   condensation::Reduction reduction;  ///< of the static part, with an ROI
   std::string integrator = "trapezoid";

@@ -378,13 +378,14 @@ cutting::Blade read_cut(StrictTable t, const toml::node& node, const std::vector
   for (const auto& other : earlier)
     if (other.name == blade.name) throw InputError(t.where(node) + ": two [[cut]] tables are named '" + blade.name + "'");
   const std::string mode = t.string("mode").value_or("remove");
-  if (mode == "split")
-    throw InputError(t.where(*t.find("mode")) +
-                     ": key 'cut.mode' = \"split\" (an incision that separates faces) is not built yet; \"remove\" deletes the "
-                     "tetrahedra the blade crosses");
-  if (mode != "remove")
-    throw InputError(t.where(*t.find("mode")) + ": key 'cut.mode' must be \"remove\" (got '" + mode + "')" +
+  if (mode != "remove" && mode != "split")
+    throw InputError(t.where(*t.find("mode")) + ": key 'cut.mode' must be \"remove\" or \"split\" (got '" + mode + "')" +
                      did_you_mean(mode, {"remove", "split"}));
+  blade.mode = mode == "split" ? cutting::CutMode::split : cutting::CutMode::remove;
+  for (const auto& other : earlier)
+    if (other.mode != blade.mode)
+      throw InputError(t.where(t.find("mode") ? *t.find("mode") : node) + ": " + blade.describe() + " is in " + mode +
+                       " mode and " + other.describe() + " is not: a scenario's cuts share one mode (remove or split)");
   const auto from = t.vec3("edge_from_mm");
   const auto to = t.vec3("edge_to_mm");
   if (!from) t.missing("edge_from_mm");

@@ -36,7 +36,8 @@ double mean_edge_length(const mesh::TetMesh& mesh) {
 
 }  // namespace
 
-DeformationReport check_deformation(ScenarioModel& model, const PeakDisplacement& peak, const std::vector<bool>& still_there) {
+DeformationReport check_deformation(ScenarioModel& model, const PeakDisplacement& peak, const std::vector<bool>& still_there,
+                                    const std::vector<mesh::Tet>* tets_at_peak) {
   using io::format;
   DeformationReport r;
   const mesh::TetMesh& mesh = model.mesh;
@@ -56,7 +57,7 @@ DeformationReport check_deformation(ScenarioModel& model, const PeakDisplacement
   }
   for (Index e = 0; e < mesh.num_tets(); ++e) {
     if (!still_there.empty() && !still_there[static_cast<std::size_t>(e)]) continue;
-    const auto& t = mesh.tets[static_cast<std::size_t>(e)];
+    const auto& t = (tets_at_peak ? *tets_at_peak : mesh.tets)[static_cast<std::size_t>(e)];
     auto x = [&](int a) -> Vec3 { return mesh.node(t[a]) + u.segment<3>(3 * static_cast<Index>(t[a])); };
     const Vec3 p0 = x(0);
     if ((x(1) - p0).cross(x(2) - p0).dot(x(3) - p0) <= 0) {

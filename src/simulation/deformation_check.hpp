@@ -46,7 +46,8 @@ struct DeformationReport {
 /// Warns when the peak exceeds a tenth of the mesh's smallest extent or three mean edge lengths,
 /// or when tetrahedra invert.
 /// `still_there`: per tetrahedron, whether it is in the mesh at the end (cuts); empty: all are.
-DeformationReport check_deformation(ScenarioModel& model, const PeakDisplacement& peak,
-                                    const std::vector<bool>& still_there = {});
+/// `tets_at_peak`: the tetrahedra's corners at the peak (splits move them); null: the mesh's.
+DeformationReport check_deformation(ScenarioModel& model, const PeakDisplacement& peak, const std::vector<bool>& still_there = {},
+                                    const std::vector<mesh::Tet>* tets_at_peak = nullptr);
 
 }  // namespace roifem::simulation

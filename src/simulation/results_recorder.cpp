@@ -42,6 +42,7 @@ ResultsRecorder::ResultsRecorder(const scenario::Scenario& scenario, const Scena
       ledger_(model.system(), initial, &model.tools) {
   topology_tets_ = model.mesh.num_tets();
   if (!scenario.cuts.empty()) cut_energy_.emplace(h5_.appendable("energy/cut_J", {}));
+  if (model.split_plan) h5_.write("cuts/copy_of", model.split_plan->copy_of, {model.split_plan->copy_of.size()});
   if (!model.roi_nodes.empty()) roi_series_.emplace(h5_.appendable("roi/displacement_mm", {model.roi_nodes.size(), 3}, 16));
   roi_position_ = model.roi_components();
   roi_record_.resize(roi_position_.size());
@@ -123,6 +124,13 @@ void ResultsRecorder::record_constraints(const integrators::ConstraintReport& re
 void ResultsRecorder::record_cut(long step, const CutEvent& event, const model::State& at_cut,
                                  const std::vector<bool>& still_there) {
   ledger_.account_cut(at_cut, event.energy_removed());
+  if (event.elements.empty() && event.moved.empty()) return;  // faces opened, the topology unchanged yet
+  for (const auto& [node, copy] : event.splits) {
+    split_nodes_.push_back(node);
+    split_copies_.push_back(copy);
+    split_at_step_.push_back(static_cast<int>(step));
+    split_at_s_.push_back(event.time);
+  }
   for (const Index e : event.elements) {
     removed_elements_.push_back(static_cast<int>(e));
     removed_at_step_.push_back(static_cast<int>(step));
@@ -143,6 +151,12 @@ void ResultsRecorder::record_cut(long step, const CutEvent& event, const model::
 }
 
 void ResultsRecorder::write_cuts() {
+  if (!split_nodes_.empty()) {
+    h5_.write("cuts/split_nodes", split_nodes_, {split_nodes_.size()});
+    h5_.write("cuts/split_copies", split_copies_, {split_copies_.size()});
+    h5_.write("cuts/split_at_step", split_at_step_, {split_at_step_.size()});
+    h5_.write("cuts/split_at_s", split_at_s_, {split_at_s_.size()});
+  }
   if (removed_elements_.empty()) return;
   h5_.write("cuts/removed_elements", removed_elements_, {removed_elements_.size()});
   h5_.write("cuts/removed_at_step", removed_at_step_, {removed_at_step_.size()});

@@ -9,6 +9,9 @@
 /// With cuts: energy/cut_J per step, /cuts/{removed_elements, removed_at_step, removed_at_s} (each
 /// removed tetrahedron, the step at whose start it went, and that time), and after each cut the
 /// remaining tetrahedra as /mesh/tets_from_step_NNNNNN, the topology of the fields from then on.
+/// In split mode the mesh's last nodes are the copies (/cuts/copy_of: each one's original node),
+/// /cuts/{split_nodes, split_copies, split_at_step, split_at_s} list each split (the node, the copy
+/// taking a piece of its tetrahedra, when), and /mesh/tets_from_step_NNNNNN the corners after it.
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -72,6 +75,8 @@ class ResultsRecorder {
   std::optional<io::AppendableDataset> cut_energy_;
   std::vector<int> removed_elements_, removed_at_step_;
   std::vector<double> removed_at_s_;
+  std::vector<int> split_nodes_, split_copies_, split_at_step_;
+  std::vector<double> split_at_s_;
   std::string topology_ = "/mesh/tets";
   long topology_tets_ = 0;
   bool topology_varies_ = false;

@@ -34,28 +34,29 @@ void refuse_unsupported(const scenario::Scenario& sc, const ScenarioModel& m) {
                      "arkode-*, ida-bdf*, gsl-*)");
 }
 
-/// Union-find over nodes, by the tetrahedra still there.
-std::vector<int> pieces(const mesh::TetMesh& mesh, const std::vector<bool>& still_there) {
-  std::vector<int> parent(static_cast<std::size_t>(mesh.num_nodes()));
-  std::iota(parent.begin(), parent.end(), 0);
-  const auto root = [&](int n) {
-    while (parent[static_cast<std::size_t>(n)] != n)
-      n = parent[static_cast<std::size_t>(n)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(n)])];
-    return n;
-  };
-  for (std::size_t e = 0; e < still_there.size(); ++e)
-    if (still_there[e])
-      for (int k = 1; k < 4; ++k)
-        parent[static_cast<std::size_t>(root(mesh.tets[e][static_cast<std::size_t>(k)]))] = root(mesh.tets[e][0]);
-  for (int n = 0; n < static_cast<int>(parent.size()); ++n) parent[static_cast<std::size_t>(n)] = root(n);
-  return parent;
-}
-
-std::string node_list(const std::vector<int>& nodes) {
-  std::string out;
-  for (std::size_t i = 0; i < nodes.size() && i < 10; ++i) out += (i ? ", " : "") + std::to_string(nodes[i]);
-  if (nodes.size() > 10) out += ", ... (" + std::to_string(nodes.size()) + " in all)";
-  return out;
+/// Where the tissue is held, and what a cut may reach.
+CutSupports supports_of(const ScenarioModel& m) {
+  const mesh::TetMesh& mesh = m.mesh;
+  const fem::DofMap& dofs = *m.full.dofs;
+  const auto nodes = static_cast<std::size_t>(mesh.num_nodes());
+  CutSupports at{.tool_at = std::vector<std::string>(nodes),
+                 .in_static_part = std::vector<bool>(nodes, false),
+                 .supported = std::vector<bool>(nodes, false),
+                 .fixed_somewhere = std::vector<bool>(nodes, false)};
+  for (const auto& tool : m.full.tools.tools())
+    for (const int n : tool.nodes) at.tool_at[static_cast<std::size_t>(n)] = tool.name;
+  std::vector<bool> in_roi(nodes, m.roi_nodes.empty());
+  for (const int n : m.roi_nodes) in_roi[static_cast<std::size_t>(n)] = true;
+  // A node fixed in every component has no unknown to be in the ROI or the static part: a cut may
+  // reach it (the tetrahedron's free dofs are the ROI's), and it supports what it belongs to.
+  for (int n = 0; n < mesh.num_nodes(); ++n) {
+    const auto i = static_cast<std::size_t>(n);
+    at.fixed_somewhere[i] = dofs.free_dof(n, 0) < 0 || dofs.free_dof(n, 1) < 0 || dofs.free_dof(n, 2) < 0;
+    const bool free_somewhere = dofs.free_dof(n, 0) >= 0 || dofs.free_dof(n, 1) >= 0 || dofs.free_dof(n, 2) >= 0;
+    at.in_static_part[i] = free_somewhere && !in_roi[i];
+    at.supported[i] = at.fixed_somewhere[i] || at.in_static_part[i] || !at.tool_at[i].empty();
+  }
+  return at;
 }
 
 }  // namespace
@@ -65,8 +66,32 @@ ScenarioCuts::ScenarioCuts(const scenario::Scenario& sc, const ScenarioModel& m)
   refuse_unsupported(sc, m);
   const mesh::TetMesh& mesh = m.mesh;
   const fem::DofMap& dofs = *m.full.dofs;
-  const double t_end = sc.dt * static_cast<double>(sc.steps);
   time_slack_ = 1e-9 * sc.dt;
+  const CutSupports at = supports_of(m);
+  supported_ = at.supported;
+  system_dof_.assign(static_cast<std::size_t>(dofs.num_free()), -1);
+  if (m.condensation) {
+    const auto& d = m.condensation->partition().d;
+    for (std::size_t i = 0; i < d.size(); ++i) system_dof_[static_cast<std::size_t>(d[i])] = static_cast<Index>(i);
+  } else {
+    std::iota(system_dof_.begin(), system_dof_.end(), Index{0});
+  }
+  for (std::size_t k = 0; k < sc.loads.size(); ++k)
+    if (sc.loads[k].gravity) gravity_.emplace_back(k, *sc.loads[k].gravity);
+
+  if (m.split_plan) {  // split mode: planned with the model, which holds the copies
+    split_plan_ = m.split_plan.get();
+    // What moves to a copy stays clear of the supports and the static part where it can.
+    std::vector<bool> anchored(static_cast<std::size_t>(mesh.num_tets()), false);
+    for (std::size_t e = 0; e < anchored.size(); ++e)
+      anchored[e] =
+          std::any_of(mesh.tets[e].begin(), mesh.tets[e].end(), [&](int n) { return at.supported[static_cast<std::size_t>(n)]; });
+    refuse_splits(m, at, anchored);
+    no_cuts_.assign(static_cast<std::size_t>(mesh.num_tets()), true);
+    splits_.emplace(m, system_dof_, gravity_, time_slack_, std::move(anchored));
+    return;
+  }
+  const double t_end = sc.dt * static_cast<double>(sc.steps);
   const auto elements = static_cast<std::size_t>(mesh.num_tets());
 
   // Each tetrahedron once, at the earliest time a blade reaches it within the run.
@@ -91,53 +116,73 @@ ScenarioCuts::ScenarioCuts(const scenario::Scenario& sc, const ScenarioModel& m)
     if (by[e]) schedule_.push_back({static_cast<Index>(e), when[e]});
   std::stable_sort(schedule_.begin(), schedule_.end(), [](const auto& a, const auto& b) { return a.time < b.time; });
 
-  // Where the tissue is held, and what the cut may reach.
-  std::vector<std::string> tool_at(static_cast<std::size_t>(mesh.num_nodes()));
-  for (const auto& tool : m.full.tools.tools())
-    for (const int n : tool.nodes) tool_at[static_cast<std::size_t>(n)] = tool.name;
-  std::vector<bool> in_roi(static_cast<std::size_t>(mesh.num_nodes()), m.roi_nodes.empty());
-  for (const int n : m.roi_nodes) in_roi[static_cast<std::size_t>(n)] = true;
-  // A node fixed in every component has no unknown to be in the ROI or the static part: a cut may
-  // reach it (the tetrahedron's free dofs are the ROI's), and it supports what it belongs to.
-  supported_.assign(static_cast<std::size_t>(mesh.num_nodes()), false);
-  std::vector<bool> in_static_part(static_cast<std::size_t>(mesh.num_nodes()), false);
-  for (int n = 0; n < mesh.num_nodes(); ++n) {
-    const bool fixed_somewhere = dofs.free_dof(n, 0) < 0 || dofs.free_dof(n, 1) < 0 || dofs.free_dof(n, 2) < 0;
-    const bool free_somewhere = dofs.free_dof(n, 0) >= 0 || dofs.free_dof(n, 1) >= 0 || dofs.free_dof(n, 2) >= 0;
-    in_static_part[static_cast<std::size_t>(n)] = free_somewhere && !in_roi[static_cast<std::size_t>(n)];
-    supported_[static_cast<std::size_t>(n)] = fixed_somewhere || in_static_part[static_cast<std::size_t>(n)];
-  }
   for (const auto& c : schedule_) {
     const cutting::Blade& blade = *by[static_cast<std::size_t>(c.element)];
     for (const int n : mesh.tets[static_cast<std::size_t>(c.element)]) {
-      const std::string at = blade.where + ": " + blade.describe() + " reaches tetrahedron " + std::to_string(c.element) +
-                             " at t = " + number_text(c.time) + " s, ";
-      if (!tool_at[static_cast<std::size_t>(n)].empty())
-        throw InputError(at + "which holds node " + std::to_string(n) + " of tool '" + tool_at[static_cast<std::size_t>(n)] +
-                         "': a cut stays clear of the tools' nodes");
-      if (in_static_part[static_cast<std::size_t>(n)])
-        throw InputError(at + "which touches node " + std::to_string(n) +
+      const std::string where = blade.where + ": " + blade.describe() + " reaches tetrahedron " + std::to_string(c.element) +
+                                " at t = " + number_text(c.time) + " s, ";
+      if (!at.tool_at[static_cast<std::size_t>(n)].empty())
+        throw InputError(where + "which holds node " + std::to_string(n) + " of tool '" +
+                         at.tool_at[static_cast<std::size_t>(n)] + "': a cut stays clear of the tools' nodes");
+      if (at.in_static_part[static_cast<std::size_t>(n)])
+        throw InputError(where + "which touches node " + std::to_string(n) +
                          " of the static part: a cut stays inside the ROI, whose condensation it changes in place (a larger "
                          "[roi], or move the blade)");
     }
   }
   Index inside = 0;
   for (const auto& tet : mesh.tets)
-    inside += std::none_of(tet.begin(), tet.end(), [&](int n) { return in_static_part[static_cast<std::size_t>(n)]; }) ? 1 : 0;
+    inside += std::none_of(tet.begin(), tet.end(), [&](int n) { return at.in_static_part[static_cast<std::size_t>(n)]; }) ? 1 : 0;
   if (static_cast<Index>(schedule_.size()) == inside)
     throw InputError(sc.cuts.front().where + ": the cuts remove all " + std::to_string(inside) + " tetrahedra of the " +
                      (m.roi_nodes.empty() ? "mesh" : "ROI") + ": nothing would be left to move");
-
-  system_dof_.assign(static_cast<std::size_t>(dofs.num_free()), -1);
-  if (m.condensation) {
-    const auto& d = m.condensation->partition().d;
-    for (std::size_t i = 0; i < d.size(); ++i) system_dof_[static_cast<std::size_t>(d[i])] = static_cast<Index>(i);
-  } else {
-    std::iota(system_dof_.begin(), system_dof_.end(), Index{0});
-  }
-  for (std::size_t k = 0; k < sc.loads.size(); ++k)
-    if (sc.loads[k].gravity) gravity_.emplace_back(k, *sc.loads[k].gravity);
   remover_.emplace(mesh, dofs, m.full.materials);
+}
+
+void ScenarioCuts::refuse_splits(const ScenarioModel& m, const CutSupports& at, const std::vector<bool>& anchored) const {
+  const cutting::SplitPlan& plan = *split_plan_;
+  for (const auto& [move, face] : cutting::rehearse(plan, m.mesh.tets, anchored)) {
+    const cutting::SeparatedFace& f = plan.faces[face];
+    const cutting::Blade& blade = *plan.blade_of[face];
+    const mesh::Tet& tet = m.mesh.tets[static_cast<std::size_t>(move.element)];
+    const auto node = static_cast<std::size_t>(tet[static_cast<std::size_t>(move.corner)]);
+    const std::string where = blade.where + ": " + blade.describe() + " separates tetrahedra " + std::to_string(f.a) + " and " +
+                              std::to_string(f.b) + " at t = " + number_text(f.time) + " s, which splits node " +
+                              std::to_string(node);
+    if (!at.tool_at[node].empty())
+      throw InputError(where + ", which tool '" + at.tool_at[node] + "' holds: a cut stays clear of the tools' nodes");
+    if (at.fixed_somewhere[node])
+      throw InputError(where +
+                       ", a fixed node: split mode keeps clear of the supports (move the blade off them, or use "
+                       "mode = \"remove\")");
+    for (const int n : tet) {
+      if (at.in_static_part[static_cast<std::size_t>(n)])
+        throw InputError(where + ", moving tetrahedron " + std::to_string(move.element) + " which touches node " +
+                         std::to_string(n) +
+                         " of the static part: a cut stays inside the ROI, whose condensation it changes in place (a larger "
+                         "[roi], or move the blade)");
+      if (!at.tool_at[static_cast<std::size_t>(n)].empty())
+        throw InputError(where + ", moving tetrahedron " + std::to_string(move.element) + " which holds node " +
+                         std::to_string(n) + " of tool '" + at.tool_at[static_cast<std::size_t>(n)] +
+                         "': a cut stays clear of the tools' nodes");
+    }
+  }
+}
+
+CutEvent ScenarioCuts::cut_due(double t, ScenarioModel& m, model::State& state) {
+  if (!splits_) return remove_due(t, m, state);
+  CutEvent event = splits_->split_due(t, m, state, supported_);
+  for (const cutting::Rewire& move : event.moved) moves_.emplace_back(event.time, move);
+  nodes_split_ += event.splits.size();
+  return event;
+}
+
+std::vector<mesh::Tet> ScenarioCuts::tets_at(double t, const mesh::TetMesh& mesh) const {
+  std::vector<mesh::Tet> tets = mesh.tets;
+  // The state at t_k is the step's end, before a split at t_k (the next step's start).
+  for (auto m = moves_.rbegin(); m != moves_.rend() && m->first >= t - time_slack_; ++m)
+    tets[static_cast<std::size_t>(m->second.element)][static_cast<std::size_t>(m->second.corner)] = m->second.from;
+  return tets;
 }
 
 CutEvent ScenarioCuts::remove_due(double t, ScenarioModel& m, model::State& state) {
@@ -184,30 +229,10 @@ CutEvent ScenarioCuts::remove_due(double t, ScenarioModel& m, model::State& stat
   m.change_system(change);
 
   // Pieces the cut freed from every support move rigidly: said, with their nodes.
-  const std::vector<int> piece = pieces(m.mesh, remover_->still_there());
   std::vector<int> touched;
   for (const Index e : event.elements)
-    for (const int n : m.mesh.tets[static_cast<std::size_t>(e)]) touched.push_back(piece[static_cast<std::size_t>(n)]);
-  std::sort(touched.begin(), touched.end());
-  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
-  std::vector<bool> has_element(piece.size(), false);
-  for (std::size_t e = 0; e < remover_->still_there().size(); ++e)
-    if (remover_->still_there()[e])
-      has_element[static_cast<std::size_t>(piece[static_cast<std::size_t>(m.mesh.tets[e][0])])] = true;
-  for (const int root : touched) {
-    if (!has_element[static_cast<std::size_t>(root)]) continue;  // an orphan node: held at rest
-    std::vector<int> nodes;
-    bool held = false;
-    for (int n = 0; n < static_cast<int>(piece.size()); ++n)
-      if (piece[static_cast<std::size_t>(n)] == root) {
-        nodes.push_back(n);
-        held = held || supported_[static_cast<std::size_t>(n)];
-      }
-    if (!held)
-      event.warnings.push_back("the cut at t = " + number_text(event.time) + " s set loose a piece of " +
-                               std::to_string(nodes.size()) + " nodes (" + node_list(nodes) +
-                               ") held by no support: it moves as a free body under its loads");
-  }
+    for (const int n : m.mesh.tets[static_cast<std::size_t>(e)]) touched.push_back(n);
+  warn_loose_pieces(m.mesh, remover_->still_there(), touched, supported_, event);
   return event;
 }
 

@@ -11,6 +11,7 @@
 #include "model/hyperelastic_force.hpp"
 #include "model/prescribed_motion.hpp"
 #include "model/uncondensed_form.hpp"
+#include "simulation/scenario_splits.hpp"
 
 namespace roifem::simulation {
 
@@ -102,11 +103,22 @@ std::unique_ptr<ScenarioModel> build_scenario_model(const scenario::Scenario& sc
   m->mesh = mesh::read_mesh(sc.mesh);
   mesh::check_mesh(m->mesh);
   m->mesh = fem::element_mesh(std::move(m->mesh), sc.element);
+  mesh::TetMesh unsplit;  // the mesh's own nodes, where the ROI is chosen
+  if (std::any_of(sc.cuts.begin(), sc.cuts.end(), [](const auto& c) { return c.mode == cutting::CutMode::split; })) {
+    m->split_plan =
+        std::make_shared<const cutting::SplitPlan>(cutting::plan_splits(sc.cuts, m->mesh, sc.dt * static_cast<double>(sc.steps)));
+    if (sc.roi) unsplit = m->mesh;
+    m->mesh = cutting::with_copies(std::move(m->mesh), *m->split_plan);
+  }
   m->full = model::build_fem_model(m->mesh, fem::MaterialMap(m->mesh, sc.material, sc.material_regions), sc.fixed_sets, sc.loads,
                                    sc.tools, sc.element);
+  if (m->split_plan) hold_copies(m->full, *m->split_plan);
   const fem::DofMap& dofs = *m->full.dofs;
   if (sc.roi) {
-    m->roi_nodes = roi::select_roi_nodes(m->mesh, dofs, *sc.roi);
+    m->roi_nodes = roi::select_roi_nodes(m->split_plan ? unsplit : m->mesh, dofs, *sc.roi);
+    if (m->split_plan)
+      for (Index k = 0; k < m->split_plan->num_copies(); ++k)
+        m->roi_nodes.push_back(static_cast<int>(m->split_plan->num_nodes + k));  // held, joined to nothing yet
     m->condensation =
         reduce_full_model(m->full, roi::partition_dofs(m->full.system.K, dofs, m->roi_nodes), sc.reduction, sc.file.string());
   }

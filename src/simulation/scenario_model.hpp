@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "condensation/reduced_model.hpp"
+#include "cutting/split_plan.hpp"
 #include "integrators/integrator.hpp"
 #include "model/fem_model.hpp"
 #include "roi/node_dofs.hpp"
@@ -19,6 +20,9 @@ struct ScenarioModel {
   std::unique_ptr<condensation::ReducedModel> condensation;
   std::vector<int> roi_nodes;  ///< empty for the full model
   model::ToolSet tools;        ///< the scenario's tools, in system()'s numbering
+  /// Cuts in split mode: their plan, whose copies are the mesh's last nodes (held until a split
+  /// brings them in: simulation/scenario_splits.hpp); null otherwise.
+  std::shared_ptr<const cutting::SplitPlan> split_plan;
 
   const model::SecondOrderSystem& system() const { return condensation ? condensation->system() : full.system; }
   /// Changes system() in place (a cut: simulation/scenario_cuts.hpp).
@@ -53,8 +57,9 @@ std::unique_ptr<condensation::ReducedModel> reduce_full_model(model::FemModel& f
 /// atol with dt as the output interval. InputError for an unknown name (before any work).
 std::unique_ptr<integrators::Integrator> scenario_integrator(const scenario::Scenario& scenario);
 
-/// Reads and checks the mesh, builds the model and condenses it. Held by unique_ptr: the model
-/// refers to its own mesh.
+/// Reads and checks the mesh, builds the model and condenses it. Cuts in split mode are planned
+/// first: their copies join the mesh as nodes (the ROI, selected on the mesh's own nodes, holds
+/// every copy) and are held. Held by unique_ptr: the model refers to its own mesh.
 std::unique_ptr<ScenarioModel> build_scenario_model(const scenario::Scenario& scenario);
 
 }  // namespace roifem::simulation

@@ -52,8 +52,11 @@ void print_start(const scenario::Scenario& sc, const ScenarioModel& built, doubl
   const std::string stepping = sc.rtol ? format("%s error-controlled (rtol %g, atol %g m), output every %g s",
                                                 sc.integrator.c_str(), *sc.rtol, sc.absolute_tolerance(), sc.dt)
                                        : format("%s, dt = %g s", sc.integrator.c_str(), sc.dt);
-  log << format("%s: %lld nodes, %s model with %lld dofs (%s), %s, %ld steps; set up in %.2f s\n", sc.file.c_str(),
-                static_cast<long long>(built.mesh.num_nodes()), built.condensation ? "condensed ROI" : "full",
+  const std::string copies =
+      built.split_plan ? format(" (%lld of them copies for the splits)", static_cast<long long>(built.split_plan->num_copies()))
+                       : std::string();
+  log << format("%s: %lld nodes%s, %s model with %lld dofs (%s), %s, %ld steps; set up in %.2f s\n", sc.file.c_str(),
+                static_cast<long long>(built.mesh.num_nodes()), copies.c_str(), built.condensation ? "condensed ROI" : "full",
                 static_cast<long long>(built.system().size()), sc.roi ? sc.roi->describe().c_str() : "no ROI", stepping.c_str(),
                 sc.steps, setup_s);
   if (!sc.material_regions.empty()) {
@@ -76,6 +79,14 @@ void print_start(const scenario::Scenario& sc, const ScenarioModel& built, doubl
 }
 
 void print_cuts(const scenario::Scenario& sc, const ScenarioStepper& stepper, std::ostream& log) {
+  if (const cutting::SplitPlan* plan = stepper.cuts().split_plan()) {
+    log << format(
+        "cuts: %zu faces separated by %zu blade%s within the run, from t = %g s to t = %g s (at the start of the step that "
+        "reaches them); the nodes they split take %lld copies\n",
+        plan->faces.size(), sc.cuts.size(), sc.cuts.size() == 1 ? "" : "s", plan->faces.front().time, plan->faces.back().time,
+        static_cast<long long>(plan->num_copies()));
+    return;
+  }
   const auto& schedule = stepper.cuts().schedule();
   if (schedule.empty()) return;
   log << format(
@@ -195,11 +206,14 @@ ScenarioRunSummary run_scenario(const scenario::Scenario& sc, const std::filesys
                 summary.steps, summary.step_s_median * 1e3, ledger.kinetic(), ledger.strain(), ledger.external_work(),
                 ledger.dissipated());
   if (!sc.cuts.empty()) {
-    const double scale = std::max({std::abs(ledger.external_work()), std::abs(ledger.tool_work()), ledger.cut()});
+    const double scale = std::max({std::abs(ledger.external_work()), std::abs(ledger.tool_work()), std::abs(ledger.cut())});
+    const std::string what = stepper.cuts().split_plan() ? format("%zu faces separated, %zu nodes split",
+                                                                  stepper.cuts().faces_separated(), stepper.cuts().nodes_split())
+                                                         : format("%zu tetrahedra removed", stepper.cuts().schedule().size());
     log << format(
-        "cuts: %zu tetrahedra removed, taking %.4e J (E_cut); energy balance |E + D + E_cut - W - W_tools - E_0| / "
-        "max(|W|, |W_tools|, E_cut) = %.1e; %s\n",
-        stepper.cuts().schedule().size(), ledger.cut(), scale > 0 ? std::abs(ledger.balance_residual()) / scale : 0.0,
+        "cuts: %s, taking %.4e J (E_cut); energy balance |E + D + E_cut - W - W_tools - E_0| / "
+        "max(|W|, |W_tools|, |E_cut|) = %.1e; %s\n",
+        what.c_str(), ledger.cut(), scale > 0 ? std::abs(ledger.balance_residual()) / scale : 0.0,
         summary.stats.system_changes > 0
             ? format("%s corrected its factor at each of %ld cuts", sc.integrator.c_str(), summary.stats.system_changes).c_str()
             : format("%s restarted at each cut", sc.integrator.c_str()).c_str());
@@ -219,7 +233,8 @@ ScenarioRunSummary run_scenario(const scenario::Scenario& sc, const std::filesys
   if (const auto held = stepper.integrator().constraints())
     log << format("%s: the multipliers' tool forces differ from the residual's by at most %.1e of their peak; drift %.1e mm\n",
                   sc.integrator.c_str(), recorder.multiplier_disagreement(), held->position_drift / mm);
-  print_deformation(check_deformation(built_model, peak, stepper.cuts().still_there()), peak, sc.dt, log);
+  const std::vector<mesh::Tet> tets_at_peak = stepper.cuts().tets_at(peak.state().t, built_model.mesh);
+  print_deformation(check_deformation(built_model, peak, stepper.cuts().still_there(), &tets_at_peak), peak, sc.dt, log);
   log << "results: " << (out / "results.h5").string() << (recorder.has_fields() ? " (ParaView: results.xdmf)" : "") << '\n';
   return summary;
 }

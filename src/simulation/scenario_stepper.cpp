@@ -22,9 +22,9 @@ ScenarioStepper::ScenarioStepper(const scenario::Scenario& scenario, bool energy
 }
 
 void ScenarioStepper::cut_due(double t) {
-  const CutEvent event = cuts_.remove_due(t, *model_, state_);
+  const CutEvent event = cuts_.cut_due(t, *model_, state_);
   const integrators::Stats before = integrator_->stats();
-  if (integrator_->take_change(model_->system(), event.change, state_)) restarted_ += before;
+  if (!event.change.dofs.empty() && integrator_->take_change(model_->system(), event.change, state_)) restarted_ += before;
   if (ledger_) ledger_->account_cut(state_, event.energy_removed());
   for (const auto& listener : cut_listeners_) listener(event, state_);
 }

@@ -17,24 +17,15 @@
 #include "mesh/msh_writer.hpp"
 #include "model/fem_model.hpp"
 #include "roi/node_dofs.hpp"
+#include "simulation/cut_test_support.hpp"
 #include "simulation/scenario_stepper.hpp"
 #include "test_support.hpp"
 
 namespace roifem::simulation {
 namespace {
 
-constexpr const char* kMaterial = R"(
-[material]
-young_Pa = 3000.0
-poisson = 0.45
-rho_kg_m3 = 1000.0
-alpha_per_s = 2.0
-)";
-
-/// A scenario on `mesh_file` from the text after its mesh line.
-scenario::Scenario scenario_on(const std::filesystem::path& mesh_file, const std::string& text) {
-  return scenario::parse_scenario("mesh = \"" + mesh_file.string() + "\"\n" + text, "cut.toml", mesh_file.parent_path());
-}
+using cut_test::kMaterial;
+using cut_test::scenario_on;
 
 /// The mesh without the removed tetrahedra, its nodes as they were, the nodes left with no
 /// tetrahedron in a set "orphans" (to be fixed), and its volume set renumbered.
@@ -138,48 +129,15 @@ TEST_P(CutAgainstRebuild, EqualsTheModelAssembledAndCondensedFromTheCutMesh) {
         rebuilt.system, roi::partition_dofs(rebuilt.system.K, *rebuilt.dofs, roi_nodes), *rebuilt.dofs, sc.reduction);
   const model::SecondOrderSystem& expected = reduced ? reduced->system() : rebuilt.system;
 
-  // Each unknown of the rebuilt system among the cut system's, by node and component.
-  const auto unknowns = [](const model::FemModel& f, const condensation::ReducedModel* r) {
-    std::vector<std::pair<int, int>> out;  // (node, component) per unknown
-    const std::vector<Index>& free = r ? r->partition().d : std::vector<Index>{};
-    const Index n = r ? static_cast<Index>(free.size()) : f.dofs->num_free();
-    for (Index i = 0; i < n; ++i) {
-      const Index full = f.dofs->full_dof(r ? free[static_cast<std::size_t>(i)] : i);
-      out.emplace_back(static_cast<int>(full / 3), static_cast<int>(full % 3));
-    }
-    return out;
-  };
-  const auto cut_unknowns = unknowns(cut.full, cut.condensation.get());
-  const auto rebuilt_unknowns = unknowns(rebuilt, reduced.get());
-  std::map<std::pair<int, int>, Index> where;
-  for (std::size_t i = 0; i < cut_unknowns.size(); ++i) where[cut_unknowns[i]] = static_cast<Index>(i);
   const model::SecondOrderSystem& system = cut.system();
+  const cut_test::Rebuilt compare(expected, cut_test::unknowns(rebuilt, reduced.get()), system,
+                                  cut_test::unknowns(cut.full, cut.condensation.get()));
   const Index n = expected.size();
   ASSERT_EQ(system.size(), n + 9);  // the orphans' dofs stay, held
-  std::vector<Index> at(static_cast<std::size_t>(n));
-  for (Index i = 0; i < n; ++i) at[static_cast<std::size_t>(i)] = where.at(rebuilt_unknowns[static_cast<std::size_t>(i)]);
-
-  std::mt19937 random(7);
-  std::uniform_real_distribution<double> uniform(-1, 1);
-  Vector x(n), x_cut = Vector::Zero(system.size());
-  for (Index i = 0; i < n; ++i) x_cut[at[static_cast<std::size_t>(i)]] = x[i] = uniform(random);
-  Vector y(n), y_cut(system.size());
-  const auto relative = [&](const Vector& a, const Vector& b_cut) {
-    double gap = 0;
-    for (Index i = 0; i < n; ++i) gap = std::max(gap, std::abs(a[i] - b_cut[at[static_cast<std::size_t>(i)]]));
-    return gap / a.lpNorm<Eigen::Infinity>();
-  };
-  expected.apply_stiffness(x, y);
-  system.apply_stiffness(x_cut, y_cut);
-  const double K_gap = relative(y, y_cut);
-  EXPECT_LT(K_gap, 1e-12) << "K x";
-  expected.apply_mass(x, y);
-  system.apply_mass(x_cut, y_cut);
-  const double M_gap = relative(y, y_cut);
-  EXPECT_LT(M_gap, 1e-14) << "M x";
-  double f_gap = 0;
-  for (const double t : {0.01, 0.2}) f_gap = std::max(f_gap, relative(expected.load.at(t), system.load.at(t)));
-  EXPECT_LT(f_gap, 1e-13) << "f";
+  const cut_test::Rebuilt::Gaps gaps = compare.operator_gaps();
+  EXPECT_LT(gaps.K, 1e-12) << "K x";
+  EXPECT_LT(gaps.M, 1e-14) << "M x";
+  EXPECT_LT(gaps.f, 1e-13) << "f";
   // The held dofs: no stiffness, no load, at rest (to the round-off of the corrected solve).
   Vector e_held = Vector::Zero(system.size()), K_e(system.size());
   for (const auto& e : events)
@@ -202,26 +160,11 @@ TEST_P(CutAgainstRebuild, EqualsTheModelAssembledAndCondensedFromTheCutMesh) {
 
   // The trajectory from here on: the cut model's trapezoid (its factor corrected, not rebuilt)
   // against a fresh one on the rebuilt model, from the same state.
-  model::State mirror = model::State::at_rest(n, stepper.state().t);
-  for (Index i = 0; i < n; ++i) {
-    mirror.u[i] = stepper.state().u[at[static_cast<std::size_t>(i)]];
-    mirror.v[i] = stepper.state().v[at[static_cast<std::size_t>(i)]];
-  }
-  integrators::Trapezoid fresh(sc.dt);
-  fresh.reset(expected, mirror);
-  for (int k = 0; k < 20; ++k) {
-    stepper.step();
-    fresh.advance_to(stepper.state().t, mirror);
-  }
-  double peak = 0, gap = 0;
-  for (Index i = 0; i < n; ++i) {
-    peak = std::max(peak, std::abs(mirror.u[i]));
-    gap = std::max(gap, std::abs(mirror.u[i] - stepper.state().u[at[static_cast<std::size_t>(i)]]));
-  }
-  EXPECT_LT(gap, 1e-10 * peak) << "peak " << peak;
+  const double gap = compare.trajectory_gap(stepper, sc.dt, 20);
+  EXPECT_LT(gap, 1e-10);
   std::cout << GetParam().name << ": " << removed << " tetrahedra removed in " << events.size()
-            << " events; against the rebuilt model: K x " << K_gap << ", M x " << M_gap << ", f " << f_gap
-            << ", u after 20 more steps " << gap / peak << " (relative)";
+            << " events; against the rebuilt model: K x " << gaps.K << ", M x " << gaps.M << ", f " << gaps.f
+            << ", u after 20 more steps " << gap << " (relative)";
   EXPECT_GE(stepper.stats().system_changes, 3);
   EXPECT_EQ(stepper.stats().lin_setups, 1);  // one factorization: every cut taken by a correction
   // The energy: E + D + E_cut = W + E_0, to round-off.
@@ -242,32 +185,10 @@ INSTANTIATE_TEST_SUITE_P(
                                   "11.0\nreduction = \"guyan\"\n"}),
     [](const auto& param_info) { return std::string(param_info.param.name); });
 
-/// A 10 x 10 x 40 mm bar hanging from its top (z = 40 mm), cut through the layer z in [15, 20] mm
-/// by a blade crossing it along y at `start` (within a microsecond: in one step).
-std::string hanging_bar(const std::string& integrator, double dt, long steps, double start, const std::string& rest) {
-  return std::string(R"(
-[material]
-young_Pa = 3000.0
-poisson = 0.45
-rho_kg_m3 = 1000.0
-alpha_per_s = )") +
-         rest + R"(
-[boundary]
-fixed = ["z1"]
-[[cut]]
-edge_from_mm = [-1.0, -1.0, 17.5]
-edge_to_mm = [11.0, -1.0, 17.5]
-move_mm = [0.0, 12.0, 0.0]
-start_s = )" +
-         std::to_string(start) + R"(
-duration_s = 0.000001
-[time]
-integrator = ")" +
-         integrator + "\"\ndt_s = " + std::to_string(dt) + "\nsteps = " + std::to_string(steps) + "\n";
-}
+using cut_test::hanging_bar;
 
-constexpr double g = 9.81;
-constexpr const char* kGravity = "0.0\n[[load]]\ngravity_m_s2 = [0.0, 0.0, -9.81]\n";
+using cut_test::g;
+using cut_test::kGravity;
 
 /// The lower piece's unknowns (z components of the nodes below the cut) and their masses.
 struct LowerPiece {
