@@ -23,6 +23,7 @@
 #include "brain_meshes.hpp"
 #include "common/errors.hpp"
 #include "common/timer.hpp"
+#include "cutting/blade.hpp"
 #include "fem/element_removal.hpp"
 #include "integrators/haptic_trapezoid.hpp"
 #include "io/csv.hpp"
@@ -44,6 +45,8 @@ struct Options {
   std::vector<long> rois{300, 1000};
   std::vector<long> cuts{1, 10, 100};
   std::vector<double> split_sizes{2, 4, 8};
+  long blade_ticks = 4000;     ///< the blade-in-the-loop run (0: skip)
+  double blade_speed = 0.005;  ///< m/s
   std::filesystem::path out = "cut-results";
   double model_timeout_s = 1800;
   bool machine_bounds = true;
@@ -186,18 +189,174 @@ std::string measure(const std::filesystem::path& mesh_file, long roi_nodes, cons
     haptic.take_change(change, state);
     const double event_s = haptic.change_seconds();
     const double tick_after_s = median_seconds(51, [&] { haptic.tick(hand(++tick), state); });
-    lines +=
-        io::format("%8lld %5ld %6lld %6ld %5ld %5lld %8.3f %9.2f %8.3f %8.3f %10.1f %9.2f  %.1e | %8.2f %5.0f %7.3f %7.3f\t",
-                   static_cast<long long>(brain->mesh.num_nodes()), roi_nodes, static_cast<long long>(n),
-                   condensed.interface_dofs, k, static_cast<long long>(dofs.size()), form_s * 1e3, update_s * 1e3, solve_s * 1e3,
-                   after_s * 1e3, refactor_s * 1e3, condense_s, gap, event_s * 1e3, std::ceil(event_s / rule.dt()),
-                   tick_before_s * 1e3, tick_after_s * 1e3) +
-        io::format("%lld,%ld,%lld,%ld,%ld,%lld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.3g,%.6g,%.6g,%.6g\n",
-                   static_cast<long long>(brain->mesh.num_nodes()), roi_nodes, static_cast<long long>(n),
-                   condensed.interface_dofs, k, static_cast<long long>(dofs.size()), form_s * 1e3, update_s * 1e3, solve_s * 1e3,
-                   after_s * 1e3, refactor_s * 1e3, condense_s, gap, event_s * 1e3, tick_before_s * 1e3, tick_after_s * 1e3);
+    // The same cut with its columns K_eff^-1 e_d solved ahead (between earlier ticks, as a blade
+    // approaches: HapticTrapezoid::prefetch_change), on a second loop: the look-ahead's cost, and the event.
+    model::SecondOrderSystem ahead_system = system;
+    integrators::HapticTrapezoid ahead(ahead_system, rule.dt());
+    ahead.attach(held);
+    model::State ahead_state = model::State::at_rest(n);
+    ahead.reset(ahead_state);
+    for (long i = 1; i <= 51; ++i) ahead.tick(hand(i), ahead_state);
+    model::SystemChange ahead_change =
+        model::SystemChange::from_removal(stiffness_change, *brain->model.dofs, position, ahead_system.load.terms().size());
+    const Stopwatch prefetch_clock;
+    ahead.prefetch_change(ahead_change.dofs);
+    const double prefetch_s = prefetch_clock.seconds();
+    for (const Index d : ahead_change.held) ahead_state.v[d] = 0;
+    ahead_change.apply(ahead_system);
+    ahead.take_change(ahead_change, ahead_state);
+    const double ahead_event_s = ahead.change_seconds();
+    lines += io::format(
+                 "%8lld %5ld %6lld %6ld %5ld %5lld %8.3f %9.2f %8.3f %8.3f %10.1f %9.2f  %.1e | %8.2f %5.0f %7.3f %7.3f | %8.2f "
+                 "%8.2f %5.0f\t",
+                 static_cast<long long>(brain->mesh.num_nodes()), roi_nodes, static_cast<long long>(n), condensed.interface_dofs,
+                 k, static_cast<long long>(dofs.size()), form_s * 1e3, update_s * 1e3, solve_s * 1e3, after_s * 1e3,
+                 refactor_s * 1e3, condense_s, gap, event_s * 1e3, std::ceil(event_s / rule.dt()), tick_before_s * 1e3,
+                 tick_after_s * 1e3, prefetch_s * 1e3, ahead_event_s * 1e3, std::ceil(ahead_event_s / rule.dt())) +
+             io::format("%lld,%ld,%lld,%ld,%ld,%lld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.3g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
+                        static_cast<long long>(brain->mesh.num_nodes()), roi_nodes, static_cast<long long>(n),
+                        condensed.interface_dofs, k, static_cast<long long>(dofs.size()), form_s * 1e3, update_s * 1e3,
+                        solve_s * 1e3, after_s * 1e3, refactor_s * 1e3, condense_s, gap, event_s * 1e3, tick_before_s * 1e3,
+                        tick_after_s * 1e3, prefetch_s * 1e3, ahead_event_s * 1e3);
   }
   return lines;
+}
+
+/// Tick statistics over a loop's timed ticks: "median p99 max (ms) late per 10,000".
+struct LoopTicks {
+  double median = 0, p99 = 0, max = 0, late_per_10k = 0;
+};
+
+LoopTicks loop_ticks(const std::vector<double>& seconds, double deadline) {
+  LoopTicks t;
+  t.median = simulation::median(seconds);
+  t.p99 = simulation::percentile(seconds, 0.99);
+  t.max = *std::max_element(seconds.begin(), seconds.end());
+  t.late_per_10k = 1e4 *
+                   static_cast<double>(std::count_if(seconds.begin(), seconds.end(), [&](double s) { return s > deadline; })) /
+                   static_cast<double>(seconds.size());
+  return t;
+}
+
+/// A blade cutting while the haptic loop runs: its edge 8 mm long beside the opening, swept down
+/// through the target's depth at `speed` (m/s), removing the tetrahedra it crosses (those at the
+/// static part or the tool skipped, and counted) at the tick it reaches them. Each tick, the cut
+/// due (the removal formed and taken: HapticTrapezoid::take_change), the tick itself, and, where a
+/// column still ends within 90% of dt, the columns K_eff^-1 e_d of the next tetrahedra the blade
+/// will reach (within 0.5 s), one at a time (HapticTrapezoid::prefetch_change). Against the same
+/// loop with no blade, run before it: tick median, p99, max, late ticks per 10,000.
+std::string measure_blade(const std::filesystem::path& mesh_file, long roi_nodes, double speed, long ticks) {
+  const auto brain = build_brain(mesh_file);
+  const Condensed condensed = condense(*brain, roi_nodes);
+  const model::SecondOrderSystem& system = condensed.condensation->system();
+  const roi::Partition& partition = condensed.condensation->partition();
+  const model::AverageAcceleration rule(1e-3);
+  const double dt = rule.dt();
+  const Index n = system.size();
+  std::vector<Index> position(static_cast<std::size_t>(brain->model.dofs->num_free()), -1);
+  for (std::size_t i = 0; i < partition.d.size(); ++i) position[static_cast<std::size_t>(partition.d[i])] = static_cast<Index>(i);
+  const std::vector<int> tool = tool_nodes(*brain, partition, 10);
+  std::vector<std::array<Index, 3>> held;
+  for (const int node : tool) {
+    std::array<Index, 3> d{};
+    for (int component = 0; component < 3; ++component)
+      d[static_cast<std::size_t>(component)] = position[static_cast<std::size_t>(brain->model.dofs->free_dof(node, component))];
+    held.push_back(d);
+  }
+  const std::vector<Index> allowed_list = roi_tetrahedra(*brain, partition, tool);
+  std::vector<bool> allowed(static_cast<std::size_t>(brain->mesh.num_tets()), false);
+  for (const Index e : allowed_list) allowed[static_cast<std::size_t>(e)] = true;
+  cutting::Blade blade;
+  blade.name = "benchmark";
+  blade.edge_a = Vec3(0.006, -0.004, 0.048);
+  blade.edge_b = Vec3(0.006, 0.004, 0.048);
+  blade.start = 0.2;
+  blade.path.displacement = Vec3(0, 0, -0.016);
+  blade.path.ramp.duration = 0.016 / speed;
+  std::vector<cutting::Crossing> schedule;
+  long skipped = 0;
+  for (const auto& c : cutting::swept_elements(blade, brain->mesh))
+    if (c.time < static_cast<double>(ticks) * dt) {
+      if (allowed[static_cast<std::size_t>(c.element)])
+        schedule.push_back(c);
+      else
+        ++skipped;
+    }
+  const auto hand = [](long tick) { return Vec3(0.001 * std::min(static_cast<double>(tick) / 50.0, 1.0), 0, 0); };
+
+  // The loop with no blade.
+  std::vector<double> plain_s, cut_s;
+  {
+    model::SecondOrderSystem plain_system = system;
+    integrators::HapticTrapezoid plain(plain_system, dt);
+    plain.attach(held);
+    model::State state = model::State::at_rest(n);
+    plain.reset(state);
+    for (long k = 1; k <= ticks; ++k) {
+      const Stopwatch clock;
+      plain.tick(hand(k), state);
+      plain_s.push_back(clock.seconds());
+    }
+  }
+  // The loop with the blade.
+  model::SecondOrderSystem cut_system = system;
+  integrators::HapticTrapezoid loop(cut_system, dt);
+  loop.attach(held);
+  model::State state = model::State::at_rest(n);
+  loop.reset(state);
+  fem::ElementRemover remover(brain->mesh, *brain->model.dofs, brain->model.materials);
+  std::size_t next = 0, ahead = 0;
+  std::vector<Index> queue;                       // dofs of coming tetrahedra, to be solved ahead
+  double column_s = simulation::median(plain_s);  // a column's solve costs about a tick's
+  long events = 0, removed = 0;
+  double event_max = 0, prefetched = 0;
+  const auto unknowns_of = [&](Index e) {
+    std::vector<Index> out;
+    for (const int node : brain->mesh.tets[static_cast<std::size_t>(e)])
+      for (int c = 0; c < 3; ++c)
+        if (const int d = brain->model.dofs->free_dof(node, c); d >= 0) out.push_back(position[static_cast<std::size_t>(d)]);
+    return out;
+  };
+  for (long k = 1; k <= ticks; ++k) {
+    const double t = static_cast<double>(k - 1) * dt;  // the state's time: the step's start
+    const Stopwatch clock;
+    std::vector<Index> due;
+    for (; next < schedule.size() && schedule[next].time <= t; ++next) due.push_back(schedule[next].element);
+    if (!due.empty()) {
+      std::sort(due.begin(), due.end());
+      const fem::ElementRemoval removal = remover.remove(due, 0.0);
+      model::SystemChange change =
+          model::SystemChange::from_removal(removal, *brain->model.dofs, position, cut_system.load.terms().size());
+      for (const Index d : change.held) state.v[d] = 0;
+      change.apply(cut_system);
+      loop.take_change(change, state);
+      event_max = std::max(event_max, loop.change_seconds());
+      ++events;
+      removed += static_cast<long>(due.size());
+    }
+    loop.tick(hand(k), state);
+    for (; ahead < schedule.size() && schedule[ahead].time <= t + 0.5; ++ahead)
+      for (const Index d : unknowns_of(schedule[ahead].element)) queue.push_back(d);
+    // A column only where it ends before the deadline (its cost: the slowest one so far, at least a solve's).
+    while (!queue.empty() && clock.seconds() + column_s < 0.9 * dt) {
+      const Stopwatch column_clock;
+      loop.prefetch_change({queue.back()});
+      queue.pop_back();
+      ++prefetched;
+      column_s = std::max(column_s, column_clock.seconds());
+    }
+    cut_s.push_back(clock.seconds());
+  }
+  const LoopTicks plain = loop_ticks(plain_s, dt), cut = loop_ticks(cut_s, dt);
+  const auto nodes = static_cast<long long>(brain->mesh.num_nodes());
+  return io::format("%8lld %5ld %5.1f %6ld %6zu %5ld %5ld | %7.3f %7.3f %7.2f %6.1f | %7.3f %7.3f %7.2f %6.1f | %8.2f\t", nodes,
+                    roi_nodes, speed * 1e3, ticks, schedule.size(), skipped, events, plain.median * 1e3, plain.p99 * 1e3,
+                    plain.max * 1e3, plain.late_per_10k, cut.median * 1e3, cut.p99 * 1e3, cut.max * 1e3, cut.late_per_10k,
+                    event_max * 1e3) +
+         io::format("%lld,%ld,%g,%ld,%zu,%ld,%ld,%ld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.0f\n", nodes, roi_nodes,
+                    speed * 1e3, ticks, schedule.size(), skipped, events, removed, plain.median * 1e3, plain.p99 * 1e3,
+                    plain.max * 1e3, plain.late_per_10k, cut.median * 1e3, cut.p99 * 1e3, cut.max * 1e3, cut.late_per_10k,
+                    event_max * 1e3, prefetched);
 }
 
 /// Split mode on the same brain and ROI, run as a scenario (the copies are the model's from the
@@ -281,18 +440,38 @@ void each_model(const Options& o, io::CsvWriter& csv,
 int run(const Options& o) {
   std::filesystem::create_directories(o.out);
   if (o.machine_bounds) report_machine_bounds(o.out);
-  io::CsvWriter csv(o.out / "cut.csv",
-                    "nodes,roi_nodes,system_dofs,interface_dofs,removed,changed_dofs,form_ms,update_ms,solve_ms,"
-                    "solve_after_ms,refactor_ms,condense_s,gap_vs_refactored,haptic_event_ms,tick_before_ms,tick_after_ms");
+  io::CsvWriter csv(
+      o.out / "cut.csv",
+      "nodes,roi_nodes,system_dofs,interface_dofs,removed,changed_dofs,form_ms,update_ms,solve_ms,"
+      "solve_after_ms,refactor_ms,condense_s,gap_vs_refactored,haptic_event_ms,tick_before_ms,tick_after_ms,ahead_ms,"
+      "ahead_event_ms");
   std::printf(
       "Cut: tetrahedra nearest the target (clear of the tool) removed from the condensed ROI's K_eff (trapezoid, dt = 1 ms); "
       "the change taken by Woodbury's correction of the factor, against a numeric refactorization and the whole "
       "condensation; then in the haptic loop (a tool on 10 wall nodes): the event, the ticks it spans, the tick before and "
-      "after\n");
-  std::printf("%8s %5s %6s %6s %5s %5s %8s %9s %8s %8s %10s %9s  %7s | %8s %5s %7s %7s\n", "nodes", "ROI", "dofs", "iface", "cut",
-              "r", "form ms", "update ms", "solve ms", "after ms", "refactor ms", "condense s", "gap", "event ms", "ticks",
-              "tick ms", "after ms");
+      "after; and with the cut's columns solved ahead (between earlier ticks): their cost, the event, its ticks\n");
+  std::printf("%8s %5s %6s %6s %5s %5s %8s %9s %8s %8s %10s %9s  %7s | %8s %5s %7s %7s | %8s %8s %5s\n", "nodes", "ROI", "dofs",
+              "iface", "cut", "r", "form ms", "update ms", "solve ms", "after ms", "refactor ms", "condense s", "gap", "event ms",
+              "ticks", "tick ms", "after ms", "ahead ms", "event ms", "ticks");
   each_model(o, csv, [&](const std::filesystem::path& mesh_file, long roi) { return measure(mesh_file, roi, o.cuts); });
+  if (o.blade_ticks > 0) {
+    io::CsvWriter blade_csv(o.out / "blade.csv",
+                            "nodes,roi_nodes,speed_mm_s,ticks,tetrahedra,skipped,events,removed,plain_median_ms,plain_p99_ms,"
+                            "plain_max_ms,plain_late_per_10k,cut_median_ms,cut_p99_ms,cut_max_ms,cut_late_per_10k,event_max_ms,"
+                            "columns_ahead");
+    std::printf(
+        "\nBlade in the loop: an 8 mm edge beside the opening swept 16 mm down at %g mm/s from t = 0.2 s while the haptic loop "
+        "runs (1 kHz, a tool on 10 wall nodes); each tetrahedron removed at the tick the blade reaches it, the next ones' "
+        "columns solved ahead in each tick's spare time. Ticks (ms) without the blade, then with it (late: over 1 ms, per "
+        "10,000); the largest event (ms)\n",
+        o.blade_speed * 1e3);
+    std::printf("%8s %5s %5s %6s %6s %5s %5s | %7s %7s %7s %6s | %7s %7s %7s %6s | %8s\n", "nodes", "ROI", "mm/s", "ticks",
+                "tets", "skip", "cuts", "median", "p99", "max", "late", "median", "p99", "max", "late", "event ms");
+    each_model(o, blade_csv, [&](const std::filesystem::path& mesh_file, long roi) {
+      return measure_blade(mesh_file, roi, o.blade_speed, o.blade_ticks);
+    });
+    std::printf("wrote %s\n", (o.out / "blade.csv").c_str());
+  }
   if (!o.split_sizes.empty()) {
     io::CsvWriter split_csv(
         o.out / "split.csv",
@@ -322,6 +501,10 @@ int main(int argc, char** argv) {
   app.add_option("--nodes", o.nodes, "brain sizes (nodes; meshes cached in $ROIFEM_MESH_CACHE)");
   app.add_option("--rois", o.rois, "ROI sizes (nodes nearest the target)");
   app.add_option("--cuts", o.cuts, "tetrahedra removed per cut");
+  app.add_option("--blade-ticks", o.blade_ticks, "the blade-in-the-loop run's ticks (0: skip)");
+  app.add_option("--blade-speed-mm-s", o.blade_speed, "the blade's speed (mm/s)")->transform([](const std::string& v) {
+    return std::to_string(std::stod(v) * 1e-3);
+  });
   app.add_option("--split-sizes", o.split_sizes, "split mode: blade edge and depth (mm), one scenario each (none: skip)");
   app.add_option("--out", o.out, "output directory (cut.csv)");
   app.add_flag("!--no-machine-bounds", o.machine_bounds, "skip measuring the machine's bounds (smoke tests)");

@@ -17,14 +17,20 @@ void DirectSolve::solve(const Vector& f, const Vector& w, Vector& x) {
     K_eff_.solve(rhs_, x);
 }
 
-bool DirectSolve::update(const std::vector<Index>& dofs, const DenseMatrix& B) {
+solvers::LowRankUpdate& DirectSolve::changes() {
   if (!changed_)
     changed_ =
         std::make_unique<solvers::LowRankUpdate>([this](const Vector& b, Vector& x) { K_eff_.solve(b, x); }, system_.size(),
                                                  [this](const DenseMatrix& columns) { return K_eff_.solve_matrix(columns); });
-  changed_->add(dofs, B);
+  return *changed_;
+}
+
+bool DirectSolve::update(const std::vector<Index>& dofs, const DenseMatrix& B) {
+  changes().add(dofs, B);
   return true;
 }
+
+void DirectSolve::prefetch(const std::vector<Index>& dofs) { changes().prefetch(dofs); }
 
 ConjugateGradients::ConjugateGradients(const model::SecondOrderSystem& system, const model::AverageAcceleration& rule,
                                        solvers::CgSettings settings)

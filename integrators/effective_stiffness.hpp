@@ -39,12 +39,16 @@ class DirectSolve final : public EffectiveStiffnessSolver {
   bool update(const std::vector<Index>& dofs, const DenseMatrix& B) override;
   /// The changes taken so far (null before any): corrects solutions with the factored K_eff.
   const solvers::LowRankUpdate* correction() const { return changed_.get(); }
+  /// Solves ahead for the dofs a coming change will touch (solvers::LowRankUpdate::prefetch), so
+  /// that update() then costs no solve for them.
+  void prefetch(const std::vector<Index>& dofs);
 
  private:
   const model::SecondOrderSystem& system_;
   solvers::Cholesky K_eff_;
-  std::unique_ptr<solvers::LowRankUpdate> changed_;  ///< set once K_eff has changed
+  std::unique_ptr<solvers::LowRankUpdate> changed_;  ///< made at the first update or prefetch
   Vector rhs_;
+  solvers::LowRankUpdate& changes();
 };
 
 class ConjugateGradients final : public EffectiveStiffnessSolver {

@@ -72,6 +72,9 @@ class HapticTrapezoid {
   /// dofs' stays the tool's). InputError when the change reaches a held dof (the tool's rows of
   /// K would change), on a nonlinear model or with a mass that is not diagonal.
   void take_change(const model::SystemChange& change, const model::State& state);
+  /// Solves ahead for the dofs a coming change will touch (a blade's next tetrahedra), between
+  /// ticks: take_change then needs no solve for them, only the small capacitance and the products.
+  void prefetch_change(const std::vector<Index>& dofs) { K_eff_.prefetch(dofs); }
   /// One tick: the tool at g (m) at t_{n+1} = t_0 + (n + 1) dt; advances `state` and returns the
   /// tool's force on the tissue (N). Allocates nothing.
   Vec3 tick(const Vec3& g, model::State& state);

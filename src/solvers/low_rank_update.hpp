@@ -8,9 +8,12 @@
 /// 12 x 12 block on its dofs. Z costs one solve with A's factor per dof, once per change (all of a
 /// change's columns in one multi-column solve where one is given: BLAS-3 in a supernodal factor);
 /// a solve then costs one with A's factor and O(n r) more. Changes accumulate: U is the union of their
-/// dofs, B the sum of their blocks.
+/// dofs, B the sum of their blocks. Z's columns A^-1 e_d do not depend on the changes, so they can
+/// be computed ahead (prefetch()), between a haptic loop's ticks or before a blade reaches the
+/// dofs; a change whose columns are all ahead costs no solve, only the r x r capacitance.
 #include <Eigen/LU>
 #include <functional>
+#include <unordered_map>
 #include <vector>
 
 #include "common/types.hpp"
@@ -33,6 +36,11 @@ class LowRankUpdate {
   void solve(const Vector& b, Vector& x) const;
   /// X = A^-1 R for some R, in place: becomes (A + U B U^T)^-1 R (no solve with A's factor).
   void correct(DenseMatrix& X) const;
+  /// Computes A^-1 e_d for the dofs given (those not yet in U nor computed), for later add()s.
+  /// InputError for a dof out of range.
+  void prefetch(const std::vector<Index>& dofs);
+  /// Whether A^-1 e_d is at hand for dof d (in U already, or prefetched).
+  bool has_column(Index d) const;
   /// r: the dofs the changes touch.
   Index rank() const { return static_cast<Index>(dofs_.size()); }
   const std::vector<Index>& dofs() const { return dofs_; }
@@ -43,7 +51,9 @@ class LowRankUpdate {
   Index n_;
   std::vector<Index> dofs_;                       ///< U's rows, in the order they came
   std::vector<Index> column_;                     ///< per dof of A, its column of U, or -1
-  DenseMatrix B_, Z_;                             ///< r x r and n x r
+  DenseMatrix B_;                                 ///< r x r
+  DenseMatrix Z_;                                 ///< n x capacity, its first r columns Z (room to grow without copying it)
+  std::unordered_map<Index, Vector> ahead_;       ///< prefetched columns A^-1 e_d
   Eigen::PartialPivLU<DenseMatrix> capacitance_;  ///< I + B U^T Z
   mutable Vector Ux_, s_, t_;                     ///< solve()'s work, sized by add()
 };
