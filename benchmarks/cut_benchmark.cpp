@@ -65,6 +65,26 @@ std::vector<int> tool_nodes(const Brain& brain, const roi::Partition& partition,
   return wall;
 }
 
+/// Per free dof of the brain's full model, its unknown in the condensed system (-1: the static part's).
+std::vector<Index> roi_positions(const Brain& brain, const roi::Partition& partition) {
+  std::vector<Index> position(static_cast<std::size_t>(brain.model.dofs->num_free()), -1);
+  for (std::size_t i = 0; i < partition.d.size(); ++i) position[static_cast<std::size_t>(partition.d[i])] = static_cast<Index>(i);
+  return position;
+}
+
+/// The tool's nodes' unknowns in the condensed system.
+std::vector<std::array<Index, 3>> held_dofs(const Brain& brain, const std::vector<Index>& position,
+                                            const std::vector<int>& tool) {
+  std::vector<std::array<Index, 3>> held;
+  for (const int node : tool) {
+    std::array<Index, 3> d{};
+    for (int component = 0; component < 3; ++component)
+      d[static_cast<std::size_t>(component)] = position[static_cast<std::size_t>(brain.model.dofs->free_dof(node, component))];
+    held.push_back(d);
+  }
+  return held;
+}
+
 /// The ROI's tetrahedra (every node in the ROI or fixed) clear of the tool's nodes, nearest the target first.
 std::vector<Index> roi_tetrahedra(const Brain& brain, const roi::Partition& partition, const std::vector<int>& tool) {
   const fem::DofMap& dofs = *brain.model.dofs;
@@ -112,17 +132,10 @@ std::string measure(const std::filesystem::path& mesh_file, long roi_nodes, cons
   solvers::Cholesky factor;
   factor.compute(K_eff, last);
   const Index n = system.size();
-  std::vector<Index> position(static_cast<std::size_t>(brain->model.dofs->num_free()), -1);
-  for (std::size_t i = 0; i < partition.d.size(); ++i) position[static_cast<std::size_t>(partition.d[i])] = static_cast<Index>(i);
+  const std::vector<Index> position = roi_positions(*brain, partition);
   const std::vector<int> tool = tool_nodes(*brain, partition, 10);
   const std::vector<Index> tetrahedra = roi_tetrahedra(*brain, partition, tool);
-  std::vector<std::array<Index, 3>> held;
-  for (const int node : tool) {
-    std::array<Index, 3> d{};
-    for (int component = 0; component < 3; ++component)
-      d[static_cast<std::size_t>(component)] = position[static_cast<std::size_t>(brain->model.dofs->free_dof(node, component))];
-    held.push_back(d);
-  }
+  const std::vector<std::array<Index, 3>> held = held_dofs(*brain, position, tool);
   const auto hand = [](long tick) { return Vec3(0.001 * std::min(static_cast<double>(tick) / 50.0, 1.0), 0, 0); };
 
   std::mt19937 random(3);
@@ -253,16 +266,9 @@ std::string measure_blade(const std::filesystem::path& mesh_file, long roi_nodes
   const model::AverageAcceleration rule(1e-3);
   const double dt = rule.dt();
   const Index n = system.size();
-  std::vector<Index> position(static_cast<std::size_t>(brain->model.dofs->num_free()), -1);
-  for (std::size_t i = 0; i < partition.d.size(); ++i) position[static_cast<std::size_t>(partition.d[i])] = static_cast<Index>(i);
+  const std::vector<Index> position = roi_positions(*brain, partition);
   const std::vector<int> tool = tool_nodes(*brain, partition, 10);
-  std::vector<std::array<Index, 3>> held;
-  for (const int node : tool) {
-    std::array<Index, 3> d{};
-    for (int component = 0; component < 3; ++component)
-      d[static_cast<std::size_t>(component)] = position[static_cast<std::size_t>(brain->model.dofs->free_dof(node, component))];
-    held.push_back(d);
-  }
+  const std::vector<std::array<Index, 3>> held = held_dofs(*brain, position, tool);
   const std::vector<Index> allowed_list = roi_tetrahedra(*brain, partition, tool);
   std::vector<bool> allowed(static_cast<std::size_t>(brain->mesh.num_tets()), false);
   for (const Index e : allowed_list) allowed[static_cast<std::size_t>(e)] = true;

@@ -50,41 +50,7 @@ mesh::TetMesh cut_mesh(const mesh::TetMesh& mesh, const std::vector<bool>& still
   return out;
 }
 
-/// The bar of the exactness test: 30 x 10 x 10 mm, 6 x 2 x 2 cells, held at x = 0, pulled down at
-/// x = 30 mm, under gravity; two blades: one halfway down through the middle, one through the far
-/// end's top layer (which leaves that end's three top nodes with no tetrahedron, one of them loaded).
-std::string bar_scenario(const std::string& roi) {
-  return std::string(kMaterial) + R"(
-[boundary]
-fixed = ["x0"]
-[[load]]
-set = "x1"
-force_N = [0.0, 0.0, -0.0005]
-ramp_s = 0.05
-[[load]]
-gravity_m_s2 = [0.0, 0.0, -9.81]
-[[cut]]
-name = "middle"
-edge_from_mm = [17.5, -1.0, 11.0]
-edge_to_mm = [17.5, 11.0, 11.0]
-move_mm = [0.0, 0.0, -8.0]
-start_s = 0.02
-duration_s = 0.05
-[[cut]]
-name = "end"
-edge_from_mm = [27.5, -1.0, 11.0]
-edge_to_mm = [27.5, 11.0, 11.0]
-move_mm = [0.0, 0.0, -5.0]
-start_s = 0.04
-duration_s = 0.02
-)" + roi +
-         R"(
-[time]
-integrator = "trapezoid"
-dt_s = 0.005
-steps = 40
-)";
-}
+using cut_test::bar_scenario;
 
 struct RebuildCase {
   const char* name;
@@ -332,22 +298,10 @@ TEST(CutKnownAnswer, TheCondensedRoiFollowsTheFullModelThroughTheSameCut) {
   EXPECT_GT(before, 0.0);
 }
 
-/// The refusal `pattern` for the bar scenario with `replace` done in it.
+/// The refusal `pattern` for the bar scenario with `old_text` replaced by `new_text`.
 void expect_refused(const std::string& roi, const std::string& old_text, const std::string& new_text,
                     const std::string& pattern) {
-  test::TempDir dir;
-  mesh::write_msh(mesh::structured_box_mesh(6, 2, 2, 0.03, 0.01, 0.01), dir / "bar.msh", mm);
-  std::string text = bar_scenario(roi);
-  if (!old_text.empty()) {
-    ASSERT_NE(text.find(old_text), std::string::npos) << old_text;
-    text.replace(text.find(old_text), old_text.size(), new_text);
-  }
-  try {
-    ScenarioStepper stepper(scenario_on(dir / "bar.msh", text));
-    FAIL() << "not refused: " << pattern;
-  } catch (const InputError& e) {
-    EXPECT_TRUE(std::regex_search(e.what(), std::regex(pattern))) << e.what();
-  }
+  cut_test::expect_refused(bar_scenario(roi), old_text, new_text, pattern);
 }
 
 TEST(CutRefusal, NamesTheTetrahedronTheTimeAndTheNodeOfAStaticPartOrATool) {

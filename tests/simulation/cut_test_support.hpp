@@ -2,19 +2,26 @@
 #pragma once
 // What the cut tests share: the bar's material, a scenario from text, and the comparison of a cut
 // model with the model assembled (and condensed) from scratch on the cut mesh.
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <filesystem>
 #include <map>
 #include <random>
+#include <regex>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "common/errors.hpp"
 #include "condensation/reduced_model.hpp"
 #include "integrators/trapezoid.hpp"
+#include "mesh/box_mesh.hpp"
+#include "mesh/msh_writer.hpp"
 #include "model/fem_model.hpp"
 #include "scenario/scenario.hpp"
 #include "simulation/scenario_stepper.hpp"
+#include "test_support.hpp"
 
 namespace roifem::simulation::cut_test {
 
@@ -60,6 +67,68 @@ duration_s = 0.000001
 [time]
 integrator = ")" +
          integrator + "\"\ndt_s = " + std::to_string(dt) + "\nsteps = " + std::to_string(steps) + "\n";
+}
+
+/// The bar of the exactness tests: 30 x 10 x 10 mm, 6 x 2 x 2 cells, held at x = 0, pulled down at
+/// x = 30 mm, under gravity; two blades in `mode`: one from the top to 3 mm above the bottom through
+/// the middle, one through the top layer at x = end_mm (at 27.5 mm in remove mode it leaves the far
+/// end's three top nodes with no tetrahedron, one of them loaded).
+inline std::string bar_scenario(const std::string& roi, const std::string& mode = "remove", double end_mm = 27.5) {
+  const std::string end = std::to_string(end_mm);
+  return std::string(kMaterial) + R"(
+[boundary]
+fixed = ["x0"]
+[[load]]
+set = "x1"
+force_N = [0.0, 0.0, -0.0005]
+ramp_s = 0.05
+[[load]]
+gravity_m_s2 = [0.0, 0.0, -9.81]
+[[cut]]
+name = "middle"
+mode = ")" +
+         mode + R"("
+edge_from_mm = [17.5, -1.0, 11.0]
+edge_to_mm = [17.5, 11.0, 11.0]
+move_mm = [0.0, 0.0, -8.0]
+start_s = 0.02
+duration_s = 0.05
+[[cut]]
+name = "end"
+mode = ")" +
+         mode + R"("
+edge_from_mm = [)" +
+         end + R"(, -1.0, 11.0]
+edge_to_mm = [)" +
+         end + R"(, 11.0, 11.0]
+move_mm = [0.0, 0.0, -5.0]
+start_s = 0.04
+duration_s = 0.02
+)" + roi +
+         R"(
+[time]
+integrator = "trapezoid"
+dt_s = 0.005
+steps = 40
+)";
+}
+
+/// Expects `text` (a scenario on the bar's mesh) with `old_text` replaced by `new_text` to be
+/// refused, with a message matching `pattern`.
+inline void expect_refused(std::string text, const std::string& old_text, const std::string& new_text,
+                           const std::string& pattern) {
+  test::TempDir dir;
+  mesh::write_msh(mesh::structured_box_mesh(6, 2, 2, 0.03, 0.01, 0.01), dir / "bar.msh", mm);
+  if (!old_text.empty()) {
+    ASSERT_NE(text.find(old_text), std::string::npos) << old_text;
+    text.replace(text.find(old_text), old_text.size(), new_text);
+  }
+  try {
+    ScenarioStepper stepper(scenario_on(dir / "bar.msh", text));
+    FAIL() << "not refused: " << pattern;
+  } catch (const InputError& e) {
+    EXPECT_TRUE(std::regex_search(e.what(), std::regex(pattern))) << e.what();
+  }
 }
 
 /// (node, component) per unknown of a full model, or of its reduction.

@@ -23,43 +23,9 @@ namespace {
 using cut_test::kMaterial;
 using cut_test::scenario_on;
 
-/// The bar of the exactness test (30 x 10 x 10 mm, 6 x 2 x 2 cells, held at x = 0, pulled down at
-/// x = 30 mm, under gravity), opened by two blades in split mode: one from the top two thirds of the
-/// way down in the middle, one through the top of the far end's layer.
-std::string split_bar(const std::string& roi) {
-  return std::string(kMaterial) + R"(
-[boundary]
-fixed = ["x0"]
-[[load]]
-set = "x1"
-force_N = [0.0, 0.0, -0.0005]
-ramp_s = 0.05
-[[load]]
-gravity_m_s2 = [0.0, 0.0, -9.81]
-[[cut]]
-name = "middle"
-mode = "split"
-edge_from_mm = [17.5, -1.0, 11.0]
-edge_to_mm = [17.5, 11.0, 11.0]
-move_mm = [0.0, 0.0, -8.0]
-start_s = 0.02
-duration_s = 0.05
-[[cut]]
-name = "end"
-mode = "split"
-edge_from_mm = [22.5, -1.0, 11.0]
-edge_to_mm = [22.5, 11.0, 11.0]
-move_mm = [0.0, 0.0, -5.0]
-start_s = 0.04
-duration_s = 0.02
-)" + roi +
-         R"(
-[time]
-integrator = "trapezoid"
-dt_s = 0.005
-steps = 40
-)";
-}
+/// The exactness tests' bar (cut_test::bar_scenario) opened by its two blades in split mode, the far
+/// one at x = 22.5 mm.
+std::string split_bar(const std::string& roi) { return cut_test::bar_scenario(roi, "split", 22.5); }
 
 /// The mesh as the splits left it (the copies among its nodes), the copies no split has used in a
 /// set "unused" (none, once the blades are through).
@@ -382,19 +348,7 @@ TEST(SplitHaptic, TheLoopTakesASplitAsTheModelRebuiltFromTheSplitMesh) {
 /// The refusal `pattern` for the split bar with `old_text` replaced by `new_text`.
 void expect_split_refused(const std::string& roi, const std::string& old_text, const std::string& new_text,
                           const std::string& pattern) {
-  test::TempDir dir;
-  mesh::write_msh(mesh::structured_box_mesh(6, 2, 2, 0.03, 0.01, 0.01), dir / "bar.msh", mm);
-  std::string text = split_bar(roi);
-  if (!old_text.empty()) {
-    ASSERT_NE(text.find(old_text), std::string::npos) << old_text;
-    text.replace(text.find(old_text), old_text.size(), new_text);
-  }
-  try {
-    ScenarioStepper stepper(scenario_on(dir / "bar.msh", text));
-    FAIL() << "not refused: " << pattern;
-  } catch (const InputError& e) {
-    EXPECT_TRUE(std::regex_search(e.what(), std::regex(pattern))) << e.what();
-  }
+  cut_test::expect_refused(split_bar(roi), old_text, new_text, pattern);
 }
 
 TEST(SplitRefusal, NamesTheBladeTheFacesTheTimeAndTheNode) {
