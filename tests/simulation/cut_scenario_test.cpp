@@ -52,12 +52,7 @@ mesh::TetMesh cut_mesh(const mesh::TetMesh& mesh, const std::vector<bool>& still
 
 using cut_test::bar_scenario;
 
-struct RebuildCase {
-  const char* name;
-  const char* roi;
-};
-
-class CutAgainstRebuild : public ::testing::TestWithParam<RebuildCase> {};
+class CutAgainstRebuild : public ::testing::TestWithParam<cut_test::ModelCase> {};
 
 TEST_P(CutAgainstRebuild, EqualsTheModelAssembledAndCondensedFromTheCutMesh) {
   test::TempDir dir;
@@ -142,14 +137,8 @@ TEST_P(CutAgainstRebuild, EqualsTheModelAssembledAndCondensedFromTheCutMesh) {
             << "\n";
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Models, CutAgainstRebuild,
-    ::testing::Values(RebuildCase{"full", ""},
-                      RebuildCase{"static", "[roi]\nkind = \"ball\"\ncenter_mm = [22.5, 5.0, 5.0]\nradius_mm = 11.0\n"},
-                      RebuildCase{"guyan",
-                                  "[roi]\nkind = \"ball\"\ncenter_mm = [22.5, 5.0, 5.0]\nradius_mm = "
-                                  "11.0\nreduction = \"guyan\"\n"}),
-    [](const auto& param_info) { return std::string(param_info.param.name); });
+INSTANTIATE_TEST_SUITE_P(Models, CutAgainstRebuild, ::testing::ValuesIn(cut_test::model_cases(11.0)),
+                         [](const auto& param_info) { return param_info.param.name; });
 
 using cut_test::hanging_bar;
 

@@ -113,6 +113,18 @@ steps = 40
 )";
 }
 
+/// A model the rebuild tests run: the full model, or the bar's far half condensed (a ball of
+/// `radius_mm` around x = 22.5 mm) by static condensation or Guyan's reduction.
+struct ModelCase {
+  std::string name, roi;
+};
+
+inline std::vector<ModelCase> model_cases(double radius_mm) {
+  const std::string ball =
+      "[roi]\nkind = \"ball\"\ncenter_mm = [22.5, 5.0, 5.0]\nradius_mm = " + std::to_string(radius_mm) + "\n";
+  return {{"full", ""}, {"static", ball}, {"guyan", ball + "reduction = \"guyan\"\n"}};
+}
+
 /// Expects `text` (a scenario on the bar's mesh) with `old_text` replaced by `new_text` to be
 /// refused, with a message matching `pattern`.
 inline void expect_refused(std::string text, const std::string& old_text, const std::string& new_text,

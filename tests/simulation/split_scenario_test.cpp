@@ -41,12 +41,7 @@ mesh::TetMesh split_mesh(const mesh::TetMesh& mesh) {
   return out;
 }
 
-struct SplitCase {
-  const char* name;
-  const char* roi;
-};
-
-class SplitAgainstRebuild : public ::testing::TestWithParam<SplitCase> {};
+class SplitAgainstRebuild : public ::testing::TestWithParam<cut_test::ModelCase> {};
 
 TEST_P(SplitAgainstRebuild, EqualsTheModelAssembledAndCondensedFromTheSplitMesh) {
   test::TempDir dir;
@@ -122,14 +117,8 @@ TEST_P(SplitAgainstRebuild, EqualsTheModelAssembledAndCondensedFromTheSplitMesh)
             << " J, |E + D - W - E_0| / W = " << std::abs(ledger.balance_residual()) / std::abs(ledger.external_work()) << "\n";
 }
 
-INSTANTIATE_TEST_SUITE_P(Models, SplitAgainstRebuild,
-                         ::testing::Values(SplitCase{"full", ""},
-                                           SplitCase{"static",
-                                                     "[roi]\nkind = \"ball\"\ncenter_mm = [22.5, 5.0, 5.0]\nradius_mm = 13.0\n"},
-                                           SplitCase{"guyan",
-                                                     "[roi]\nkind = \"ball\"\ncenter_mm = [22.5, 5.0, 5.0]\nradius_mm = "
-                                                     "13.0\nreduction = \"guyan\"\n"}),
-                         [](const auto& param_info) { return std::string(param_info.param.name); });
+INSTANTIATE_TEST_SUITE_P(Models, SplitAgainstRebuild, ::testing::ValuesIn(cut_test::model_cases(13.0)),
+                         [](const auto& param_info) { return param_info.param.name; });
 
 using cut_test::g;
 using cut_test::kGravity;
