@@ -85,6 +85,23 @@ std::vector<std::array<Index, 3>> held_dofs(const Brain& brain, const std::vecto
   return held;
 }
 
+/// Takes a removal into the haptic loop between two ticks: the change in `system`'s numbering, the
+/// held dofs set at rest, the system changed in place, the loop's factor and compliance corrected.
+/// With `prefetch_s`: the change's columns solved first (as the look-ahead would have, earlier), timed.
+void cut_haptic(integrators::HapticTrapezoid& loop, model::SecondOrderSystem& system, model::State& state,
+                const fem::ElementRemoval& removal, const fem::DofMap& dofs, const std::vector<Index>& position,
+                double* prefetch_s = nullptr) {
+  model::SystemChange change = model::SystemChange::from_removal(removal, dofs, position, system.load.terms().size());
+  if (prefetch_s) {
+    const Stopwatch clock;
+    loop.prefetch_change(change.dofs);
+    *prefetch_s = clock.seconds();
+  }
+  for (const Index d : change.held) state.v[d] = 0;
+  change.apply(system);
+  loop.take_change(change, state);
+}
+
 /// The ROI's tetrahedra (every node in the ROI or fixed) clear of the tool's nodes, nearest the target first.
 std::vector<Index> roi_tetrahedra(const Brain& brain, const roi::Partition& partition, const std::vector<int>& tool) {
   const fem::DofMap& dofs = *brain.model.dofs;
@@ -195,11 +212,7 @@ std::string measure(const std::filesystem::path& mesh_file, long roi_nodes, cons
     const double tick_before_s = median_seconds(51, [&] { haptic.tick(hand(++tick), state); });
     fem::ElementRemover remover = uncut;
     const fem::ElementRemoval stiffness_change = remover.remove(removed, 0.0);
-    model::SystemChange change =
-        model::SystemChange::from_removal(stiffness_change, *brain->model.dofs, position, cut_system.load.terms().size());
-    for (const Index d : change.held) state.v[d] = 0;
-    change.apply(cut_system);
-    haptic.take_change(change, state);
+    cut_haptic(haptic, cut_system, state, stiffness_change, *brain->model.dofs, position);
     const double event_s = haptic.change_seconds();
     const double tick_after_s = median_seconds(51, [&] { haptic.tick(hand(++tick), state); });
     // The same cut with its columns K_eff^-1 e_d solved ahead (between earlier ticks, as a blade
@@ -210,14 +223,8 @@ std::string measure(const std::filesystem::path& mesh_file, long roi_nodes, cons
     model::State ahead_state = model::State::at_rest(n);
     ahead.reset(ahead_state);
     for (long i = 1; i <= 51; ++i) ahead.tick(hand(i), ahead_state);
-    model::SystemChange ahead_change =
-        model::SystemChange::from_removal(stiffness_change, *brain->model.dofs, position, ahead_system.load.terms().size());
-    const Stopwatch prefetch_clock;
-    ahead.prefetch_change(ahead_change.dofs);
-    const double prefetch_s = prefetch_clock.seconds();
-    for (const Index d : ahead_change.held) ahead_state.v[d] = 0;
-    ahead_change.apply(ahead_system);
-    ahead.take_change(ahead_change, ahead_state);
+    double prefetch_s = 0;
+    cut_haptic(ahead, ahead_system, ahead_state, stiffness_change, *brain->model.dofs, position, &prefetch_s);
     const double ahead_event_s = ahead.change_seconds();
     lines += io::format(
                  "%8lld %5ld %6lld %6ld %5ld %5lld %8.3f %9.2f %8.3f %8.3f %10.1f %9.2f  %.1e | %8.2f %5.0f %7.3f %7.3f | %8.2f "
@@ -331,11 +338,7 @@ std::string measure_blade(const std::filesystem::path& mesh_file, long roi_nodes
     if (!due.empty()) {
       std::sort(due.begin(), due.end());
       const fem::ElementRemoval removal = remover.remove(due, 0.0);
-      model::SystemChange change =
-          model::SystemChange::from_removal(removal, *brain->model.dofs, position, cut_system.load.terms().size());
-      for (const Index d : change.held) state.v[d] = 0;
-      change.apply(cut_system);
-      loop.take_change(change, state);
+      cut_haptic(loop, cut_system, state, removal, *brain->model.dofs, position);
       event_max = std::max(event_max, loop.change_seconds());
       ++events;
       removed += static_cast<long>(due.size());

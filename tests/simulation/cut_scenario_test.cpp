@@ -253,7 +253,7 @@ TEST(CutKnownAnswer, TheCondensedRoiFollowsTheFullModelThroughTheSameCut) {
   // itself changes (the uncut full model against the cut one): the condensed model must follow
   // the cut, not the uncut bar.
   test::TempDir dir;
-  mesh::write_msh(mesh::structured_box_mesh(6, 2, 2, 0.03, 0.01, 0.01), dir / "bar.msh", mm);
+  cut_test::write_bar(dir);
   const std::string roi = "[roi]\nkind = \"ball\"\ncenter_mm = [22.5, 5.0, 5.0]\nradius_mm = 11.0\n";
   std::string uncut = bar_scenario("");
   uncut.erase(uncut.find("[[cut]]"), uncut.find("[time]") - uncut.find("[[cut]]"));

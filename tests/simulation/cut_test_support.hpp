@@ -125,18 +125,24 @@ inline std::vector<ModelCase> model_cases(double radius_mm) {
   return {{"full", ""}, {"static", ball}, {"guyan", ball + "reduction = \"guyan\"\n"}};
 }
 
+/// The bar of the exactness tests (30 x 10 x 10 mm, 6 x 2 x 2 cells) written as DIR/bar.msh: its path.
+inline std::filesystem::path write_bar(const test::TempDir& dir) {
+  mesh::write_msh(mesh::structured_box_mesh(6, 2, 2, 0.03, 0.01, 0.01), dir / "bar.msh", mm);
+  return dir / "bar.msh";
+}
+
 /// Expects `text` (a scenario on the bar's mesh) with `old_text` replaced by `new_text` to be
 /// refused, with a message matching `pattern`.
 inline void expect_refused(std::string text, const std::string& old_text, const std::string& new_text,
                            const std::string& pattern) {
   test::TempDir dir;
-  mesh::write_msh(mesh::structured_box_mesh(6, 2, 2, 0.03, 0.01, 0.01), dir / "bar.msh", mm);
+  const std::filesystem::path bar = write_bar(dir);
   if (!old_text.empty()) {
     ASSERT_NE(text.find(old_text), std::string::npos) << old_text;
     text.replace(text.find(old_text), old_text.size(), new_text);
   }
   try {
-    ScenarioStepper stepper(scenario_on(dir / "bar.msh", text));
+    ScenarioStepper stepper(scenario_on(bar, text));
     FAIL() << "not refused: " << pattern;
   } catch (const InputError& e) {
     EXPECT_TRUE(std::regex_search(e.what(), std::regex(pattern))) << e.what();

@@ -249,7 +249,7 @@ steps = 2000
 
 TEST(SplitKnownAnswer, ACantileverSplitAtItsRootLeavesTheToolAtItsTipHoldingNothing) {
   test::TempDir dir;
-  mesh::write_msh(mesh::structured_box_mesh(6, 2, 2, 0.03, 0.01, 0.01), dir / "bar.msh", mm);
+  cut_test::write_bar(dir);
   ScenarioStepper stepper(scenario_on(dir / "bar.msh", split_cantilever("")));
   Vector held;
   stepper.on_cut([&](const CutEvent& e, const model::State& at) {
@@ -289,7 +289,7 @@ TEST(SplitHaptic, TheLoopTakesASplitAsTheModelRebuiltFromTheSplitMesh) {
   // copies started at their nodes by the split): against the model assembled from the split mesh
   // with the tool attached afresh there, the compliance W to round-off, and the force after.
   test::TempDir dir;
-  mesh::write_msh(mesh::structured_box_mesh(6, 2, 2, 0.03, 0.01, 0.01), dir / "bar.msh", mm);
+  cut_test::write_bar(dir);
   std::string text = split_bar("");
   text.erase(text.find("[[cut]]\nname = \"end\""), text.find("[time]") - text.find("[[cut]]\nname = \"end\""));
   text.erase(text.find("[[load]]"), text.find("[[cut]]") - text.find("[[load]]"));  // the hand alone
@@ -360,7 +360,7 @@ TEST(SplitRefusal, NamesTheBladeTheFacesTheTimeAndTheNode) {
 
 TEST(SplitRefusal, OneModePerScenario) {
   test::TempDir dir;
-  mesh::write_msh(mesh::structured_box_mesh(6, 2, 2, 0.03, 0.01, 0.01), dir / "bar.msh", mm);
+  cut_test::write_bar(dir);
   std::string text = split_bar("");
   const std::string split_end = "name = \"end\"\nmode = \"split\"";
   text.replace(text.find(split_end), split_end.size(), "name = \"end\"\nmode = \"remove\"");

@@ -21,14 +21,20 @@
 namespace roifem::solvers {
 namespace {
 
+/// R R^T + n I, R's entries uniform in [-1, 1]: symmetric positive definite, well conditioned.
+DenseMatrix random_spd(Index n, std::mt19937& rng) {
+  std::uniform_real_distribution<double> draw(-1, 1);
+  DenseMatrix R(n, n);
+  for (Index i = 0; i < n; ++i)
+    for (Index j = 0; j < n; ++j) R(i, j) = draw(rng);
+  return R * R.transpose() + static_cast<double>(n) * DenseMatrix::Identity(n, n);
+}
+
 TEST(LowRankUpdate, SolvesWithTheChangedMatrixAsADenseFactorizationOfItDoes) {
   std::mt19937 rng(4);
   std::uniform_real_distribution<double> draw(-1, 1);
   const Index n = 40;
-  DenseMatrix R(n, n);
-  for (Index i = 0; i < n; ++i)
-    for (Index j = 0; j < n; ++j) R(i, j) = draw(rng);
-  const DenseMatrix A = R * R.transpose() + n * DenseMatrix::Identity(n, n);
+  const DenseMatrix A = random_spd(n, rng);
   const Eigen::LLT<DenseMatrix> A_factor(A);
   LowRankUpdate update([&](const Vector& b, Vector& x) { x = A_factor.solve(b); }, n);
   DenseMatrix changed = A;
@@ -59,10 +65,7 @@ TEST(LowRankUpdate, ColumnsSolvedAheadGiveTheSameSolveAndSpareTheChangeItsSolves
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> draw(-1, 1);
   const Index n = 30;
-  DenseMatrix R(n, n);
-  for (Index i = 0; i < n; ++i)
-    for (Index j = 0; j < n; ++j) R(i, j) = draw(rng);
-  const DenseMatrix A = R * R.transpose() + n * DenseMatrix::Identity(n, n);
+  const DenseMatrix A = random_spd(n, rng);
   const Eigen::LLT<DenseMatrix> A_factor(A);
   long solves = 0;
   LowRankUpdate update(
