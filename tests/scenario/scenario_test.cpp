@@ -77,6 +77,21 @@ TEST(ScenarioReader, ResolvedTomlReadsBackToTheSameScenario) {
   EXPECT_EQ(again.steps, s.steps);
 }
 
+TEST(ScenarioReader, ResolvedTomlKeepsEachCutsMode) {
+  // results.h5 records the resolved scenario: an incision read back as a removal would cut another run
+  for (const std::string mode : {"remove", "split"}) {
+    const Scenario s = parse_scenario(valid + "[[cut]]\nmode = \"" + mode +
+                                          "\"\nedge_from_mm = [0, -4, 70]\nedge_to_mm = [0, 4, 70]\nmove_mm = [0, 0, -20]\n"
+                                          "duration_s = 1.0\n",
+                                      "s.toml", "/data");
+    const Scenario again = parse_scenario(s.resolved_toml(), "resolved.toml", "/data");
+    ASSERT_EQ(again.cuts.size(), 1U);
+    EXPECT_EQ(again.cuts[0].mode, mode == "split" ? cutting::CutMode::split : cutting::CutMode::remove) << mode;
+    EXPECT_EQ(again.cuts[0].edge_b, s.cuts[0].edge_b);
+    EXPECT_EQ(again.cuts[0].path.displacement, s.cuts[0].path.displacement);
+  }
+}
+
 TEST(ScenarioReader, ReadsTheElementAndNamesAnUnknownOne) {
   EXPECT_EQ(parse_scenario(valid, "s.toml", "/data").element, fem::Element::tet4);
   const std::string nodal = replaced(valid, "mesh = \"brain.msh\"", "mesh = \"brain.msh\"\nelement = \"nodal-pressure\"");
