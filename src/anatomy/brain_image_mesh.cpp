@@ -417,8 +417,9 @@ BrainImageMesh mesh_brain_image(const BrainImageOptions& o, const std::filesyste
     box = opening_box(clean.mask, *o.opening);
     result.opening_centre_mm =
         Eigen::Vector3d(o.opening->centre_x_mm, o.opening->centre_y_mm, box->first.z() + o.opening->depth_mm / 2);
-    carve_box(measured, box->first, box->second);
+    if (o.opening->carved) carve_box(measured, box->first, box->second);
   }
+  const auto carved = o.opening && o.opening->carved ? box : std::nullopt;
   result.mask_volume_mm3 = integral_mm3(measured);
   const double native = image.spacing_mm().minCoeff();
   check_mask_holds_the_nodes(o, image, result.mask_volume_mm3);
@@ -438,7 +439,7 @@ BrainImageMesh mesh_brain_image(const BrainImageOptions& o, const std::filesyste
     // level that keeps the mask's volume instead (level_for_volume).
     const double sigma = std::max(native, h / 3);
     double voxel = sigma;
-    if (o.opening) voxel = std::min(voxel, o.opening->width_mm / 4);
+    if (carved) voxel = std::min(voxel, o.opening->width_mm / 4);
     const int factor = std::max(1, static_cast<int>(std::floor(voxel / native + 1e-9)));
     const long sigma_key = std::lround(sigma * 10) * 100;  // blur quantized to 0.1 mm: reuse grids across attempts
     auto grid = grids.find({factor, sigma_key});
@@ -446,7 +447,7 @@ BrainImageMesh mesh_brain_image(const BrainImageOptions& o, const std::filesyste
       ImageVolume grey = block_average(clean.mask, factor);
       grey = pad(grey, static_cast<int>(std::ceil(3 * (sigma_key / 1000.0) / (native * factor))) + 2);
       gaussian_blur(grey, sigma_key / 1000.0);
-      cut_and_carve(grey, result.cut_plane_z_mm, box);
+      cut_and_carve(grey, result.cut_plane_z_mm, carved);
       iso = level_for_volume(grey, result.mask_volume_mm3);
       grids.clear();
       grid = grids.emplace(std::pair{factor, sigma_key}, std::move(grey)).first;
@@ -454,7 +455,7 @@ BrainImageMesh mesh_brain_image(const BrainImageOptions& o, const std::filesyste
     ImageMeshSizes sizes;
     sizes.size_mm = h;
     sizes.distance_mm = h / 8;
-    if (box) {  // the opening's walls in triangles of about its width, as the ellipsoid's
+    if (box) {  // the opening's walls (or the incision's box) in triangles of about its width, as the ellipsoid's
       sizes.refine_box_mm = box;
       sizes.refine_size_mm = std::min(h, std::max(o.opening->width_mm, h / 3));
     }
@@ -492,7 +493,8 @@ BrainImageMesh mesh_brain_image(const BrainImageOptions& o, const std::filesyste
     mesh::smooth_poor_tetrahedra(result.mesh, 0.1, 8, slide, 30);
   }
   result.mesh.source = output.empty() ? "<" + o.image.string() + ">" : output.string();
-  name_sets(result.mesh, o, image, clean.mask, result.cut_plane_z_mm, std::max(1.0, result.working_voxel_mm) + 0.5, box, result);
+  name_sets(result.mesh, o, image, clean.mask, result.cut_plane_z_mm, std::max(1.0, result.working_voxel_mm) + 0.5, carved,
+            result);
   if (!output.empty()) mesh::write_msh(result.mesh, output, mm);
   return result;
 }

@@ -35,6 +35,9 @@ namespace roifem::anatomy {
 struct SurgicalOpening {
   double centre_x_mm = 0, centre_y_mm = 0;
   double width_mm = 4, length_mm = 30, depth_mm = 20;
+  /// false: nothing is carved and no opening_* set is named; the mesh is only finer in the box
+  /// (an incision that a scenario's [[cut]] makes, roifem mesh --incision)
+  bool carved = true;
 };
 
 struct BrainImageOptions {

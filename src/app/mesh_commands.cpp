@@ -16,10 +16,11 @@ namespace roifem::app {
 
 namespace {
 
-/// "X,Y" or "X,Y,WIDTH,LENGTH,DEPTH" (mm) -> the opening carved into an image brain.
-anatomy::SurgicalOpening parse_opening(const std::vector<double>& v) {
+/// "X,Y" or "X,Y,WIDTH,LENGTH,DEPTH" (mm) -> the opening carved into an image brain (or, for
+/// `option` --incision, the box only refined).
+anatomy::SurgicalOpening parse_opening(const std::vector<double>& v, const std::string& option = "--opening") {
   if (v.size() != 2 && v.size() != 5)
-    throw InputError("--opening: give X,Y (mm; the slit's centre over the brain) or X,Y,WIDTH,LENGTH,DEPTH");
+    throw InputError(option + ": give X,Y (mm; the slit's centre over the brain) or X,Y,WIDTH,LENGTH,DEPTH");
   anatomy::SurgicalOpening opening;
   opening.centre_x_mm = v[0];
   opening.centre_y_mm = v[1];
@@ -28,13 +29,16 @@ anatomy::SurgicalOpening parse_opening(const std::vector<double>& v) {
     opening.length_mm = v[3];
     opening.depth_mm = v[4];
   }
+  opening.carved = option == "--opening";
   return opening;
 }
 
 void mesh_image(anatomy::BrainImageOptions options, const std::vector<std::string>& regions, const std::vector<double>& opening,
-                const std::string& out) {
+                const std::vector<double>& incision, const std::string& out) {
   for (const auto& r : regions) options.regions.push_back(anatomy::parse_region(r));
+  if (!opening.empty() && !incision.empty()) throw InputError("--opening and --incision: give one (a brain has one slit)");
   if (!opening.empty()) options.opening = parse_opening(opening);
+  if (!incision.empty()) options.opening = parse_opening(incision, "--incision");
   Stopwatch clock;
   const auto result = anatomy::mesh_brain_image(options, out, [](const std::string& line) {
     std::printf("  %s\n", line.c_str());
@@ -53,9 +57,10 @@ void mesh_image(anatomy::BrainImageOptions options, const std::vector<std::strin
   std::printf("mask: %zu loose pieces (%zu voxels) dropped, %zu voxels of holes filled; bottom cut at z = %.1f mm\n",
               result.dropped_pieces, result.dropped_voxels, result.filled_voxels, result.cut_plane_z_mm);
   if (result.opening_centre_mm)
-    std::printf("opening: centre (%.1f, %.1f, %.1f) mm (roifem paper --target-mm %.1f,%.1f,%.1f)\n",
-                result.opening_centre_mm->x(), result.opening_centre_mm->y(), result.opening_centre_mm->z(),
-                result.opening_centre_mm->x(), result.opening_centre_mm->y(), result.opening_centre_mm->z());
+    std::printf("%s: centre (%.1f, %.1f, %.1f) mm (roifem paper --target-mm %.1f,%.1f,%.1f)\n",
+                options.opening->carved ? "opening" : "incision (refined, not carved)", result.opening_centre_mm->x(),
+                result.opening_centre_mm->y(), result.opening_centre_mm->z(), result.opening_centre_mm->x(),
+                result.opening_centre_mm->y(), result.opening_centre_mm->z());
   for (const auto& [name, set] : result.mesh.sets)
     std::printf("  %-16s %dD  %6zu nodes  %6zu tetrahedra  %6zu triangles\n", name.c_str(), set.dim, set.nodes.size(),
                 set.tets.size(), set.triangles.size());
@@ -69,11 +74,12 @@ void add_mesh_command(CLI::App& app, Action& action) {
     std::string out;
     double tolerance = 3;
     double slit_refinement = 1;
+    bool no_opening = false;
     std::string image;
     bool colin27 = false;
     anatomy::BrainImageOptions anatomy;
     std::vector<std::string> regions;
-    std::vector<double> opening;
+    std::vector<double> opening, incision;
   };
   auto opts = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("mesh",
@@ -84,9 +90,13 @@ void add_mesh_command(CLI::App& app, Action& action) {
   cmd->add_option("--out", opts->out, "Output mesh file (.msh, Gmsh 4.1 ASCII)")->required();
   cmd->add_option("--tolerance", opts->tolerance, "Allowed deviation from --nodes, in percent (images: at least 3)")
       ->capture_default_str();
-  cmd->add_option("--slit-refinement", opts->slit_refinement,
-                  "Ellipsoid only: element size at the opening's faces relative to the rest, graded back over 30 mm (1: uniform)")
+  cmd->add_option(
+         "--slit-refinement", opts->slit_refinement,
+         "Ellipsoid only: element size at the opening's faces relative to the rest, graded back over 30 mm (1: uniform); "
+         "with --no-opening, in the box the opening would take")
       ->capture_default_str();
+  cmd->add_flag("--no-opening", opts->no_opening,
+                "Ellipsoid only: a whole brain, no slit carved (a scenario's [[cut]] makes the incision; no opening_* sets)");
   auto* image = cmd->add_option("--image", opts->image,
                                 "A brain image (NIfTI .nii or .nii.gz; skull-stripped, or a mask): mesh the voxels above "
                                 "--threshold, largest piece, holes filled, cut flat at the bottom");
@@ -107,6 +117,10 @@ void add_mesh_command(CLI::App& app, Action& action) {
                   "Image: carve a surgical opening (like the ellipsoid's) at X,Y (mm), walls x = X -+ 2 mm, 30 mm along y, "
                   "20 mm deep from the top; or X,Y,WIDTH,LENGTH,DEPTH. Sets opening_left/right/floor")
       ->delimiter(',');
+  cmd->add_option("--incision", opts->incision,
+                  "Image: refine where an --opening at X,Y (or X,Y,WIDTH,LENGTH,DEPTH) would be, carving nothing: a scenario's "
+                  "[[cut]] makes the incision there")
+      ->delimiter(',');
   cmd->add_flag("!--no-tissues", opts->anatomy.tissues, "Image: skip the grey_matter / white_matter / csf volume sets");
   cmd->add_option("--seed", opts->anatomy.seed, "Image: CGAL's random seed (the same seed gives the same file)")
       ->capture_default_str();
@@ -116,11 +130,15 @@ void add_mesh_command(CLI::App& app, Action& action) {
         throw InputError("--out " + opts->out + ": is a directory; give the mesh file to write (e.g. " +
                          (std::filesystem::path(opts->out) / "brain.msh").string() + ")");
       const bool from_image = opts->colin27 || !opts->image.empty();
-      for (const char* image_only : {"--threshold", "--cut-mm", "--atlas", "--region", "--opening", "--no-tissues", "--seed"})
+      for (const char* image_only :
+           {"--threshold", "--cut-mm", "--atlas", "--region", "--opening", "--incision", "--no-tissues", "--seed"})
         if (!from_image && cmd->count(image_only) > 0)
           throw InputError(std::string(image_only) + " applies to image meshes: add --colin27 or --image FILE");
-      if (from_image && cmd->count("--slit-refinement") > 0)
-        throw InputError("--slit-refinement applies to the ellipsoid brain, not to image meshes");
+      for (const char* ellipsoid_only : {"--slit-refinement", "--no-opening"})
+        if (from_image && cmd->count(ellipsoid_only) > 0)
+          throw InputError(
+              std::string(ellipsoid_only) + " applies to the ellipsoid brain, not to image meshes" +
+              (std::string(ellipsoid_only) == "--no-opening" ? " (they have no opening unless --opening asks)" : ""));
       if (from_image) {
         anatomy::BrainImageOptions options = opts->anatomy;
         options.target_nodes = opts->nodes;
@@ -133,12 +151,13 @@ void add_mesh_command(CLI::App& app, Action& action) {
                 "--colin27: the template is not installed (Debian's mricron-data: sudo apt-get install mricron-data)");
           if (options.atlas.empty()) options.atlas = anatomy::colin27_atlas();
         }
-        mesh_image(options, opts->regions, opts->opening, opts->out);
+        mesh_image(options, opts->regions, opts->opening, opts->incision, opts->out);
         return;
       }
       Stopwatch clock;
       mesh::BrainShape shape;
       shape.slit_refinement = opts->slit_refinement;
+      shape.opening = !opts->no_opening;
       const auto result = mesh::generate_brain_mesh(opts->nodes, opts->out, shape, opts->tolerance / 100.0);
       std::printf("wrote %s: %lld nodes, %lld tetrahedra (element size %.2f mm, %d meshings, %.1f s)\n", opts->out.c_str(),
                   static_cast<long long>(result.mesh.num_nodes()), static_cast<long long>(result.mesh.num_tets()),

@@ -31,19 +31,50 @@ void validate(const BrainShape& s, Index target_nodes) {
   if (!(s.slit_grading_mm > 0)) throw InputError("slit grading distance must be positive");
 }
 
+/// Names the slit's planar faces, found by their centres of mass; returns them (left, right, floor).
+std::vector<int> name_slit_faces(const BrainShape& s) {
+  namespace occ = gmsh::model::occ;
+  const double eps = 1e-6 * s.semi_axis_z, hw = s.slit_width / 2, hl = s.slit_length / 2;
+  const double z_floor = s.semi_axis_z - s.slit_depth;
+  std::vector<int> left, right, floor;
+  gmsh::vectorpair surfaces;
+  gmsh::model::getEntities(surfaces, 2);
+  for (const auto& [dim, tag] : surfaces) {
+    double x, y, z;
+    occ::getCenterOfMass(dim, tag, x, y, z);
+    if (std::abs(y) > hl + eps || z < z_floor - eps) continue;
+    if (std::abs(x + hw) < eps)
+      left.push_back(tag);
+    else if (std::abs(x - hw) < eps)
+      right.push_back(tag);
+    else if (std::abs(z - z_floor) < eps && std::abs(x) < hw)
+      floor.push_back(tag);
+  }
+  auto name_surfaces = [](const std::vector<int>& tags, const char* name) {
+    if (tags.size() != 1) throw Error(std::string("internal: expected one surface for ") + name);
+    gmsh::model::setPhysicalName(2, gmsh::model::addPhysicalGroup(2, tags), name);
+  };
+  name_surfaces(left, "opening_left");
+  name_surfaces(right, "opening_right");
+  name_surfaces(floor, "opening_floor");
+  return {left[0], right[0], floor[0]};
+}
+
 /// Builds the geometry in the current Gmsh model and names the physical groups; returns the slit's
-/// faces (left, right, floor).
+/// faces (left, right, floor), none without the opening.
 std::vector<int> build_geometry(const BrainShape& s) {
   namespace occ = gmsh::model::occ;
   gmsh::model::add("brain");
   const int ellipsoid = occ::addSphere(0, 0, 0, 1);
   occ::dilate({{3, ellipsoid}}, 0, 0, 0, s.semi_axis_x, s.semi_axis_y, s.semi_axis_z);
   const double top = s.semi_axis_z;
-  const int slit =
-      occ::addBox(-s.slit_width / 2, -s.slit_length / 2, top - s.slit_depth, s.slit_width, s.slit_length, 2 * s.slit_depth);
-  gmsh::vectorpair cut, fragments;
+  gmsh::vectorpair cut{{3, ellipsoid}}, fragments;
   std::vector<gmsh::vectorpair> map;
-  occ::cut({{3, ellipsoid}}, {{3, slit}}, cut, map);
+  if (s.opening) {
+    const int slit =
+        occ::addBox(-s.slit_width / 2, -s.slit_length / 2, top - s.slit_depth, s.slit_width, s.slit_length, 2 * s.slit_depth);
+    occ::cut({{3, ellipsoid}}, {{3, slit}}, cut, map);
+  }
   // Split off the base so that its nodes can be named: a half-space below z_cut.
   const double z_cut = -s.semi_axis_z + 2 * s.semi_axis_z * s.base_fraction;
   const double big = 4 * std::max({s.semi_axis_x, s.semi_axis_y, s.semi_axis_z});
@@ -73,37 +104,25 @@ std::vector<int> build_geometry(const BrainShape& s) {
   gmsh::model::setPhysicalName(3, gmsh::model::addPhysicalGroup(3, brain), "brain");
   gmsh::model::setPhysicalName(3, gmsh::model::addPhysicalGroup(3, base), "base");
 
-  // The slit's planar faces, by their centres of mass.
-  const double eps = 1e-6 * s.semi_axis_z, hw = s.slit_width / 2, hl = s.slit_length / 2;
-  const double z_floor = top - s.slit_depth;
-  std::vector<int> left, right, floor;
-  gmsh::vectorpair surfaces;
-  gmsh::model::getEntities(surfaces, 2);
-  for (const auto& [dim, tag] : surfaces) {
-    double x, y, z;
-    occ::getCenterOfMass(dim, tag, x, y, z);
-    if (std::abs(y) > hl + eps || z < z_floor - eps) continue;
-    if (std::abs(x + hw) < eps)
-      left.push_back(tag);
-    else if (std::abs(x - hw) < eps)
-      right.push_back(tag);
-    else if (std::abs(z - z_floor) < eps && std::abs(x) < hw)
-      floor.push_back(tag);
-  }
-  auto name_surfaces = [](const std::vector<int>& tags, const char* name) {
-    if (tags.size() != 1) throw Error(std::string("internal: expected one surface for ") + name);
-    gmsh::model::setPhysicalName(2, gmsh::model::addPhysicalGroup(2, tags), name);
-  };
-  name_surfaces(left, "opening_left");
-  name_surfaces(right, "opening_right");
-  name_surfaces(floor, "opening_floor");
-  return {left[0], right[0], floor[0]};
+  return s.opening ? name_slit_faces(s) : std::vector<int>{};
 }
 
 /// A size field smaller by slit_refinement at the slit's faces, growing linearly back to the full
 /// size over slit_grading_mm; returns the threshold field, whose sizes follow h (set_sizes).
 int add_slit_field(const BrainShape& s, const std::vector<int>& slit_faces) {
   namespace field = gmsh::model::mesh::field;
+  if (!s.opening) {  // the box the slit would take, graded over slit_grading_mm (Gmsh's Box field)
+    const int box = field::add("Box");
+    field::setNumber(box, "XMin", -s.slit_width / 2);
+    field::setNumber(box, "XMax", s.slit_width / 2);
+    field::setNumber(box, "YMin", -s.slit_length / 2);
+    field::setNumber(box, "YMax", s.slit_length / 2);
+    field::setNumber(box, "ZMin", s.semi_axis_z - s.slit_depth);
+    field::setNumber(box, "ZMax", s.semi_axis_z);
+    field::setNumber(box, "Thickness", s.slit_grading_mm);
+    field::setAsBackgroundMesh(box);
+    return box;
+  }
   const int distance = field::add("Distance");
   field::setNumbers(distance, "SurfacesList", std::vector<double>(slit_faces.begin(), slit_faces.end()));
   field::setNumber(distance, "NumPointsPerCurve", 60);
@@ -117,11 +136,11 @@ int add_slit_field(const BrainShape& s, const std::vector<int>& slit_faces) {
 
 /// Meshes at size h: uniform, graded towards the slit (slit_field), or h * sizes.at(x) when sizes are
 /// given (the callback reads h through `current_h`).
-Index mesh_with_size(double h, int slit_field, double slit_refinement, const RelativeSizes& sizes, double& current_h) {
+Index mesh_with_size(double h, int slit_field, const BrainShape& shape, const RelativeSizes& sizes, double& current_h) {
   gmsh::model::mesh::clear();
-  if (slit_field > 0) {
-    gmsh::model::mesh::field::setNumber(slit_field, "SizeMin", slit_refinement * h);
-    gmsh::model::mesh::field::setNumber(slit_field, "SizeMax", h);
+  if (slit_field > 0) {  // a Threshold field at the slit's faces, or a Box field without the opening
+    gmsh::model::mesh::field::setNumber(slit_field, shape.opening ? "SizeMin" : "VIn", shape.slit_refinement * h);
+    gmsh::model::mesh::field::setNumber(slit_field, shape.opening ? "SizeMax" : "VOut", h);
   }
   current_h = h;
   gmsh::option::setNumber("Mesh.MeshSizeMax", sizes.at ? sizes.largest * h : h);
@@ -185,7 +204,7 @@ BrainMesh generate_brain_mesh(Index target_nodes, const std::filesystem::path& o
       gmsh::option::setNumber("Mesh.Algorithm", algorithm);
       NodeCountSearch search(target, h, -2.5);
       for (int attempt = 0; attempt < 12; ++attempt) {
-        const auto n = static_cast<double>(mesh_with_size(search.size(), slit_field, shape.slit_refinement, sizes, current_h));
+        const auto n = static_cast<double>(mesh_with_size(search.size(), slit_field, shape, sizes, current_h));
         ++result.attempts;
         if (search.record(n, tolerance)) {
           result.element_size_mm = search.size();

@@ -9,6 +9,8 @@
 ///   opening_left   2D  the wall x = -w/2 of the slit (a spatula pulls it towards -x)
 ///   opening_right  2D  the wall x = +w/2 of the slit (pulled towards +x)
 ///   opening_floor  2D  the bottom of the slit
+/// Without the opening (BrainShape::opening false) the ellipsoid is whole and has no opening_* sets:
+/// a blade cuts the incision instead (docs/cutting.md), and the slit's box marks where.
 #include <filesystem>
 #include <functional>
 
@@ -19,10 +21,13 @@ namespace roifem::mesh {
 struct BrainShape {  // millimetres
   double semi_axis_x = 70, semi_axis_y = 85, semi_axis_z = 50;
   double slit_width = 4, slit_length = 30, slit_depth = 20;
+  bool opening = true;  ///< false: no slit is carved; the refinement then fills the slit's box
   double base_fraction = 0.15;
   /// Element size at the slit's faces relative to the rest (1: uniform; 0.25: four times smaller),
   /// growing back to the full size over slit_grading_mm: the slit's walls and corners carry the
   /// loads and a stress singularity, which a uniform mesh resolves only at very small sizes.
+  /// Without the opening the size is smaller in the box the slit would take (where a blade cuts),
+  /// growing back to the full size over slit_grading_mm outside it.
   double slit_refinement = 1.0;
   double slit_grading_mm = 30;
 };

@@ -606,10 +606,10 @@ std::string Scenario::resolved_toml() const {
   }
   for (const auto& c : cuts) {
     o << "\n[[cut]]\nname = \"" << c.name << "\"\nmode = \"" << (c.mode == cutting::CutMode::split ? "split" : "remove")
-      << "\"\nedge_from_mm = [" << toml_number(c.edge_a.x() / mm) << ", "
-      << toml_number(c.edge_a.y() / mm) << ", " << toml_number(c.edge_a.z() / mm) << "]\nedge_to_mm = ["
-      << toml_number(c.edge_b.x() / mm) << ", " << toml_number(c.edge_b.y() / mm) << ", " << toml_number(c.edge_b.z() / mm)
-      << "]\nstart_s = " << toml_number(c.start) << "\n";
+      << "\"\nedge_from_mm = [" << toml_number(c.edge_a.x() / mm) << ", " << toml_number(c.edge_a.y() / mm) << ", "
+      << toml_number(c.edge_a.z() / mm) << "]\nedge_to_mm = [" << toml_number(c.edge_b.x() / mm) << ", "
+      << toml_number(c.edge_b.y() / mm) << ", " << toml_number(c.edge_b.z() / mm) << "]\nstart_s = " << toml_number(c.start)
+      << "\n";
     if (c.path.trajectory)
       o << "trajectory = \"" << c.path.trajectory_file << "\"\n";
     else
