@@ -10,7 +10,8 @@ and from behind, shaded by the light on them, with the named 2D sets given (defa
 but 'surface') in colour. The second draws a run's mesh as its cuts left it (the tetrahedra after
 the last cut at or before STEP, default the run's last; `roifem run` with [[cut]]s), deformed by
 the last displacement field at or before that step, with the faces the cuts laid open in colour (removed
-tetrahedra gone, or split nodes parted: their copies are the mesh's last nodes).
+tetrahedra gone, or split nodes parted: their copies are the mesh's last nodes), and a close-up of
+the cut: the surface within 12 mm of the opened faces, seen from above and in front.
 """
 import os
 import sys
@@ -143,16 +144,20 @@ def main_cut(path, out, step):
     tri = shown[np.array(surface)]
     is_open = np.array([k not in before for k in after])
     views = [("from the left", (0, 180)), ("from above", (90, -90)), ("from behind", (0, -90))]
-    fig = plt.figure(figsize=(15, 5.4))
+    fig = plt.figure(figsize=(20, 5.4))
     light = np.array([0.3, -0.5, 0.8]) / np.linalg.norm([0.3, -0.5, 0.8])
+    normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    normal /= np.maximum(np.linalg.norm(normal, axis=1)[:, None], 1e-300)
+    shade = 0.35 + 0.6 * np.clip(np.abs(normal @ light), 0, 1)
+    face = np.stack([shade, shade, shade * 0.97, np.ones_like(shade)], axis=1)
+    face[is_open, :3] = np.array([0.85, 0.2, 0.15]) * (0.5 + 0.5 * shade[is_open, None])
     for v, (title, (elev, azim)) in enumerate(views):
-        ax = fig.add_subplot(1, 3, v + 1, projection="3d")
-        normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
-        normal /= np.maximum(np.linalg.norm(normal, axis=1)[:, None], 1e-300)
-        shade = 0.35 + 0.6 * np.clip(np.abs(normal @ light), 0, 1)
-        face = np.stack([shade, shade, shade * 0.97, np.ones_like(shade)], axis=1)
-        face[is_open, :3] = np.array([0.85, 0.2, 0.15]) * (0.5 + 0.5 * shade[is_open, None])
-        draw(ax, tri, face, title, elev, azim)
+        draw(fig.add_subplot(1, 4, v + 1, projection="3d"), tri, face, title, elev, azim)
+    if is_open.any():  # the close-up: every surface triangle whose centre lies near the opened faces
+        centres = tri.mean(axis=1)
+        lo, hi = centres[is_open].min(axis=0) - 12, centres[is_open].max(axis=0) + 12
+        near = ((centres >= lo) & (centres <= hi)).all(axis=1)
+        draw(fig.add_subplot(1, 4, 4, projection="3d"), tri[near], face[near], "the cut, close up", 50, -60)
     fig.legend([plt.Rectangle((0, 0), 1, 1, color=(0.85, 0.2, 0.15))], [f"laid open by the cuts ({len(opened)} faces)"],
                loc="lower center")
     fig.suptitle(f"{os.path.basename(path)}: {what} by step {step}"
