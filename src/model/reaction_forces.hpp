@@ -17,7 +17,9 @@ namespace roifem::model {
 class ReactionForces {
  public:
   /// Assembles K over every dof and keeps the fixed nodes' rows of it (nothing of the model).
-  explicit ReactionForces(const FemModel& model);
+  /// After cuts: over the mesh's tetrahedra as they are now (a split rewires them in place) and,
+  /// where `still_there` is given, only those it marks (a removal); cuts take linear tetrahedra.
+  explicit ReactionForces(const FemModel& model, const std::vector<bool>& still_there = {});
   /// The fixed nodes (the fixed sets' nodes; tools' nodes are not among them), ascending.
   const std::vector<int>& nodes() const { return nodes_; }
   /// Each fixed node's reaction (N), 3 per node in the order of nodes(), from the 3N displacement.

@@ -26,6 +26,7 @@ void ScenarioStepper::cut_due(double t) {
   const integrators::Stats before = integrator_->stats();
   if (!event.change.dofs.empty() && integrator_->take_change(model_->system(), event.change, state_)) restarted_ += before;
   if (ledger_) ledger_->account_cut(state_, event.energy_removed());
+  reactions_.reset();  // the supports' rows of K change with the mesh
   for (const auto& listener : cut_listeners_) listener(event, state_);
 }
 
@@ -77,7 +78,7 @@ Vector ScenarioStepper::displacement() {
 }
 
 const model::ReactionForces& ScenarioStepper::reactions() {
-  if (!reactions_) reactions_ = std::make_unique<model::ReactionForces>(model_->full);
+  if (!reactions_) reactions_ = std::make_unique<model::ReactionForces>(model_->full, cuts_.still_there());
   return *reactions_;
 }
 
