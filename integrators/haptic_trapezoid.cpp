@@ -120,11 +120,41 @@ void HapticTrapezoid::take_change(const model::SystemChange& change, const model
   W_ = 0.5 * (W_ + W_.transpose()).eval();
   W_factor_.compute(W_);
   if (W_factor_.info() != Eigen::Success) throw SolverError("haptic tool: its compliance became singular after the cut");
-  // The free dofs' acceleration from the changed equation; the held dofs' is the tool's, as before.
-  const Vector before = a_;
-  a_ = model::AverageAcceleration::consistent_acceleration(system_, state);
-  for (const Index d : held_) a_[d] = before[d];
+  follow_the_change(change, state);
   change_s_ = clock.seconds();
+}
+
+void HapticTrapezoid::follow_the_change(const model::SystemChange& change, const model::State& s) {
+  // Before the change M a + C v + K u = f held at every free dof (the step's equilibrium), C = alpha
+  // M. Only the change's dofs see another equation, so only their acceleration changes (the tool's
+  // dofs, which a change never reaches, keep the tool's): at dof d, with i its place in the change,
+  //   M' a' = f' - alpha M' v - K' u,   (K' u)_d = (K u)_d + (dK u)_i,
+  //   (K u)_d = f_d - alpha M_d v_d - M_d a_d   from the old equation (0 at a dof the change starts),
+  // an O(r^2) update instead of a product with the whole K (the dense block of a condensed model).
+  const auto r = static_cast<Index>(change.dofs.size());
+  Vector u(r);
+  for (Index i = 0; i < r; ++i) u[i] = s.u[change.dofs[static_cast<std::size_t>(i)]];
+  const Vector dK_u = change.stiffness * u;
+  const double alpha = system_.damping.alpha;
+  const auto& terms = system_.load.terms();  // already changed: the new patterns
+  for (Index i = 0; i < r; ++i) {
+    const Index d = change.dofs[static_cast<std::size_t>(i)];
+    const double m_new = system_.M.coeff(d, d), m_old = m_new - change.mass[i];
+    if (std::binary_search(change.held.begin(), change.held.end(), d)) {  // no element, no load: K's row is zero
+      a_[d] = -alpha * s.v[d];
+      continue;
+    }
+    double f_new = 0, f_old = 0;
+    for (std::size_t k = 0; k < terms.size(); ++k) {
+      const double scale = terms[k].ramp.value(s.t), p = terms[k].pattern[d];
+      f_new += scale * p;
+      f_old += scale * (change.loads[k].size() == r ? p - change.loads[k][i] : p);
+    }
+    const double K_u = std::binary_search(change.started.begin(), change.started.end(), d)
+                           ? 0.0
+                           : f_old - alpha * m_old * s.v[d] - m_old * a_[d];
+    a_[d] = (f_new - alpha * m_new * s.v[d] - K_u - dK_u[i]) / m_new;
+  }
 }
 
 Vec3 HapticTrapezoid::tick(const Vec3& g, model::State& s) {

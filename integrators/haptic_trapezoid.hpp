@@ -110,6 +110,8 @@ class HapticTrapezoid {
   Vector rhs_, zero_, step_;
   int last_iterations_ = 0;
   double last_residual_ = 0;
+  /// The acceleration consistent with the system `change` made, at the change's dofs (take_change).
+  void follow_the_change(const model::SystemChange& change, const model::State& state);
   /// u_next_ = u^1, the constrained solve of K_eff u = rhs (the step's right-hand side).
   void constrained_solve(const Vector& rhs, const Vec3& g);
   /// u_next_ from u^1 to the budget's answer; excess_ at it.

@@ -22,6 +22,9 @@ struct SystemChange {
   Vector mass;                ///< dM on dofs (<= 0; zero at held dofs)
   std::vector<Vector> loads;  ///< per load term of the system, the change of its pattern on dofs
   std::vector<Index> held;    ///< dofs left with no element, ascending (a subset of dofs)
+  /// dofs the change sets moving, ascending (a subset of dofs): at rest with no stiffness and no
+  /// load before it, their u and v set with it (a split's copies, which take their node's)
+  std::vector<Index> started;
 
   /// What removing tetrahedra makes of a system (`removal` formed with c = 0: dK alone, no pins):
   /// its dofs renumbered by `system_dof` (per free dof of `dofs`, the system's unknown; each

@@ -133,7 +133,9 @@ CutEvent ScenarioSplits::split_due(double t, ScenarioModel& m, model::State& sta
     for (int i = 0; i < 3; ++i) {
       state.u[unknown(copy, i)] = state.u[unknown(node, i)];
       state.v[unknown(copy, i)] = state.v[unknown(node, i)];
+      change.started.push_back(unknown(copy, i));
     }
+  std::sort(change.started.begin(), change.started.end());
   // What the split took (zero but for round-off: the same u_e per tetrahedron, the same v on the mass moved).
   Vector u(r), v(r);
   for (Index a = 0; a < r; ++a) {
