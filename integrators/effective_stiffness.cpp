@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "integrators/effective_stiffness.hpp"
 
+#include <algorithm>
+
 namespace roifem::integrators {
 
-DirectSolve::DirectSolve(const model::SecondOrderSystem& system, const model::AverageAcceleration& rule)
-    : system_(system), rhs_(system.size()) {
+DirectSolve::DirectSolve(const model::SecondOrderSystem& system, const model::AverageAcceleration& rule, Refactor refactor)
+    : system_(system), refactor_(refactor), rhs_(system.size()) {
   K_eff_.compute(rule.effective_stiffness(system), system.dense_block_dofs());
 }
 
@@ -26,6 +28,13 @@ solvers::LowRankUpdate& DirectSolve::changes() {
 }
 
 bool DirectSolve::update(const std::vector<Index>& dofs, const DenseMatrix& B) {
+  if (refactor_ == Refactor::when_costlier) {
+    auto r = static_cast<double>(changes().rank());
+    for (const Index d : dofs)
+      if (std::find(changes().dofs().begin(), changes().dofs().end(), d) == changes().dofs().end()) ++r;
+    const auto n = static_cast<double>(system_.size());
+    if (2 * n * r + 2 * r * r > 4 * K_eff_.factor_nonzeros()) return false;
+  }
   changes().add(dofs, B);
   return true;
 }

@@ -30,12 +30,23 @@ class EffectiveStiffnessSolver {
   virtual bool update(const std::vector<Index>& /*dofs*/, const DenseMatrix& /*B*/) { return false; }
 };
 
+/// When DirectSolve takes a change by Woodbury's correction and when it asks for a new factor.
+enum class Refactor {
+  /// Once the accumulated correction would cost a solve more than the factor's own solve does
+  /// (2 n r + 2 r^2 flops against 4 nnz(L): the steps after it at more than twice a plain step's
+  /// cost), update() returns false and the caller factors the changed K_eff afresh.
+  when_costlier,
+  never,  ///< always the correction (the haptic loop, which must not stall a tick on a factorization)
+};
+
 class DirectSolve final : public EffectiveStiffnessSolver {
  public:
   /// Throws solvers::NotPositiveDefinite.
-  DirectSolve(const model::SecondOrderSystem& system, const model::AverageAcceleration& rule);
+  DirectSolve(const model::SecondOrderSystem& system, const model::AverageAcceleration& rule,
+              Refactor refactor = Refactor::when_costlier);
   void solve(const Vector& f, const Vector& w, Vector& x) override;
-  /// By Woodbury's identity on the factor it holds (solvers/low_rank_update.hpp); changes accumulate.
+  /// By Woodbury's identity on the factor it holds (solvers/low_rank_update.hpp); changes
+  /// accumulate, until the policy asks for a new factor (returns false, taking nothing).
   bool update(const std::vector<Index>& dofs, const DenseMatrix& B) override;
   /// The changes taken so far (null before any): corrects solutions with the factored K_eff.
   const solvers::LowRankUpdate* correction() const { return changed_.get(); }
@@ -46,6 +57,7 @@ class DirectSolve final : public EffectiveStiffnessSolver {
  private:
   const model::SecondOrderSystem& system_;
   solvers::Cholesky K_eff_;
+  Refactor refactor_;
   std::unique_ptr<solvers::LowRankUpdate> changed_;  ///< made at the first update or prefetch
   Vector rhs_;
   solvers::LowRankUpdate& changes();

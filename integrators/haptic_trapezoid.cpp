@@ -14,7 +14,7 @@ namespace {
 
 DirectSolve factor_effective_stiffness(const model::SecondOrderSystem& system, const model::AverageAcceleration& rule) {
   try {
-    return {system, rule};
+    return {system, rule, Refactor::never};  // a factorization would stall ticks: the loop corrects, always
   } catch (const solvers::NotPositiveDefinite& e) {
     throw SolverError(std::string("haptic trapezoid: K + 2/dt C + 4/dt^2 M is not positive definite: ") + e.what());
   }

@@ -215,7 +215,14 @@ ScenarioRunSummary run_scenario(const scenario::Scenario& sc, const std::filesys
         "max(|W|, |W_tools|, |E_cut|) = %.1e; %s\n",
         what.c_str(), ledger.cut(), scale > 0 ? std::abs(ledger.balance_residual()) / scale : 0.0,
         summary.stats.system_changes > 0
-            ? format("%s corrected its factor at each of %ld cuts", sc.integrator.c_str(), summary.stats.system_changes).c_str()
+            ? format("%s corrected its factor at %ld cuts%s", sc.integrator.c_str(), summary.stats.system_changes,
+                     summary.stats.lin_setups > 1
+                         ? format(" and factored K_eff afresh at %ld, where the correction would have cost more than the "
+                                  "factor's own solve",
+                                  summary.stats.lin_setups - 1)
+                               .c_str()
+                         : "")
+                  .c_str()
             : format("%s restarted at each cut", sc.integrator.c_str()).c_str());
   }
   if (system.is_nonlinear())

@@ -127,8 +127,10 @@ TEST_P(CutAgainstRebuild, EqualsTheModelAssembledAndCondensedFromTheCutMesh) {
   std::cout << GetParam().name << ": " << removed << " tetrahedra removed in " << events.size()
             << " events; against the rebuilt model: K x " << gaps.K << ", M x " << gaps.M << ", f " << gaps.f
             << ", u after 20 more steps " << gap << " (relative)";
-  EXPECT_GE(stepper.stats().system_changes, 3);
-  EXPECT_EQ(stepper.stats().lin_setups, 1);  // one factorization: every cut taken by a correction
+  // Each cut taken by the factor's correction, or, once that would cost a solve more than the factor
+  // does (integrators::Refactor), by a new factor: on this small bar, some of each.
+  EXPECT_GE(stepper.stats().system_changes, 1);
+  EXPECT_EQ(stepper.stats().system_changes + stepper.stats().lin_setups - 1, static_cast<long>(events.size()));
   // The energy: E + D + E_cut = W + E_0, to round-off.
   const model::EnergyLedger& ledger = *stepper.energy();
   EXPECT_GT(ledger.cut(), 0);

@@ -105,8 +105,10 @@ TEST_P(SplitAgainstRebuild, EqualsTheModelAssembledAndCondensedFromTheSplitMesh)
   }
   const double gap = compare.trajectory_gap(stepper, sc.dt, 20);
   EXPECT_LT(gap, 1e-10);
-  EXPECT_EQ(stepper.stats().lin_setups, 1);  // one factorization: every split taken by a correction
-  EXPECT_GE(stepper.stats().system_changes, 3);
+  // Each split taken by the factor's correction or, once that would cost more than the factor's
+  // solve (integrators::Refactor), by a new factor: on this small bar, some of each.
+  EXPECT_GE(stepper.stats().system_changes, 1);
+  EXPECT_EQ(stepper.stats().system_changes + stepper.stats().lin_setups - 1, static_cast<long>(events));
   // The energy: a split takes none, so E + D = W + E_0 across it.
   const model::EnergyLedger& ledger = *stepper.energy();
   EXPECT_LT(taken, 1e-13 * std::abs(ledger.external_work()));
