@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 #include <map>
 #include <numeric>
 #include <regex>
@@ -121,6 +122,44 @@ TEST_F(BallImage, MeshesTheBallWithItsVolumeAndASphericalBoundary) {
   EXPECT_EQ(topology.euler, 2);
   EXPECT_EQ(connected_pieces(m), 1);
   EXPECT_EQ(m.sets.count("grey_matter"), 0u) << "a binary image has no tissue classes";
+}
+
+TEST_F(BallImage, AnIncisionRefinesWhereAnOpeningWouldBeCarvedAndCarvesNothing) {
+  // A box over the top, 20 mm long and 10 mm deep, as an opening (6 mm wide) and as an incision
+  // (2 mm): the opening takes its voxels out of the mask and names its walls; the incision keeps
+  // the whole ball, names none, and meshes its box finer than the box's mirror image under the ball
+  // (elements of the width there, about 4.6 mm elsewhere).
+  BrainImageOptions opening = options(), incision = options();
+  opening.opening = SurgicalOpening{.centre_x_mm = 0, .centre_y_mm = 0, .width_mm = 6, .length_mm = 20, .depth_mm = 10};
+  incision.opening = SurgicalOpening{.centre_x_mm = 0, .centre_y_mm = 0, .width_mm = 2, .length_mm = 20, .depth_mm = 10};
+  incision.opening->carved = false;
+  const BrainImageMesh carved = mesh_brain_image(opening), whole = mesh_brain_image(incision);
+  double ball_mm3 = 0;  // the mask's voxels (1 mm^3 each), counted here
+  for (int i = 0; i < 70; ++i)
+    for (int j = 0; j < 70; ++j)
+      for (int k = 0; k < 70; ++k) {
+        const double x = i - 35.0, y = j - 35.0, z = k - 35.0;
+        ball_mm3 += x * x + y * y + z * z <= 25.0 * 25.0 ? 1 : 0;
+      }
+  EXPECT_DOUBLE_EQ(whole.mask_volume_mm3, ball_mm3);
+  EXPECT_LT(carved.mask_volume_mm3, ball_mm3 - 6 * 20 * 5);  // at least half the box's depth carved
+  for (const char* name : {"opening_left", "opening_right", "opening_floor"}) {
+    EXPECT_EQ(carved.mesh.sets.count(name), 1u) << name;
+    EXPECT_EQ(whole.mesh.sets.count(name), 0u) << name;
+  }
+  ASSERT_TRUE(whole.opening_centre_mm.has_value());
+  EXPECT_NEAR(whole.opening_centre_mm->z(), 20.0, 1.0);  // the ball's top (25 mm) less half the depth
+  // Nodes in the box against its mirror image through z = 0 (as far inside the ball, no refinement).
+  long in_box = 0, in_mirror = 0;
+  for (Index n = 0; n < whole.mesh.num_nodes(); ++n) {
+    const Vec3 x = whole.mesh.node(n) / mm;
+    if (std::abs(x.x()) > 3 || std::abs(x.y()) > 10) continue;
+    in_box += x.z() >= 15 ? 1 : 0;
+    in_mirror += x.z() <= -15 ? 1 : 0;
+  }
+  EXPECT_GT(in_box, 2 * in_mirror);
+  std::cout << "incision: " << in_box << " nodes in its box, " << in_mirror << " in the mirror image; the mask "
+            << whole.mask_volume_mm3 << " mm^3 (the opening's " << carved.mask_volume_mm3 << ")\n";
 }
 
 TEST_F(BallImage, NamesARegionOutsideTheBrainAndLeavesNoFile) {
