@@ -134,11 +134,12 @@ void add_mesh_command(CLI::App& app, Action& action) {
            {"--threshold", "--cut-mm", "--atlas", "--region", "--opening", "--incision", "--no-tissues", "--seed"})
         if (!from_image && cmd->count(image_only) > 0)
           throw InputError(std::string(image_only) + " applies to image meshes: add --colin27 or --image FILE");
-      for (const char* ellipsoid_only : {"--slit-refinement", "--no-opening"})
-        if (from_image && cmd->count(ellipsoid_only) > 0)
-          throw InputError(
-              std::string(ellipsoid_only) + " applies to the ellipsoid brain, not to image meshes" +
-              (std::string(ellipsoid_only) == "--no-opening" ? " (they have no opening unless --opening asks)" : ""));
+      if (from_image && cmd->count("--slit-refinement") > 0)
+        throw InputError("--slit-refinement applies to the ellipsoid brain, not to image meshes");
+      if (from_image && cmd->count("--no-opening") > 0)
+        throw InputError(
+            "--no-opening applies to the ellipsoid brain, not to image meshes (they have no opening unless "
+            "--opening asks)");
       if (from_image) {
         anatomy::BrainImageOptions options = opts->anatomy;
         options.target_nodes = opts->nodes;

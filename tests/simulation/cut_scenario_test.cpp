@@ -260,20 +260,13 @@ TEST(CutKnownAnswer, TheSupportsCarryTheWeightLeftAfterACutAtTheRoot) {
   test::TempDir dir;
   const mesh::TetMesh bar = mesh::structured_box_mesh(6, 2, 2, 0.03, 0.01, 0.01);
   mesh::write_msh(bar, dir / "bar.msh", mm);
-  const scenario::Scenario sc = scenario_on(dir / "bar.msh", R"(
+  const scenario::Scenario sc = scenario_on(dir / "bar.msh", std::string(R"(
 [material]
 young_Pa = 300000.0
 poisson = 0.45
 rho_kg_m3 = 1000.0
 alpha_per_s = 200.0
-[boundary]
-fixed = ["x0"]
-[[load]]
-set = "x1"
-force_N = [0.0, 0.0, -0.0005]
-ramp_s = 0.05
-[[load]]
-gravity_m_s2 = [0.0, 0.0, -9.81]
+)") + cut_test::kBarHeldAndLoaded + R"(
 [[cut]]
 edge_from_mm = [2.5, -1.0, 11.0]
 edge_to_mm = [2.5, 11.0, 11.0]

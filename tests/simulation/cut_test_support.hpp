@@ -69,13 +69,9 @@ integrator = ")" +
          integrator + "\"\ndt_s = " + std::to_string(dt) + "\nsteps = " + std::to_string(steps) + "\n";
 }
 
-/// The bar of the exactness tests: 30 x 10 x 10 mm, 6 x 2 x 2 cells, held at x = 0, pulled down at
-/// x = 30 mm, under gravity; two blades in `mode`: one from the top to 3 mm above the bottom through
-/// the middle, one through the top layer at x = end_mm (at 27.5 mm in remove mode it leaves the far
-/// end's three top nodes with no tetrahedron, one of them loaded).
-inline std::string bar_scenario(const std::string& roi, const std::string& mode = "remove", double end_mm = 27.5) {
-  const std::string end = std::to_string(end_mm);
-  return std::string(kMaterial) + R"(
+/// The bar's support and loads: held at x = 0, pulled down by 0.5 mN at x = 30 mm (ramped over
+/// 0.05 s), under gravity.
+inline constexpr const char* kBarHeldAndLoaded = R"(
 [boundary]
 fixed = ["x0"]
 [[load]]
@@ -84,6 +80,15 @@ force_N = [0.0, 0.0, -0.0005]
 ramp_s = 0.05
 [[load]]
 gravity_m_s2 = [0.0, 0.0, -9.81]
+)";
+
+/// The bar of the exactness tests: 30 x 10 x 10 mm, 6 x 2 x 2 cells, held at x = 0, pulled down at
+/// x = 30 mm, under gravity; two blades in `mode`: one from the top to 3 mm above the bottom through
+/// the middle, one through the top layer at x = end_mm (at 27.5 mm in remove mode it leaves the far
+/// end's three top nodes with no tetrahedron, one of them loaded).
+inline std::string bar_scenario(const std::string& roi, const std::string& mode = "remove", double end_mm = 27.5) {
+  const std::string end = std::to_string(end_mm);
+  return std::string(kMaterial) + kBarHeldAndLoaded + R"(
 [[cut]]
 name = "middle"
 mode = ")" +

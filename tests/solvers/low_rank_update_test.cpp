@@ -30,6 +30,12 @@ DenseMatrix random_spd(Index n, std::mt19937& rng) {
   return R * R.transpose() + static_cast<double>(n) * DenseMatrix::Identity(n, n);
 }
 
+/// changed(dofs, dofs) += B: the change a LowRankUpdate takes, made to the dense matrix.
+void add_on(DenseMatrix& changed, const std::vector<Index>& dofs, const DenseMatrix& B) {
+  for (std::size_t i = 0; i < dofs.size(); ++i)
+    for (std::size_t j = 0; j < dofs.size(); ++j) changed(dofs[i], dofs[j]) += B(static_cast<Index>(i), static_cast<Index>(j));
+}
+
 TEST(LowRankUpdate, SolvesWithTheChangedMatrixAsADenseFactorizationOfItDoes) {
   std::mt19937 rng(4);
   std::uniform_real_distribution<double> draw(-1, 1);
@@ -46,8 +52,7 @@ TEST(LowRankUpdate, SolvesWithTheChangedMatrixAsADenseFactorizationOfItDoes) {
       for (Index j = 0; j < r; ++j) S(i, j) = draw(rng);
     const DenseMatrix B = -0.5 * (S * S.transpose());  // a removal: negative semidefinite
     update.add(dofs, B);
-    for (Index i = 0; i < r; ++i)
-      for (Index j = 0; j < r; ++j) changed(dofs[static_cast<std::size_t>(i)], dofs[static_cast<std::size_t>(j)]) += B(i, j);
+    add_on(changed, dofs, B);
   }
   EXPECT_EQ(update.rank(), 5);
   Vector b(n), x(n);
@@ -85,8 +90,7 @@ TEST(LowRankUpdate, ColumnsSolvedAheadGiveTheSameSolveAndSpareTheChangeItsSolves
     if (d % 2 == 0) {
       EXPECT_EQ(solves, before) << "change " << d;
     }
-    for (int i = 0; i < 2; ++i)
-      for (int j = 0; j < 2; ++j) changed(dofs[static_cast<std::size_t>(i)], dofs[static_cast<std::size_t>(j)]) += B(i, j);
+    add_on(changed, dofs, B);
   }
   EXPECT_EQ(update.rank(), 24);
   Vector b(n), x(n);
