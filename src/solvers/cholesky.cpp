@@ -109,6 +109,16 @@ void Cholesky::factorize(const SparseMatrix& A) {
     throw NotPositiveDefinite(minor < impl_->factor->n && perm ? perm[minor] : -1, 0.0);
   }
   impl_->check(ok, "factorization");
+  // A simplicial LDL^T factor (CHOLMOD's choice for a small or sparse-enough matrix) stops only at
+  // a zero pivot: an indefinite matrix factors with a negative D(j, j). Positive definite means
+  // every pivot positive.
+  if (!impl_->factor->is_super && !impl_->factor->is_ll) {
+    const auto* p = static_cast<const int*>(impl_->factor->p);
+    const auto* x = static_cast<const double*>(impl_->factor->x);
+    const auto* perm = static_cast<const int*>(impl_->factor->Perm);
+    for (std::size_t j = 0; j < impl_->factor->n; ++j)
+      if (!(x[p[j]] > 0)) throw NotPositiveDefinite(perm ? perm[j] : static_cast<Index>(j), 0.0);
+  }
   // A positive semidefinite matrix (rigid-body modes) may factor with round-off-sized pivots.
   if (const double rc = rcond(); !(rc > 1e-15)) throw NotPositiveDefinite(-1, rc);
 }

@@ -50,5 +50,34 @@ TEST(Cholesky, OrdersTheDenseBlockLastAndSolvesAsTheUnconstrainedFactorDoes) {
   EXPECT_THROW(Cholesky().compute(K_eff, {sys.size()}), Error);
 }
 
+TEST(Cholesky, AnIndefiniteMatrixIsRefusedNamingItsColumnWhicheverFactorCholmodChooses) {
+  // A five-point Laplacian plus the identity on an 8 x 8 grid, its diagonal at node 9 made -5. A
+  // simplicial LDL^T factorization runs through a negative pivot without complaint (CHOLMOD stops
+  // only at a zero one); a supernodal LL^T stops there. Both are refused, naming column 9.
+  const Index m = 8, n = m * m;
+  std::vector<Eigen::Triplet<double>> entries;
+  for (Index i = 0; i < m; ++i)
+    for (Index j = 0; j < m; ++j) {
+      const Index k = i * m + j;
+      entries.emplace_back(k, k, k == 9 ? -5.0 : 5.0);
+      if (i > 0) entries.emplace_back(k, k - m, -1.0);
+      if (i + 1 < m) entries.emplace_back(k, k + m, -1.0);
+      if (j > 0) entries.emplace_back(k, k - 1, -1.0);
+      if (j + 1 < m) entries.emplace_back(k, k + 1, -1.0);
+    }
+  SparseMatrix A(n, n);
+  A.setFromTriplets(entries.begin(), entries.end());
+  A.makeCompressed();
+  for (const auto kind : {Cholesky::Kind::simplicial, Cholesky::Kind::supernodal, Cholesky::Kind::automatic}) {
+    Cholesky factor(kind);
+    try {
+      factor.compute(A);
+      ADD_FAILURE() << "an indefinite matrix factored (kind " << static_cast<int>(kind) << ")";
+    } catch (const NotPositiveDefinite& e) {
+      EXPECT_EQ(e.column, 9) << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace roifem::solvers
