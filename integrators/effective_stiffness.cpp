@@ -3,11 +3,13 @@
 
 #include <algorithm>
 
+#include "common/errors.hpp"
+
 namespace roifem::integrators {
 
 DirectSolve::DirectSolve(const model::SecondOrderSystem& system, const model::AverageAcceleration& rule, Refactor refactor)
-    : system_(system), refactor_(refactor), rhs_(system.size()) {
-  K_eff_.compute(rule.effective_stiffness(system), system.dense_block_dofs());
+    : system_(system), K_eff_(std::make_unique<solvers::Cholesky>()), refactor_(refactor), rhs_(system.size()) {
+  K_eff_->compute(rule.effective_stiffness(system), system.dense_block_dofs());
 }
 
 void DirectSolve::solve(const Vector& f, const Vector& w, Vector& x) {
@@ -16,14 +18,17 @@ void DirectSolve::solve(const Vector& f, const Vector& w, Vector& x) {
   if (changed_)
     changed_->solve(rhs_, x);
   else
-    K_eff_.solve(rhs_, x);
+    K_eff_->solve(rhs_, x);
+}
+
+void DirectSolve::solve_base(const Vector& f, const Vector& w, Vector& x) {
+  system_.apply_mass(w, rhs_);
+  rhs_ += f;
+  K_eff_->solve(rhs_, x);
 }
 
 solvers::LowRankUpdate& DirectSolve::changes() {
-  if (!changed_)
-    changed_ =
-        std::make_unique<solvers::LowRankUpdate>([this](const Vector& b, Vector& x) { K_eff_.solve(b, x); }, system_.size(),
-                                                 [this](const DenseMatrix& columns) { return K_eff_.solve_matrix(columns); });
+  if (!changed_) changed_ = solvers::correction_on(*K_eff_);
   return *changed_;
 }
 
@@ -33,13 +38,22 @@ bool DirectSolve::update(const std::vector<Index>& dofs, const DenseMatrix& B) {
     for (const Index d : dofs)
       if (std::find(changes().dofs().begin(), changes().dofs().end(), d) == changes().dofs().end()) ++r;
     const auto n = static_cast<double>(system_.size());
-    if (2 * n * r + 2 * r * r > 4 * K_eff_.factor_nonzeros()) return false;
+    if (2 * n * r + 2 * r * r > 4 * K_eff_->factor_nonzeros()) return false;
   }
   changes().add(dofs, B);
   return true;
 }
 
 void DirectSolve::prefetch(const std::vector<Index>& dofs) { changes().prefetch(dofs); }
+
+std::pair<std::unique_ptr<solvers::Cholesky>, std::unique_ptr<solvers::LowRankUpdate>> DirectSolve::adopt(
+    std::unique_ptr<solvers::Cholesky> factor, std::unique_ptr<solvers::LowRankUpdate> correction) {
+  if (!factor || factor->size() != system_.size()) throw Error("internal: DirectSolve::adopt: a factor of another size");
+  std::pair held{std::move(K_eff_), std::move(changed_)};
+  K_eff_ = std::move(factor);
+  changed_ = std::move(correction);
+  return held;
+}
 
 ConjugateGradients::ConjugateGradients(const model::SecondOrderSystem& system, const model::AverageAcceleration& rule,
                                        solvers::CgSettings settings)

@@ -11,6 +11,7 @@
 
 #include "model/average_acceleration.hpp"
 #include "model/second_order_system.hpp"
+#include "solvers/background_refactorization.hpp"
 #include "solvers/cholesky.hpp"
 #include "solvers/jacobi_cg.hpp"
 #include "solvers/low_rank_update.hpp"
@@ -45,6 +46,9 @@ class DirectSolve final : public EffectiveStiffnessSolver {
   DirectSolve(const model::SecondOrderSystem& system, const model::AverageAcceleration& rule,
               Refactor refactor = Refactor::when_costlier);
   void solve(const Vector& f, const Vector& w, Vector& x) override;
+  /// x = K_eff^-1 (f + M w) with the factored K_eff, without the changes taken since (correction()
+  /// adds them: x - Z c).
+  void solve_base(const Vector& f, const Vector& w, Vector& x);
   /// By Woodbury's identity on the factor it holds (solvers/low_rank_update.hpp); changes
   /// accumulate, until the policy asks for a new factor (returns false, taking nothing).
   bool update(const std::vector<Index>& dofs, const DenseMatrix& B) override;
@@ -53,10 +57,15 @@ class DirectSolve final : public EffectiveStiffnessSolver {
   /// Solves ahead for the dofs a coming change will touch (solvers::LowRankUpdate::prefetch), so
   /// that update() then costs no solve for them.
   void prefetch(const std::vector<Index>& dofs);
+  /// Takes a factor made elsewhere (a background refactorization) of K_eff with some of the changes
+  /// taken so far, and a correction on it holding the others: the same K_eff, held anew. Returns
+  /// the factor and correction it held (to be freed where a free costs no tick).
+  std::pair<std::unique_ptr<solvers::Cholesky>, std::unique_ptr<solvers::LowRankUpdate>> adopt(
+      std::unique_ptr<solvers::Cholesky> factor, std::unique_ptr<solvers::LowRankUpdate> correction);
 
  private:
   const model::SecondOrderSystem& system_;
-  solvers::Cholesky K_eff_;
+  std::unique_ptr<solvers::Cholesky> K_eff_;  ///< at a fixed address: the correction solves with it
   Refactor refactor_;
   std::unique_ptr<solvers::LowRankUpdate> changed_;  ///< made at the first update or prefetch
   Vector rhs_;

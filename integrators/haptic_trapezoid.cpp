@@ -86,8 +86,7 @@ void HapticTrapezoid::attach(const std::vector<std::array<Index, 3>>& node_dofs)
   is_held_.assign(static_cast<std::size_t>(n), false);
   for (const Index d : held) is_held_[static_cast<std::size_t>(d)] = true;
   held_ = std::move(held);
-  Z0_ = Z;
-  Z_ = std::move(Z);
+  Z0_ = std::move(Z);
   W_ = std::move(W);
   W_factor_ = std::move(W_factor);
   gap_.resize(m3);
@@ -113,15 +112,59 @@ void HapticTrapezoid::take_change(const model::SystemChange& change, const model
       throw InputError("haptic tool: the cut reaches dof " + std::to_string(d) +
                        ", which the tool holds: a cut stays clear of the tool's nodes");
   const Stopwatch clock;
-  K_eff_.update(change.dofs, change.effective(rule_.mass_factor(system_.damping)));
-  Z_ = Z0_;
-  K_eff_.correction()->correct(Z_);
-  for (std::size_t i = 0; i < held_.size(); ++i) W_.row(static_cast<Index>(i)) = Z_.row(held_[i]);
+  DenseMatrix B = change.effective(rule_.mass_factor(system_.damping));
+  K_eff_.update(change.dofs, B);
+  compliance_with_changes("after the cut");
+  follow_the_change(change, state);
+  if (background_) background_->add({change.dofs, std::move(B)});
+  change_s_ = clock.seconds();
+}
+
+void HapticTrapezoid::compliance_with_changes(const char* after) {
+  // Z = K_eff^-1 H^T with the changes = Z_0 - Z_U T, T = the correction's coefficients for Z_0's
+  // columns (r x 3m): W = H Z needs Z_U's held rows alone, O(r^2 m) with no n-sized product; a tick
+  // applies the rest (constrained_solve).
+  const solvers::LowRankUpdate& changes = *K_eff_.correction();
+  T_ = changes.coefficients(Z0_);
+  Z_U_held_ = changes.rows_of_Z(held_);
+  for (std::size_t i = 0; i < held_.size(); ++i) W_.row(static_cast<Index>(i)) = Z0_.row(held_[i]);
+  W_.noalias() -= Z_U_held_ * T_;
   W_ = 0.5 * (W_ + W_.transpose()).eval();
   W_factor_.compute(W_);
-  if (W_factor_.info() != Eigen::Success) throw SolverError("haptic tool: its compliance became singular after the cut");
-  follow_the_change(change, state);
-  change_s_ = clock.seconds();
+  if (W_factor_.info() != Eigen::Success) throw SolverError(std::string("haptic tool: its compliance became singular ") + after);
+  coefficients_.resize(changes.rank());
+}
+
+void HapticTrapezoid::refactor_in_background() {
+  if (held_.empty()) throw Error("internal: haptic trapezoid: refactor_in_background before attach");
+  if (K_eff_.correction() != nullptr && K_eff_.correction()->rank() > 0)
+    throw InputError("haptic tool: start the background refactorization before the model is cut");
+  if (background_) return;
+  DenseMatrix H_t = DenseMatrix::Zero(system_.size(), static_cast<Index>(held_.size()));
+  for (std::size_t j = 0; j < held_.size(); ++j) H_t(held_[j], static_cast<Index>(j)) = 1;
+  background_ = std::make_unique<solvers::BackgroundRefactorization>(rule_.effective_stiffness(system_),
+                                                                     system_.dense_block_dofs(), std::move(H_t));
+}
+
+void HapticTrapezoid::expect_change(std::vector<Index> dofs) {
+  if (background_) background_->expect(std::move(dofs));
+}
+
+void HapticTrapezoid::wait_for_background() {
+  if (background_) swap_in(background_->take_current());
+}
+
+void HapticTrapezoid::swap_in(std::unique_ptr<solvers::RefreshedFactor> fresh) {
+  if (!fresh) return;
+  const Stopwatch clock;
+  auto held = K_eff_.adopt(std::move(fresh->factor), std::move(fresh->correction));
+  Z0_ = std::move(fresh->base_solution);
+  if (background_->logged() > fresh->taken)  // changes taken after the worker last read the log: added here
+    for (const solvers::SymmetricChange& change : background_->changes_since(fresh->taken)) K_eff_.update(change.dofs, change.B);
+  compliance_with_changes("with the background's factor");
+  background_->retire(std::move(held.first), std::move(held.second));
+  ++swaps_;
+  swap_s_ = clock.seconds();
 }
 
 void HapticTrapezoid::follow_the_change(const model::SystemChange& change, const model::State& s) {
@@ -159,6 +202,7 @@ void HapticTrapezoid::follow_the_change(const model::SystemChange& change, const
 
 Vec3 HapticTrapezoid::tick(const Vec3& g, model::State& s) {
   if (held_.empty()) throw Error("internal: haptic trapezoid: tick before attach");
+  if (background_) swap_in(background_->take());
   ++k_;
   s.t = t0_ + static_cast<double>(k_) * rule_.dt();
   system_.load.evaluate(s.t, f_);
@@ -166,10 +210,10 @@ Vec3 HapticTrapezoid::tick(const Vec3& g, model::State& s) {
   for (std::size_t i = 0; i < held_.size(); ++i) load_on_tool[static_cast<Index>(i % 3)] += f_[held_[i]];
   rule_.history(system_, s, a_, f_, w_);
   if (!system_.is_nonlinear()) {
-    constrained_solve(f_, g);  // the plain step, then the tool's constraint
+    constrained_solve(f_, w_, g, u_next_);  // the plain step, then the tool's constraint
   } else {
     rhs_ = f_ - excess_;  // the first iteration: g at u_n
-    constrained_solve(rhs_, g);
+    constrained_solve(rhs_, w_, g, u_next_);
     excess_used_ = excess_;
     iterate_nonlinear();
   }
@@ -182,11 +226,25 @@ Vec3 HapticTrapezoid::tick(const Vec3& g, model::State& s) {
   return force;
 }
 
-void HapticTrapezoid::constrained_solve(const Vector& rhs, const Vec3& g) {
-  K_eff_.solve(rhs, w_, u_next_);
-  for (std::size_t i = 0; i < held_.size(); ++i) gap_[static_cast<Index>(i)] = u_next_[held_[i]] - g[static_cast<Index>(i % 3)];
+void HapticTrapezoid::constrained_solve(const Vector& rhs, const Vector& w, const Vec3& g, Vector& u) {
+  // With the changes taken by Woodbury's correction (y = K_0^-1 (rhs + M w) with the factored K_eff,
+  // c its coefficients: u* = y - Z_U c) and Z = Z_0 - Z_U T (compliance_with_changes):
+  //   lambda = W^-1 (H u* - g),   u = u* - Z lambda = y - Z_0 lambda - Z_U (c - T lambda),
+  // one n x 3m and one n x r product, as the plain correction and the constraint cost apart.
+  K_eff_.solve_base(rhs, w, u);
+  const solvers::LowRankUpdate* changes = K_eff_.correction();
+  const bool changed = changes != nullptr && changes->rank() > 0;
+  for (std::size_t i = 0; i < held_.size(); ++i) gap_[static_cast<Index>(i)] = u[held_[i]] - g[static_cast<Index>(i % 3)];
+  if (changed) {
+    changes->coefficients(u, coefficients_);
+    gap_.noalias() -= Z_U_held_ * coefficients_;
+  }
   W_factor_.solveInPlace(gap_);  // lambda
-  u_next_.noalias() -= Z_ * gap_;
+  u.noalias() -= Z0_ * gap_;
+  if (changed) {
+    coefficients_.noalias() -= T_ * gap_;
+    changes->subtract(coefficients_, u);
+  }
 }
 
 void HapticTrapezoid::iterate_nonlinear() {
@@ -207,11 +265,8 @@ void HapticTrapezoid::iterate_nonlinear() {
   last_iterations_ = 1;
   last_residual_ = residual();
   while (last_iterations_ < newton_.iterations && !(newton_.tolerance > 0 && last_residual_ <= newton_.tolerance)) {
-    rhs_ = excess_used_ - excess_;  // -R
-    K_eff_.solve(rhs_, zero_, step_);
-    for (std::size_t i = 0; i < held_.size(); ++i) gap_[static_cast<Index>(i)] = step_[held_[i]];
-    W_factor_.solveInPlace(gap_);
-    step_.noalias() -= Z_ * gap_;  // H d = 0: the held dofs stay where the tool put them
+    rhs_ = excess_used_ - excess_;                        // -R
+    constrained_solve(rhs_, zero_, Vec3::Zero(), step_);  // H d = 0: the held dofs stay where the tool put them
     u_next_ += step_;
     excess_used_ = excess_;
     ++last_iterations_;

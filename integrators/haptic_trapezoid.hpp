@@ -35,6 +35,7 @@
 /// solve.
 #include <Eigen/Cholesky>
 #include <array>
+#include <memory>
 #include <vector>
 
 #include "integrators/effective_stiffness.hpp"
@@ -67,7 +68,8 @@ class HapticTrapezoid {
   /// The system has been changed in place (a cut: model/system_change.hpp) after the last tick,
   /// at `state`: K_eff's factor takes the change by Woodbury's correction (DirectSolve::update),
   /// the tool's compliance follows by the same identity from attach's Z, with no solve:
-  ///   Z = Z_0 - K_eff^-1 U (I + B U^T K_eff^-1 U)^-1 B U^T Z_0,   W = H Z,
+  ///   Z = Z_0 - Z_U T,   Z_U = K_0^-1 U,   T = (I + B U^T Z_U)^-1 B U^T Z_0,   W = H Z,
+  /// formed at the held rows alone (O(r^2 m)); a tick applies Z through Z_0 and Z_U (tick()),
   /// and the acceleration is made consistent with the changed system at the free dofs (the held
   /// dofs' stays the tool's). InputError when the change reaches a held dof (the tool's rows of
   /// K would change), on a nonlinear model or with a mass that is not diagonal.
@@ -75,6 +77,24 @@ class HapticTrapezoid {
   /// Solves ahead for the dofs a coming change will touch (a blade's next tetrahedra), between
   /// ticks: take_change then needs no solve for them, only the small capacitance and the products.
   void prefetch_change(const std::vector<Index>& dofs) { K_eff_.prefetch(dofs); }
+  /// Factors K_eff afresh in a second thread as changes come (solvers/background_refactorization.hpp):
+  /// each new factor, with the changes taken while it was made held in its correction, is swapped
+  /// in at the start of a tick, so that the correction's rank (every tick's O(n r), every change's
+  /// capacitance) stays small and this thread never waits on a factorization. The trajectory is
+  /// the same to round-off whichever factor a tick uses. Call after attach, before any change.
+  /// The BLAS runs on one thread while the loop lives (the two threads take a core each).
+  void refactor_in_background();
+  /// The dofs the coming changes will touch (a blade's next tetrahedra): with a background
+  /// refactorization, each new factor comes with their columns, so that a change taken on it needs
+  /// no solve on this thread (replaces the dofs given before). Without one: nothing (prefetch_change
+  /// solves them here).
+  void expect_change(std::vector<Index> dofs);
+  /// Waits for the background's factor of every change taken so far and swaps it in: a known point
+  /// (tests, replays). Nothing without a background refactorization or a change since the last.
+  void wait_for_background();
+  /// Factors swapped in from the background, and the last swap's time on this thread (s).
+  long background_factors() const { return swaps_; }
+  double swap_seconds() const { return swap_s_; }
   /// One tick: the tool at g (m) at t_{n+1} = t_0 + (n + 1) dt; advances `state` and returns the
   /// tool's force on the tissue (N). Allocates nothing.
   Vec3 tick(const Vec3& g, model::State& state);
@@ -89,17 +109,24 @@ class HapticTrapezoid {
   double attach_seconds() const { return attach_s_; }
   /// The last take_change's time (s): the factor's correction and the compliance's.
   double change_seconds() const { return change_s_; }
+  /// Columns K_eff^-1 e_d the last take_change solved (those not ahead: 0 for a change fully foreseen).
+  Index change_solves() const { return K_eff_.correction() ? K_eff_.correction()->last_solved() : 0; }
 
  private:
   const model::SecondOrderSystem& system_;
   model::AverageAcceleration rule_;
   DirectSolve K_eff_;
   std::vector<Index> held_;  // 3m dofs, x, y, z of each node in turn
-  DenseMatrix W_, Z_;
-  DenseMatrix Z0_;  ///< Z with the factored K_eff, before any change
+  DenseMatrix W_;
+  DenseMatrix Z0_;        ///< Z = K_eff^-1 H^T with the factored K_eff (n x 3m)
+  DenseMatrix T_;         ///< the changes' coefficients for Z0_'s columns (r x 3m): Z = Z0_ - Z_U T_
+  DenseMatrix Z_U_held_;  ///< the correction's Z_U at the held rows (3m x r)
+  Vector coefficients_;   ///< a tick's correction coefficients (r)
   Eigen::LLT<DenseMatrix> W_factor_;
   Eigen::SparseMatrix<double, Eigen::RowMajor> rows_;  // 3 x n: the held dofs' rows of K summed per component
-  double attach_s_ = 0, change_s_ = 0, t0_ = 0;
+  double attach_s_ = 0, change_s_ = 0, swap_s_ = 0, t0_ = 0;
+  std::unique_ptr<solvers::BackgroundRefactorization> background_;
+  long swaps_ = 0;
   long k_ = 0;
   Vector a_, f_, w_, u_next_, work_, gap_;
   // A nonlinear model's modified Newton.
@@ -110,10 +137,14 @@ class HapticTrapezoid {
   Vector rhs_, zero_, step_;
   int last_iterations_ = 0;
   double last_residual_ = 0;
+  /// W, its factor and what a tick needs of the changes taken (T_, Z_U_held_), after a change.
+  void compliance_with_changes(const char* after);
+  /// Holds a factor the background made (none: nothing), adding the changes taken since it read the log.
+  void swap_in(std::unique_ptr<solvers::RefreshedFactor> fresh);
   /// The acceleration consistent with the system `change` made, at the change's dofs (take_change).
   void follow_the_change(const model::SystemChange& change, const model::State& state);
-  /// u_next_ = u^1, the constrained solve of K_eff u = rhs (the step's right-hand side).
-  void constrained_solve(const Vector& rhs, const Vec3& g);
+  /// u: the solve of K_eff u = rhs + M w (the changes taken included) under the tool's constraint H u = G(g).
+  void constrained_solve(const Vector& rhs, const Vector& w, const Vec3& g, Vector& u);
   /// u_next_ from u^1 to the budget's answer; excess_ at it.
   void iterate_nonlinear();
 };

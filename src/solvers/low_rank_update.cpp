@@ -119,6 +119,7 @@ void LowRankUpdate::add(const std::vector<Index>& dofs, const DenseMatrix& B) {
   dofs_ = std::move(all);
   B_ = std::move(B_sum);
   capacitance_ = std::move(capacitance);
+  last_solved_ = static_cast<Index>(to_solve.size());
   Ux_.resize(r);
   s_.resize(r);
   t_.resize(r);
@@ -127,18 +128,33 @@ void LowRankUpdate::add(const std::vector<Index>& dofs, const DenseMatrix& B) {
 void LowRankUpdate::solve(const Vector& b, Vector& x) const {
   solve_A_(b, x);
   if (dofs_.empty()) return;
+  coefficients(x, t_);
+  subtract(t_, x);
+}
+
+void LowRankUpdate::coefficients(const Vector& x, Vector& c) const {
   for (std::size_t i = 0; i < dofs_.size(); ++i) Ux_[static_cast<Index>(i)] = x[dofs_[i]];
   s_.noalias() = B_ * Ux_;
-  t_ = capacitance_.solve(s_);
-  x.noalias() -= Z_.leftCols(rank()) * t_;
+  c = capacitance_.solve(s_);
+}
+
+DenseMatrix LowRankUpdate::coefficients(const DenseMatrix& X) const {
+  DenseMatrix UtX(rank(), X.cols());
+  for (std::size_t i = 0; i < dofs_.size(); ++i) UtX.row(static_cast<Index>(i)) = X.row(dofs_[i]);
+  return capacitance_.solve(B_ * UtX);
+}
+
+void LowRankUpdate::subtract(const Vector& c, Vector& x) const { x.noalias() -= Z_.leftCols(rank()) * c; }
+
+DenseMatrix LowRankUpdate::rows_of_Z(const std::vector<Index>& rows) const {
+  DenseMatrix out(static_cast<Index>(rows.size()), rank());
+  for (std::size_t i = 0; i < rows.size(); ++i) out.row(static_cast<Index>(i)) = Z_.row(rows[i]).head(rank());
+  return out;
 }
 
 void LowRankUpdate::correct(DenseMatrix& X) const {
   if (dofs_.empty()) return;
-  DenseMatrix UtX(rank(), X.cols());
-  for (std::size_t i = 0; i < dofs_.size(); ++i) UtX.row(static_cast<Index>(i)) = X.row(dofs_[i]);
-  const DenseMatrix T = capacitance_.solve(B_ * UtX);
-  X.noalias() -= Z_.leftCols(rank()) * T;
+  X.noalias() -= Z_.leftCols(rank()) * coefficients(X);
 }
 
 }  // namespace roifem::solvers

@@ -36,11 +36,22 @@ class LowRankUpdate {
   void solve(const Vector& b, Vector& x) const;
   /// X = A^-1 R for some R, in place: becomes (A + U B U^T)^-1 R (no solve with A's factor).
   void correct(DenseMatrix& X) const;
+  /// The correction in its parts, for a caller that combines it with others (the haptic loop's
+  /// constraint): for x = A^-1 b, (A + U B U^T)^-1 b = x - Z c with c = (I + B U^T Z)^-1 B U^T x.
+  /// c (r) for x; C = the same for the columns of X (r x X.cols()): O(r^2) per column.
+  void coefficients(const Vector& x, Vector& c) const;
+  DenseMatrix coefficients(const DenseMatrix& X) const;
+  /// x -= Z c: O(n r).
+  void subtract(const Vector& c, Vector& x) const;
+  /// Z's rows `rows` (rows.size() x r).
+  DenseMatrix rows_of_Z(const std::vector<Index>& rows) const;
   /// Computes A^-1 e_d for the dofs given (those not yet in U nor computed), for later add()s.
   /// InputError for a dof out of range.
   void prefetch(const std::vector<Index>& dofs);
   /// Whether A^-1 e_d is at hand for dof d (in U already, or prefetched).
   bool has_column(Index d) const;
+  /// Columns the last add() solved (those not ahead).
+  Index last_solved() const { return last_solved_; }
   /// r: the dofs the changes touch.
   Index rank() const { return static_cast<Index>(dofs_.size()); }
   const std::vector<Index>& dofs() const { return dofs_; }
@@ -56,6 +67,7 @@ class LowRankUpdate {
   std::unordered_map<Index, Vector> ahead_;       ///< prefetched columns A^-1 e_d
   Eigen::PartialPivLU<DenseMatrix> capacitance_;  ///< I + B U^T Z
   mutable Vector Ux_, s_, t_;                     ///< solve()'s work, sized by add()
+  Index last_solved_ = 0;
 };
 
 }  // namespace roifem::solvers
