@@ -14,11 +14,16 @@
 //   sample run:   build/release/benchmarks/roifem_cut_benchmark --nodes 20000 100000 --rois 300 1000 --out results/cut
 #include <CLI/CLI.hpp>
 
+#include <pthread.h>
+#include <sched.h>
+
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <functional>
 #include <random>
+#include <thread>
 
 #include "brain_meshes.hpp"
 #include "common/errors.hpp"
@@ -34,6 +39,7 @@
 #include "scenario/scenario.hpp"
 #include "simulation/run_loop.hpp"
 #include "simulation/scenario_stepper.hpp"
+#include "solvers/blas_threads.hpp"
 #include "solvers/cholesky.hpp"
 #include "solvers/low_rank_update.hpp"
 
@@ -50,6 +56,7 @@ struct Options {
   std::filesystem::path out = "cut-results";
   double model_timeout_s = 1800;
   bool machine_bounds = true;
+  bool cut_table = true;  ///< the cut events' table (cut.csv)
 };
 
 /// The haptic tool: the ROI's nodes of the right wall nearest the target (as the haptic benchmark's).
@@ -296,33 +303,54 @@ std::string measure_blade(const std::filesystem::path& mesh_file, long roi_nodes
         ++skipped;
     }
   const auto hand = [](long tick) { return Vec3(0.001 * std::min(static_cast<double>(tick) / 50.0, 1.0), 0, 0); };
+  // Each loop paced as a device's is: tick k starts at (k - 1) dt after the first (spinning until
+  // then; at once when behind), so that the blade and the background thread see the run's real time.
+  const auto pace = [dt](const Stopwatch& run, long k) {
+    while (run.seconds() < static_cast<double>(k - 1) * dt) {
+    }
+  };
 
-  // The loop with no blade.
-  std::vector<double> plain_s, cut_s;
-  {
+  // The loop with no blade: alone, then beside a factorization of the same K_eff made again and
+  // again in a second thread, as the background refactorization's worker makes them (SCHED_IDLE, the
+  // BLAS on one thread), without its cuts: what sharing the machine alone costs a tick.
+  const auto plain_loop = [&] {
+    std::vector<double> seconds;
     model::SecondOrderSystem plain_system = system;
     integrators::HapticTrapezoid plain(plain_system, dt);
     plain.attach(held);
     model::State state = model::State::at_rest(n);
     plain.reset(state);
+    const Stopwatch run;
     for (long k = 1; k <= ticks; ++k) {
+      pace(run, k);
       const Stopwatch clock;
       plain.tick(hand(k), state);
-      plain_s.push_back(clock.seconds());
+      seconds.push_back(clock.seconds());
     }
+    return seconds;
+  };
+  const std::vector<double> plain_s = plain_loop();
+  std::vector<double> beside_s;
+  {
+    const SparseMatrix K_eff = rule.effective_stiffness(system);
+    const std::vector<Index> last = system.dense_block_dofs();
+    const solvers::BlasThreadsScope one_blas_thread(1);
+    std::atomic<bool> stop{false};
+    std::thread factoring([&] {
+      const sched_param lowest{};
+      pthread_setschedparam(pthread_self(), SCHED_IDLE, &lowest);
+      while (!stop) {
+        solvers::Cholesky again;
+        again.compute(K_eff, last);
+      }
+    });
+    beside_s = plain_loop();
+    stop = true;
+    factoring.join();
   }
-  // The loop with the blade.
-  model::SecondOrderSystem cut_system = system;
-  integrators::HapticTrapezoid loop(cut_system, dt);
-  loop.attach(held);
-  model::State state = model::State::at_rest(n);
-  loop.reset(state);
-  fem::ElementRemover remover(brain->mesh, *brain->model.dofs, brain->model.materials);
-  std::size_t next = 0, ahead = 0;
-  std::vector<Index> queue;                       // dofs of coming tetrahedra, to be solved ahead
-  double column_s = simulation::median(plain_s);  // a column's solve costs about a tick's
-  long events = 0, removed = 0;
-  double event_max = 0, prefetched = 0;
+  // The loop with the blade: its factor corrected alone (the columns ahead solved on this thread in
+  // each tick's spare time), or also made afresh in the background (the columns ahead with each new
+  // factor, the coming tetrahedra's dofs given at every cut).
   const auto unknowns_of = [&](Index e) {
     std::vector<Index> out;
     for (const int node : brain->mesh.tets[static_cast<std::size_t>(e)])
@@ -330,42 +358,94 @@ std::string measure_blade(const std::filesystem::path& mesh_file, long roi_nodes
         if (const int d = brain->model.dofs->free_dof(node, c); d >= 0) out.push_back(position[static_cast<std::size_t>(d)]);
     return out;
   };
-  for (long k = 1; k <= ticks; ++k) {
-    const double t = static_cast<double>(k - 1) * dt;  // the state's time: the step's start
-    const Stopwatch clock;
-    std::vector<Index> due;
-    for (; next < schedule.size() && schedule[next].time <= t; ++next) due.push_back(schedule[next].element);
-    if (!due.empty()) {
-      std::sort(due.begin(), due.end());
-      const fem::ElementRemoval removal = remover.remove(due, 0.0);
-      cut_haptic(loop, cut_system, state, removal, *brain->model.dofs, position);
-      event_max = std::max(event_max, loop.change_seconds());
-      ++events;
-      removed += static_cast<long>(due.size());
+  struct BladeRun {
+    std::vector<double> seconds;
+    long events = 0, removed = 0, swaps = 0, cold = 0;  // cold: cuts that solved columns when they came
+    double event_max = 0, prefetched = 0, swap_max = 0;
+  };
+  const auto cut_loop = [&](bool background) {
+    BladeRun run;
+    model::SecondOrderSystem cut_system = system;
+    integrators::HapticTrapezoid loop(cut_system, dt);
+    loop.attach(held);
+    if (background) loop.refactor_in_background();
+    model::State state = model::State::at_rest(n);
+    loop.reset(state);
+    fem::ElementRemover remover(brain->mesh, *brain->model.dofs, brain->model.materials);
+    std::size_t next = 0, ahead = 0;
+    std::vector<Index> queue;                       // dofs of coming tetrahedra, to be solved ahead
+    double column_s = simulation::median(plain_s);  // a column's solve costs about a tick's
+    const auto expect_coming = [&](double t) {
+      std::vector<Index> coming;
+      for (std::size_t i = next; i < schedule.size() && schedule[i].time <= t + 0.5; ++i)
+        for (const Index d : unknowns_of(schedule[i].element)) coming.push_back(d);
+      loop.expect_change(std::move(coming));
+    };
+    if (background) expect_coming(0);
+    const Stopwatch run_clock;
+    for (long k = 1; k <= ticks; ++k) {
+      pace(run_clock, k);
+      const double t = static_cast<double>(k - 1) * dt;  // the state's time: the step's start
+      const Stopwatch clock;
+      std::vector<Index> due;
+      for (; next < schedule.size() && schedule[next].time <= t; ++next) due.push_back(schedule[next].element);
+      if (!due.empty()) {
+        std::sort(due.begin(), due.end());
+        const fem::ElementRemoval removal = remover.remove(due, 0.0);
+        cut_haptic(loop, cut_system, state, removal, *brain->model.dofs, position);
+        run.event_max = std::max(run.event_max, loop.change_seconds());
+        run.cold += loop.change_solves() > 0 ? 1 : 0;
+        ++run.events;
+        run.removed += static_cast<long>(due.size());
+      }
+      if (background) {  // the coming tetrahedra, given again at every cut and as each enters the horizon
+        bool coming = !due.empty();
+        for (; ahead < schedule.size() && schedule[ahead].time <= t + 0.5; ++ahead) coming = true;
+        if (coming) expect_coming(t);
+      }
+      const long swaps_before = loop.background_factors();
+      loop.tick(hand(k), state);
+      if (loop.background_factors() > swaps_before) run.swap_max = std::max(run.swap_max, loop.swap_seconds());
+      if (!background) {
+        for (; ahead < schedule.size() && schedule[ahead].time <= t + 0.5; ++ahead)
+          for (const Index d : unknowns_of(schedule[ahead].element)) queue.push_back(d);
+        // A column only where it ends before the deadline (its cost: the slowest one so far, at least a solve's).
+        while (!queue.empty() && clock.seconds() + column_s < 0.9 * dt) {
+          const Stopwatch column_clock;
+          loop.prefetch_change({queue.back()});
+          queue.pop_back();
+          ++run.prefetched;
+          column_s = std::max(column_s, column_clock.seconds());
+        }
+      }
+      run.seconds.push_back(clock.seconds());
     }
-    loop.tick(hand(k), state);
-    for (; ahead < schedule.size() && schedule[ahead].time <= t + 0.5; ++ahead)
-      for (const Index d : unknowns_of(schedule[ahead].element)) queue.push_back(d);
-    // A column only where it ends before the deadline (its cost: the slowest one so far, at least a solve's).
-    while (!queue.empty() && clock.seconds() + column_s < 0.9 * dt) {
-      const Stopwatch column_clock;
-      loop.prefetch_change({queue.back()});
-      queue.pop_back();
-      ++prefetched;
-      column_s = std::max(column_s, column_clock.seconds());
-    }
-    cut_s.push_back(clock.seconds());
-  }
-  const LoopTicks plain = loop_ticks(plain_s, dt), cut = loop_ticks(cut_s, dt);
+    run.swaps = loop.background_factors();
+    return run;
+  };
+  const BladeRun corrected = cut_loop(false), refreshed = cut_loop(true);
+  solvers::Cholesky factor;  // its size: what a tick streams twice (L3 or memory)
+  factor.compute(rule.effective_stiffness(system), system.dense_block_dofs());
+  const double factor_mb = factor.factor_nonzeros() * 8e-6;
+  const LoopTicks plain = loop_ticks(plain_s, dt), beside = loop_ticks(beside_s, dt), cut = loop_ticks(corrected.seconds, dt),
+                  background = loop_ticks(refreshed.seconds, dt);
   const auto nodes = static_cast<long long>(brain->mesh.num_nodes());
-  return io::format("%8lld %5ld %5.1f %6ld %6zu %5ld %5ld | %7.3f %7.3f %7.2f %6.1f | %7.3f %7.3f %7.2f %6.1f | %8.2f\t", nodes,
-                    roi_nodes, speed * 1e3, ticks, schedule.size(), skipped, events, plain.median * 1e3, plain.p99 * 1e3,
-                    plain.max * 1e3, plain.late_per_10k, cut.median * 1e3, cut.p99 * 1e3, cut.max * 1e3, cut.late_per_10k,
-                    event_max * 1e3) +
-         io::format("%lld,%ld,%g,%ld,%zu,%ld,%ld,%ld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.0f\n", nodes, roi_nodes,
-                    speed * 1e3, ticks, schedule.size(), skipped, events, removed, plain.median * 1e3, plain.p99 * 1e3,
-                    plain.max * 1e3, plain.late_per_10k, cut.median * 1e3, cut.p99 * 1e3, cut.max * 1e3, cut.late_per_10k,
-                    event_max * 1e3, prefetched);
+  return io::format(
+             "%8lld %5ld %5.1f %6ld %6zu %5ld %5ld | %7.3f %7.3f %7.2f %6.1f | %7.3f %7.3f %6.1f | %7.3f %7.3f %7.2f %6.1f "
+             "%8.2f %4ld | %7.3f %7.3f %7.2f %6.1f %8.2f %4ld %5ld %7.3f %6.1f\t",
+             nodes, roi_nodes, speed * 1e3, ticks, schedule.size(), skipped, corrected.events, plain.median * 1e3,
+             plain.p99 * 1e3, plain.max * 1e3, plain.late_per_10k, beside.median * 1e3, beside.p99 * 1e3, beside.late_per_10k,
+             cut.median * 1e3, cut.p99 * 1e3, cut.max * 1e3, cut.late_per_10k, corrected.event_max * 1e3, corrected.cold,
+             background.median * 1e3, background.p99 * 1e3, background.max * 1e3, background.late_per_10k,
+             refreshed.event_max * 1e3, refreshed.cold, refreshed.swaps, refreshed.swap_max * 1e3, factor_mb) +
+         io::format("%lld,%ld,%g,%ld,%zu,%ld,%ld,%ld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%ld,%.0f,", nodes, roi_nodes,
+                    speed * 1e3, ticks, schedule.size(), skipped, corrected.events, corrected.removed, plain.median * 1e3,
+                    plain.p99 * 1e3, plain.max * 1e3, plain.late_per_10k, cut.median * 1e3, cut.p99 * 1e3, cut.max * 1e3,
+                    cut.late_per_10k, corrected.event_max * 1e3, corrected.cold, corrected.prefetched) +
+         io::format("%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%ld,%ld,%.6g,%.4g\n", beside.median * 1e3, beside.p99 * 1e3,
+                    beside.late_per_10k, background.median * 1e3, background.p99 * 1e3, background.max * 1e3,
+                    background.late_per_10k, refreshed.event_max * 1e3, refreshed.cold, refreshed.swaps, refreshed.swap_max * 1e3,
+                    factor_mb);
 }
 
 /// Split mode on the same brain and ROI, run as a scenario (the copies are the model's from the
@@ -462,23 +542,35 @@ int run(const Options& o) {
   std::printf("%8s %5s %6s %6s %5s %5s %8s %9s %8s %8s %10s %9s  %7s | %8s %5s %7s %7s | %8s %8s %5s\n", "nodes", "ROI", "dofs",
               "iface", "cut", "r", "form ms", "update ms", "solve ms", "after ms", "refactor ms", "condense s", "gap", "event ms",
               "ticks", "tick ms", "after ms", "ahead ms", "event ms", "ticks");
-  each_model(o, csv, [&](const std::filesystem::path& mesh_file, long roi) { return measure(mesh_file, roi, o.cuts); });
+  if (o.cut_table)
+    each_model(o, csv, [&](const std::filesystem::path& mesh_file, long roi) { return measure(mesh_file, roi, o.cuts); });
   if (o.blade_ticks > 0) {
     io::CsvWriter blade_csv(o.out / "blade.csv",
                             "nodes,roi_nodes,speed_mm_s,ticks,tetrahedra,skipped,events,removed,plain_median_ms,plain_p99_ms,"
                             "plain_max_ms,plain_late_per_10k,cut_median_ms,cut_p99_ms,cut_max_ms,cut_late_per_10k,event_max_ms,"
-                            "columns_ahead");
+                            "cold_cuts,columns_ahead,beside_median_ms,beside_p99_ms,beside_late_per_10k,background_median_ms,"
+                            "background_p99_ms,background_max_ms,"
+                            "background_late_per_10k,background_event_max_ms,background_cold_cuts,background_factors,swap_max_ms,"
+                            "factor_mb");
     std::printf(
         "\nBlade in the loop: an 8 mm edge beside the opening swept 16 mm down at %g mm/s from t = 0.2 s while the haptic loop "
-        "runs (1 kHz, a tool on 10 wall nodes); each tetrahedron removed at the tick the blade reaches it, the next ones' "
-        "columns solved ahead in each tick's spare time. Ticks (ms) without the blade, then with it (late: over 1 ms, per "
-        "10,000); the largest event (ms)\n",
+        "runs (1 kHz, paced; a tool on 10 wall nodes); each tetrahedron removed at the tick the blade reaches it. Ticks (ms) "
+        "without the blade, alone and beside a factorization of the same K_eff repeated in a second thread; then with the blade "
+        "(late: over 1 ms, per 10,000), the largest cut event (ms) and the cuts that solved "
+        "columns when they came (cold): the factor corrected alone (the next tetrahedra's columns solved ahead in each tick's "
+        "spare time), then also made afresh in a second thread (each new factor with the columns of the tetrahedra due within "
+        "0.5 s; the factors swapped in, the largest swap, ms); the factor's size (MB of L's values, which a tick reads twice)\n",
         o.blade_speed * 1e3);
-    std::printf("%8s %5s %5s %6s %6s %5s %5s | %7s %7s %7s %6s | %7s %7s %7s %6s | %8s\n", "nodes", "ROI", "mm/s", "ticks",
-                "tets", "skip", "cuts", "median", "p99", "max", "late", "median", "p99", "max", "late", "event ms");
+    std::printf(
+        "%8s %5s %5s %6s %6s %5s %5s | %7s %7s %7s %6s | %7s %7s %6s | %7s %7s %7s %6s %8s %4s | %7s %7s %7s %6s %8s %4s %5s %7s "
+        "%6s\n",
+        "nodes", "ROI", "mm/s", "ticks", "tets", "skip", "cuts", "median", "p99", "max", "late", "median", "p99", "late",
+        "median", "p99", "max", "late", "event ms", "cold", "median", "p99", "max", "late", "event ms", "cold", "swaps",
+        "swap ms", "L MB");
     each_model(o, blade_csv, [&](const std::filesystem::path& mesh_file, long roi) {
       return measure_blade(mesh_file, roi, o.blade_speed, o.blade_ticks);
     });
+    blade_csv.close();
     std::printf("wrote %s\n", (o.out / "blade.csv").c_str());
   }
   if (!o.split_sizes.empty()) {
@@ -493,8 +585,10 @@ int run(const Options& o) {
                 "split ms", "after ms", "refactor ms");
     each_model(o, split_csv,
                [&](const std::filesystem::path& mesh_file, long roi) { return measure_split(mesh_file, roi, o.split_sizes); });
+    split_csv.close();
     std::printf("wrote %s\n", (o.out / "split.csv").c_str());
   }
+  csv.close();
   std::printf("wrote %s\n", (o.out / "cut.csv").c_str());
   return 0;
 }
@@ -516,6 +610,7 @@ int main(int argc, char** argv) {
   });
   app.add_option("--split-sizes", o.split_sizes, "split mode: blade edge and depth (mm), one scenario each (none: skip)");
   app.add_option("--out", o.out, "output directory (cut.csv)");
+  app.add_flag("!--no-cut-table", o.cut_table, "skip the cut events' table (the blade and split runs alone)");
   app.add_flag("!--no-machine-bounds", o.machine_bounds, "skip measuring the machine's bounds (smoke tests)");
   CLI11_PARSE(app, argc, argv);
   return roifem::bench::run(o);

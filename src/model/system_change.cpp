@@ -41,7 +41,7 @@ void add_block(SparseMatrix& A, const std::vector<Index>& dofs, const DenseMatri
   SparseMatrix change(A.rows(), A.cols());
   change.setFromTriplets(entries.begin(), entries.end());
   SparseMatrix sum = A + change;
-  A = std::move(sum);
+  A.swap(sum);  // Eigen 3.4's sparse matrices have no move assignment
 }
 
 void add_diagonal(SparseMatrix& A, const std::vector<Index>& dofs, const Vector& d) {

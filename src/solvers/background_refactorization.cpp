@@ -14,8 +14,8 @@ std::unique_ptr<LowRankUpdate> correction_on(Cholesky& factor) {
                                          [&factor](const DenseMatrix& columns) { return factor.solve_matrix(columns); });
 }
 
-BackgroundRefactorization::BackgroundRefactorization(SparseMatrix A, std::vector<Index> last, DenseMatrix R)
-    : A_(std::move(A)), last_(std::move(last)), R_(std::move(R)) {
+BackgroundRefactorization::BackgroundRefactorization(const SparseMatrix& A, std::vector<Index> last, DenseMatrix R)
+    : A_(A), last_(std::move(last)), R_(std::move(R)) {
   if (A_.rows() != A_.cols() || R_.rows() != A_.rows())
     throw Error("internal: background refactorization: A is " + std::to_string(A_.rows()) + " x " + std::to_string(A_.cols()) +
                 ", R has " + std::to_string(R_.rows()) + " rows");

@@ -60,7 +60,7 @@ class BackgroundRefactorization {
  public:
   /// A as it is now (compressed, symmetric), the dofs its factors order last (Cholesky::analyze),
   /// the fixed right-hand sides R (n x m). Starts the worker; it factors nothing until a change.
-  BackgroundRefactorization(SparseMatrix A, std::vector<Index> last, DenseMatrix R);
+  BackgroundRefactorization(const SparseMatrix& A, std::vector<Index> last, DenseMatrix R);
   BackgroundRefactorization(const BackgroundRefactorization&) = delete;
   BackgroundRefactorization& operator=(const BackgroundRefactorization&) = delete;
   /// Stops the worker (a factorization under way runs to its end) and joins it.
