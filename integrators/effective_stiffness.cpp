@@ -13,18 +13,18 @@ DirectSolve::DirectSolve(const model::SecondOrderSystem& system, const model::Av
 }
 
 void DirectSolve::solve(const Vector& f, const Vector& w, Vector& x) {
-  system_.apply_mass(w, rhs_);
-  rhs_ += f;
   if (changed_)
-    changed_->solve(rhs_, x);
+    changed_->solve(right_hand_side(f, w), x);
   else
-    K_eff_->solve(rhs_, x);
+    K_eff_->solve(right_hand_side(f, w), x);
 }
 
-void DirectSolve::solve_base(const Vector& f, const Vector& w, Vector& x) {
+void DirectSolve::solve_base(const Vector& f, const Vector& w, Vector& x) { K_eff_->solve(right_hand_side(f, w), x); }
+
+const Vector& DirectSolve::right_hand_side(const Vector& f, const Vector& w) {
   system_.apply_mass(w, rhs_);
   rhs_ += f;
-  K_eff_->solve(rhs_, x);
+  return rhs_;
 }
 
 solvers::LowRankUpdate& DirectSolve::changes() {

@@ -70,6 +70,7 @@ class DirectSolve final : public EffectiveStiffnessSolver {
   std::unique_ptr<solvers::LowRankUpdate> changed_;  ///< made at the first update or prefetch
   Vector rhs_;
   solvers::LowRankUpdate& changes();
+  const Vector& right_hand_side(const Vector& f, const Vector& w);  ///< f + M w, in rhs_
 };
 
 class ConjugateGradients final : public EffectiveStiffnessSolver {

@@ -266,6 +266,20 @@ model::SystemChange beam_change(const test::Beam& beam, const std::vector<Index>
   return model::SystemChange::from_removal(removal, *beam.model.dofs, same, beam.model.system.load.terms().size());
 }
 
+/// The beam's model assembled from scratch on its mesh without the tetrahedra `removed` (the same free numbering).
+model::FemModel beam_rebuilt_without(const test::Beam& beam, const std::vector<Index>& removed) {
+  mesh::TetMesh cut_mesh = beam.mesh;
+  cut_mesh.tets.clear();
+  for (Index e = 0; e < beam.mesh.num_tets(); ++e)
+    if (std::find(removed.begin(), removed.end(), e) == removed.end())
+      cut_mesh.tets.push_back(beam.mesh.tets[static_cast<std::size_t>(e)]);
+  cut_mesh.sets.erase("box");
+  return model::build_fem_model(cut_mesh, beam.model.material, {"x0"}, {});
+}
+
+/// The hand holding the beam's far end: a sideways wobble on a 1 mm pull over 20 ms.
+Vec3 beam_hand(double t) { return Vec3(0, 0.0005 * std::sin(20 * t), 0.001 * std::min(t / 0.02, 1.0)); }
+
 TEST(HapticTrapezoid, ACutTakenByTheCorrectionFeelsAsTheModelRebuiltFromTheCutMesh) {
   // The beam's far end held by the hand; a cut halfway through its middle, at rest and mid-run.
   // Against the model assembled from the cut mesh, with the tool attached afresh there and started
@@ -273,17 +287,11 @@ TEST(HapticTrapezoid, ACutTakenByTheCorrectionFeelsAsTheModelRebuiltFromTheCutMe
   const test::Beam beam;
   const std::vector<Index> removed = beam_cut(beam.mesh);
   ASSERT_EQ(removed.size(), 12u);
-  mesh::TetMesh cut_mesh = beam.mesh;
-  cut_mesh.tets.clear();
-  for (Index e = 0; e < beam.mesh.num_tets(); ++e)
-    if (std::find(removed.begin(), removed.end(), e) == removed.end())
-      cut_mesh.tets.push_back(beam.mesh.tets[static_cast<std::size_t>(e)]);
-  cut_mesh.sets.erase("box");
-  const model::FemModel rebuilt = model::build_fem_model(cut_mesh, beam.model.material, {"x0"}, {});
+  const model::FemModel rebuilt = beam_rebuilt_without(beam, removed);
   ASSERT_EQ(rebuilt.system.size(), beam.model.system.size());  // the same free numbering
   const auto held = node_dofs(*beam.model.dofs, beam.mesh.set("x1").nodes);
   const double dt = 1e-3;
-  const auto hand = [](double t) { return Vec3(0, 0.0005 * std::sin(20 * t), 0.001 * std::min(t / 0.02, 1.0)); };
+  const auto hand = beam_hand;
 
   for (const long cut_after : {0L, 15L}) {
     model::SecondOrderSystem system = beam.model.system;
@@ -326,7 +334,7 @@ TEST(HapticTrapezoid, ACutWhoseColumnsWereSolvedAheadIsTheSameCut) {
   const test::Beam beam;
   const auto held = node_dofs(*beam.model.dofs, beam.mesh.set("x1").nodes);
   const std::vector<Index> removed = beam_cut(beam.mesh);
-  const auto hand = [](double t) { return Vec3(0, 0.0005 * std::sin(20 * t), 0.001 * std::min(t / 0.02, 1.0)); };
+  const auto hand = beam_hand;
   model::SecondOrderSystem cold_system = beam.model.system, ahead_system = beam.model.system;
   for (auto* s : {&cold_system, &ahead_system}) s->load = model::LoadHistory(s->size());
   HapticTrapezoid cold(cold_system, 1e-3), ahead(ahead_system, 1e-3);
@@ -363,10 +371,7 @@ TEST(HapticTrapezoid, CutsTakenWithTheFactorMadeAfreshInTheBackgroundFeelAsTheOn
   const auto held = node_dofs(*beam.model.dofs, beam.mesh.set("x1").nodes);
   const std::vector<Index> removed = beam_cut(beam.mesh);
   ASSERT_EQ(removed.size(), 12u);
-  const auto hand = [](long n) {
-    const double t = static_cast<double>(n) * 1e-3;
-    return Vec3(0, 0.0005 * std::sin(20 * t), 0.001 * std::min(t / 0.02, 1.0));
-  };
+  const auto hand = [](long n) { return beam_hand(static_cast<double>(n) * 1e-3); };
   model::SecondOrderSystem corrected_system = beam.model.system, background_system = beam.model.system;
   for (auto* s : {&corrected_system, &background_system}) s->load = model::LoadHistory(s->size());
   HapticTrapezoid corrected(corrected_system, 1e-3), background(background_system, 1e-3);
@@ -397,13 +402,7 @@ TEST(HapticTrapezoid, CutsTakenWithTheFactorMadeAfreshInTheBackgroundFeelAsTheOn
   EXPECT_LT(worst, 1e-10 * largest);
   EXPECT_GE(background.background_factors(), 1);
 
-  mesh::TetMesh cut_mesh = beam.mesh;
-  cut_mesh.tets.clear();
-  for (Index e = 0; e < beam.mesh.num_tets(); ++e)
-    if (std::find(removed.begin(), removed.end(), e) == removed.end())
-      cut_mesh.tets.push_back(beam.mesh.tets[static_cast<std::size_t>(e)]);
-  cut_mesh.sets.erase("box");
-  const model::FemModel rebuilt = model::build_fem_model(cut_mesh, beam.model.material, {"x0"}, {});
+  const model::FemModel rebuilt = beam_rebuilt_without(beam, removed);
   HapticTrapezoid fresh(rebuilt.system, 1e-3);
   fresh.attach(held);
   const double W_gap =
