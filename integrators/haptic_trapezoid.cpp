@@ -159,8 +159,8 @@ void HapticTrapezoid::swap_in(std::unique_ptr<solvers::RefreshedFactor> fresh) {
   const Stopwatch clock;
   auto held = K_eff_.adopt(std::move(fresh->factor), std::move(fresh->correction));
   Z0_ = std::move(fresh->base_solution);
-  if (background_->logged() > fresh->taken)  // changes taken after the worker last read the log: added here
-    for (const solvers::SymmetricChange& change : background_->changes_since(fresh->taken)) K_eff_.update(change.dofs, change.B);
+  // Changes taken after the worker last read the log (usually none): added here.
+  for (const solvers::SymmetricChange& change : background_->changes_since(fresh->taken)) K_eff_.update(change.dofs, change.B);
   compliance_with_changes("with the background's factor");
   background_->retire(std::move(held.first), std::move(held.second));
   ++swaps_;

@@ -84,8 +84,7 @@ std::unique_ptr<RefreshedFactor> BackgroundRefactorization::take_current() {
 void BackgroundRefactorization::retire(std::unique_ptr<Cholesky> factor, std::unique_ptr<LowRankUpdate> correction) {
   {
     const std::lock_guard lock(mutex_);
-    retired_factors_.push_back(std::move(factor));
-    retired_corrections_.push_back(std::move(correction));
+    retired_.emplace_back(std::move(factor), std::move(correction));
   }
   wake_worker_.notify_one();
 }
@@ -94,11 +93,6 @@ std::vector<SymmetricChange> BackgroundRefactorization::changes_since(std::size_
   const std::lock_guard lock(mutex_);
   if (from >= log_.size()) return {};
   return {log_.begin() + static_cast<std::ptrdiff_t>(from), log_.end()};
-}
-
-std::size_t BackgroundRefactorization::logged() const {
-  const std::lock_guard lock(mutex_);
-  return log_.size();
 }
 
 long BackgroundRefactorization::factorizations() const {
@@ -116,19 +110,14 @@ void BackgroundRefactorization::work() {
 #endif
   std::unique_lock lock(mutex_);
   for (;;) {
-    wake_worker_.wait(lock, [&] {
-      return stop_ || !retired_factors_.empty() || !retired_corrections_.empty() ||
-             ((log_.size() > handed_ || expected_changed_) && !done_);
-    });
+    wake_worker_.wait(lock,
+                      [&] { return stop_ || !retired_.empty() || ((log_.size() > handed_ || expected_changed_) && !done_); });
     if (stop_) return;
-    if (!retired_factors_.empty() || !retired_corrections_.empty()) {  // freed here, not on the solving thread
-      auto factors = std::move(retired_factors_);
-      auto corrections = std::move(retired_corrections_);
-      retired_factors_.clear();
-      retired_corrections_.clear();
+    if (!retired_.empty()) {  // freed here, not on the solving thread, and without the lock held
+      auto retired = std::move(retired_);
+      retired_.clear();
       lock.unlock();
-      factors.clear();
-      corrections.clear();
+      retired.clear();
       lock.lock();
       continue;
     }

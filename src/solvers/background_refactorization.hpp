@@ -83,7 +83,6 @@ class BackgroundRefactorization {
   void retire(std::unique_ptr<Cholesky> factor, std::unique_ptr<LowRankUpdate> correction);
   /// Changes [from, end) of the log (the solving thread's, after a factor it took: those it must add).
   std::vector<SymmetricChange> changes_since(std::size_t from) const;
-  std::size_t logged() const;
   /// Factors the worker has made.
   long factorizations() const;
 
@@ -106,8 +105,8 @@ class BackgroundRefactorization {
   bool expected_changed_ = false;          ///< given since the last factor read them
   std::unique_ptr<RefreshedFactor> done_;  ///< ready, not yet taken
   std::size_t handed_ = 0;                 ///< changes in the last factor made (taken or not)
-  std::vector<std::unique_ptr<Cholesky>> retired_factors_;
-  std::vector<std::unique_ptr<LowRankUpdate>> retired_corrections_;
+  /// Factors and corrections the solving thread gave back, to be freed by the worker.
+  std::vector<std::pair<std::unique_ptr<Cholesky>, std::unique_ptr<LowRankUpdate>>> retired_;
   std::exception_ptr failure_;
   long factorizations_ = 0;
   bool stop_ = false;
