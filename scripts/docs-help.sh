@@ -31,6 +31,7 @@ Ctrl-C / SIGTERM (every completed step kept).
 | `roifem model-error scenarios/paper-setup1.toml --out results/model-error` | small strain against CalculiX's geometrically nonlinear answer | [accuracy.md](accuracy.md) |
 | `roifem mesh --nodes 800 --out results/brain.msh` | a brain mesh: the ellipsoid (Gmsh), or from an image (`--colin27`, `--image`; CGAL) | [anatomy.md](anatomy.md) |
 | `roifem info meshes/brain-800.msh` | a mesh's size, volume, quality, bounding box and named sets | |
+| `roifem serve scenarios/paper-setup1.toml` | a page on which you steer the brain live: drag a tool, see it deform, feel the force, switch models | [simulator.md](simulator.md) |
 | `scripts/mpirun.sh -n 2 roifem-mpi run scenarios/paper-full.toml --out results/mpi` | the full model on P ranks (PETSc, MPI, MUMPS); also `condense`, `compare` | [mpi.md](mpi.md) |
 
 The help texts below are the CLI's own (`scripts/docs-help.sh` writes this page; the docs check
@@ -43,7 +44,7 @@ MD
   echo '```'
   "$roifem" --help
   echo '```'
-  for command in paper run compare energy roi-size convergence model-error mesh info; do
+  for command in paper run compare energy roi-size convergence model-error mesh info serve; do
     echo
     echo "## roifem $command"
     echo

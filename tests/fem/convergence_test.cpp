@@ -14,11 +14,11 @@
 namespace roifem::fem {
 namespace {
 
-const Vec3 amplitude(1.0, -0.5, 0.75);
+const Vec3 field_amplitude(1.0, -0.5, 0.75);
 
 double p(double t) { return t * (1 - t); }
 double phi(const Vec3& x) { return 64 * p(x.x()) * p(x.y()) * p(x.z()); }
-Vec3 exact(const Vec3& x) { return amplitude * phi(x); }
+Vec3 exact(const Vec3& x) { return field_amplitude * phi(x); }
 
 Vec3 body_force(const Vec3& x, const Material& m) {
   const Vec3 v(p(x.x()), p(x.y()), p(x.z()));                 // p
@@ -29,7 +29,7 @@ Vec3 body_force(const Vec3& x, const Material& m) {
       const int k = 3 - i - j;
       H(i, j) = i == j ? 64 * -2.0 * v[(i + 1) % 3] * v[(i + 2) % 3] : 64 * d[i] * d[j] * v[k];
     }
-  return -(m.lambda + m.mu) * H * amplitude - m.mu * H.trace() * amplitude;
+  return -(m.lambda + m.mu) * H * field_amplitude - m.mu * H.trace() * field_amplitude;
 }
 
 // Degree-2 four-point rule on a tetrahedron (barycentric a, b, b, b and permutations).

@@ -1,0 +1,91 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// roifem serve SCENARIO.toml [--port P] [--host H]: the browser simulator (src/serve, web/).
+#include <iostream>
+
+#include "app/commands.hpp"
+#include "common/atomic_file.hpp"
+#include "common/errors.hpp"
+#include "scenario/scenario.hpp"
+#include "serve/asset_files.hpp"
+#include "serve/live_scene.hpp"
+#include "serve/physics_loop.hpp"
+#include "serve/server.hpp"
+#include "solvers/blas_threads.hpp"
+
+namespace roifem::app {
+
+namespace {
+
+bool is_loopback(const std::string& host) { return host == "127.0.0.1" || host == "::1" || host.rfind("127.", 0) == 0; }
+
+void serve(const std::string& scenario_file, const serve::ServeOptions& options, double rate_hz, double radius_mm,
+           const std::vector<std::string>& models, const serve::PhysicsSettings& hand) {
+  if (!is_loopback(options.host))
+    std::cerr << "roifem serve: warning: listening on " << options.host
+              << ", not the loopback address: anyone who reaches this machine can open the page and steer the model\n";
+  const scenario::Scenario scenario = scenario::read_scenario(scenario_file);
+  // One BLAS thread: the physics thread takes a core, and OpenBLAS's threads spinning beside it
+  // would slow every other solve (a recovery of the static part: 0.25 s with two, against ms).
+  const solvers::BlasThreadsScope blas(1);
+  if (!options.record.empty()) check_output_directory(options.record);
+  std::cout << "roifem serve: preparing the models of " << scenario_file << "\n" << std::flush;
+  serve::LiveScene scene(scenario, rate_hz, radius_mm, models, std::cout);
+  serve::PhysicsLoop physics(scene, hand);
+  serve::Server server(scene, physics, serve::AssetFiles({{"/", serve::page_directory()}, {"/three/", serve::three_directory()}}),
+                       options, std::cout);
+  std::cout << "roifem serve: open http://"
+            << (options.host.find(':') != std::string::npos ? "[" + options.host + "]" : options.host) << ":" << server.port()
+            << "/ in a browser (Ctrl-C stops)\n"
+            << std::flush;
+  if (const int signal = server.run(); signal != 0)
+    throw Interrupted(signal, "serve stopped by signal " + std::to_string(signal) + ": every client closed, every grab kept");
+}
+
+}  // namespace
+
+void add_serve_command(CLI::App& app, Action& action) {
+  struct Options {
+    std::string scenario;
+    serve::ServeOptions serve;
+    std::string record;
+    double rate_hz = 1000, radius_mm = 5;
+    std::vector<std::string> models;
+    serve::PhysicsSettings hand;
+  };
+  auto o = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand(
+      "serve",
+      "Serve a page on which you steer the scenario's brain live: drag a tool on its surface, see it deform and read the "
+      "force, at the haptic rate, and switch between the full model and the condensed ROI (static, Guyan, Craig-Bampton). "
+      "The scenario's own tools and cuts are left out; every grab starts from rest and can be saved for `roifem run` to "
+      "replay (--record). Nothing is fetched from outside: three.js is Debian's libjs-three");
+  cmd->add_option("SCENARIO", o->scenario, "Scenario file (.toml): mesh, material, supports, loads, ROI")->required();
+  cmd->add_option("--port", o->serve.port, "TCP port (0: any free one; the line 'open http://...' says which)")
+      ->capture_default_str();
+  cmd->add_option("--host", o->serve.host,
+                  "Address to listen on: the loopback address unless you give another (then anyone who reaches the "
+                  "machine can steer it: a warning says so)")
+      ->capture_default_str();
+  cmd->add_option("--models", o->models,
+                  "The models to prepare and switch between: full, static, guyan, craig-bampton-K (default: full and, with an "
+                  "[roi], static, guyan and craig-bampton-10; on a large brain Guyan's and Craig-Bampton's preparation takes "
+                  "minutes)");
+  cmd->add_option("--rate-hz", o->rate_hz, "The haptic loop's rate (one trapezoidal step per tick)")->capture_default_str();
+  cmd->add_option("--tool-radius-mm", o->radius_mm,
+                  "The tool's footprint: the boundary nodes within this radius of the picked point")
+      ->capture_default_str();
+  cmd->add_option("--hand-speed-mm-s", o->hand.hand_speed_mm_s, "The tool's fastest motion towards the mouse")
+      ->capture_default_str();
+  cmd->add_option("--reach-mm", o->hand.reach_mm, "The farthest the tool goes from where it picked")->capture_default_str();
+  cmd->add_option("--record", o->record,
+                  "Write every grab to DIR (grab-NNN-K.csv, its path; -force.csv, the live force; .toml, the scenario "
+                  "`roifem run` replays it with)");
+  cmd->callback([&action, o] {
+    action = [o] {
+      o->serve.record = o->record;
+      serve(o->scenario, o->serve, o->rate_hz, o->radius_mm, o->models, o->hand);
+    };
+  });
+}
+
+}  // namespace roifem::app

@@ -1,0 +1,212 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "serve/live_scene.hpp"
+
+#include <algorithm>
+#include <optional>
+#include <ostream>
+
+#include "common/errors.hpp"
+#include "common/timer.hpp"
+#include "condensation/reduced_model.hpp"
+#include "io/csv.hpp"
+#include "mesh/tet_mesh.hpp"
+
+namespace roifem::serve {
+
+namespace {
+
+/// The reductions the page switches between: each one whose basis does not learn from the loads.
+std::vector<condensation::Reduction> live_reductions(const scenario::Scenario& scenario) {
+  std::vector<condensation::Reduction> reductions;
+  for (const auto& info : condensation::reduction_table()) {
+    if (info.learns_from_loads) continue;
+    condensation::Reduction r;
+    r.kind = &info;
+    if (info.counted) {  // the scenario's count where it names this reduction, else 10 modes
+      const bool named = scenario.reduction.kind == &info;
+      r.modes = named ? scenario.reduction.modes : 10;
+      r.cutoff_rad_s = named ? scenario.reduction.cutoff_rad_s : 0;
+    }
+    reductions.push_back(r);
+  }
+  return reductions;
+}
+
+SurfaceView surface_of(const mesh::TetMesh& mesh) {
+  SurfaceView view;
+  view.nodes = mesh::boundary_nodes(mesh);
+  std::vector<int> vertex(static_cast<std::size_t>(mesh.num_nodes()), -1);
+  for (std::size_t k = 0; k < view.nodes.size(); ++k) vertex[static_cast<std::size_t>(view.nodes[k])] = static_cast<int>(k);
+  for (const mesh::Triangle& f : mesh::boundary_faces(mesh))
+    view.triangles.push_back(
+        {vertex[static_cast<std::size_t>(f[0])], vertex[static_cast<std::size_t>(f[1])], vertex[static_cast<std::size_t>(f[2])]});
+  view.flags.assign(view.nodes.size(), 0);
+  return view;
+}
+
+std::vector<std::vector<int>> node_neighbours(const mesh::TetMesh& mesh) {
+  std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(mesh.num_nodes()));
+  for (const auto& t : mesh.tets)
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b)
+        if (a != b) neighbours[static_cast<std::size_t>(t[a])].push_back(t[b]);
+  for (auto& list : neighbours) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+  return neighbours;
+}
+
+/// The models to prepare: every one, or those named.
+std::vector<std::pair<std::string, std::optional<condensation::Reduction>>> model_plan(const scenario::Scenario& scenario,
+                                                                                       const std::vector<std::string>& names) {
+  std::vector<std::pair<std::string, std::optional<condensation::Reduction>>> plan;
+  if (names.empty()) {
+    plan.emplace_back("full", std::nullopt);
+    if (scenario.roi)
+      for (const auto& r : live_reductions(scenario)) plan.emplace_back(r.label(), r);
+    return plan;
+  }
+  for (const std::string& name : names) {
+    if (name == "full") {
+      plan.emplace_back("full", std::nullopt);
+      continue;
+    }
+    condensation::Reduction r;
+    try {
+      r = condensation::parse_reduction(name);
+    } catch (const InputError& e) {
+      throw InputError("serve: --models: '" + name + "' is neither full nor a reduction: " + e.what());
+    }
+    if (r.info().learns_from_loads)
+      throw InputError("serve: --models: " + name + " learns its basis from the scenario's loads, not from a hand");
+    if (!scenario.roi)
+      throw InputError("serve: --models: " + name + " reduces an ROI, and " + scenario.file.string() + " has no [roi]");
+    plan.emplace_back(r.label(), r);
+  }
+  return plan;
+}
+
+}  // namespace
+
+LiveScene::LiveScene(const scenario::Scenario& scenario, double rate_hz, double radius_mm, const std::vector<std::string>& models,
+                     std::ostream& log)
+    : scenario_(scenario), dt_(1.0 / rate_hz), radius_mm_(radius_mm) {
+  if (!(rate_hz > 0) || !(rate_hz <= 100000))
+    throw InputError(io::format("serve: a haptic rate of %g Hz (0 < rate <= 100 kHz)", rate_hz));
+  if (!(radius_mm > 0)) throw InputError(io::format("serve: a tool radius of %g mm (it must be positive)", radius_mm));
+  if (scenario.element != fem::Element::tet4) throw InputError(scenario.file.string() + ": serve takes tet4 elements only");
+  if (!scenario_.tools.empty() || !scenario_.cuts.empty())
+    log << "serve: the scenario's " << scenario_.tools.size() << " [[tool]](s) and " << scenario_.cuts.size()
+        << " [[cut]](s) are left out: the page's hand is the tool\n";
+  scenario_.tools.clear();
+  scenario_.cuts.clear();
+  for (const auto& [name, reduction] : model_plan(scenario_, models)) {
+    const Stopwatch clock;
+    scenario::Scenario variant = scenario_;
+    if (!reduction) variant.roi.reset();
+    if (reduction) variant.reduction = *reduction;
+    LiveModel live;
+    live.name = name;
+    live.model = simulation::build_scenario_model(variant);
+    if (live.model->full.system.is_nonlinear())
+      throw InputError(scenario.file.string() +
+                       ": serve takes linear materials only (the hybrid ROI's haptic page is not built)");
+    if (reduction) {
+      live.reduction = *reduction;
+      live.description = std::string(reduction->info().description);
+    } else {
+      live.description = "the full dynamic model of the whole brain";
+    }
+    live.haptic = std::make_unique<integrators::HapticTrapezoid>(live.model->system(), dt_);
+    const auto& mesh = live.model->mesh;
+    live.in_roi.assign(static_cast<std::size_t>(mesh.num_nodes()), 0);
+    const fem::DofMap& dofs = *live.model->full.dofs;
+    if (live.condensed())
+      for (const int n : live.model->roi_nodes) live.in_roi[static_cast<std::size_t>(n)] = 1;
+    else
+      for (Index n = 0; n < mesh.num_nodes(); ++n) live.in_roi[static_cast<std::size_t>(n)] = dofs.free_dof(n, 0) >= 0 ? 1 : 0;
+    log << io::format("serve: model %-18s %7ld unknowns, prepared in %.2f s\n", name.c_str(),
+                      static_cast<long>(live.model->system().size()), clock.seconds())
+        << std::flush;
+    models_.push_back(std::move(live));
+  }
+  const mesh::TetMesh& m = mesh();
+  surface_ = surface_of(m);
+  neighbours_ = node_neighbours(m);
+  for (Index n = 0; n < m.num_nodes(); ++n) box_.extend(m.node(static_cast<int>(n)));
+  for (LiveModel& live : models_) map_surface(live);
+  const fem::DofMap& dofs = *models_.front().model->full.dofs;
+  for (std::size_t v = 0; v < surface_.nodes.size(); ++v) {
+    const int n = surface_.nodes[v];
+    if (dofs.free_dof(n, 0) < 0 || dofs.free_dof(n, 1) < 0 || dofs.free_dof(n, 2) < 0) surface_.flags[v] |= 1;
+    for (std::size_t k = 0; k < models_.size() && k < 7; ++k)
+      if (models_[k].in_roi[static_cast<std::size_t>(n)]) surface_.flags[v] |= static_cast<std::uint8_t>(2u << k);
+  }
+}
+
+std::variant<Grip, std::string> LiveScene::grip(std::size_t k, const Vec3& center_mm) const {
+  const LiveModel& live = models_.at(k);
+  const mesh::TetMesh& m = mesh();
+  Grip grip{.center_mm = center_mm, .nodes = {}, .dofs = {}};
+  const Vec3 center = center_mm * mm;  // as the scenario reader reads center_mm
+  const double radius = radius_mm_ * mm;
+  for (const int n : surface_.nodes)
+    if ((m.node(n) - center).norm() <= radius) grip.nodes.push_back(n);
+  if (grip.nodes.empty())
+    return io::format("no boundary node within %g mm of (%.1f, %.1f, %.1f) mm", radius_mm_, center_mm.x(), center_mm.y(),
+                      center_mm.z());
+  const fem::DofMap& dofs = *live.model->full.dofs;
+  for (const int n : grip.nodes) {
+    if (dofs.free_dof(n, 0) < 0 || dofs.free_dof(n, 1) < 0 || dofs.free_dof(n, 2) < 0)
+      return io::format("node %d there is fixed: a tool moves free nodes only", n);
+    if (!live.in_roi[static_cast<std::size_t>(n)])
+      return io::format("node %d there is outside the %s model's ROI", n, live.name.c_str());
+    for (const int neighbour : neighbours_[static_cast<std::size_t>(n)])
+      if (!live.in_roi[static_cast<std::size_t>(neighbour)] && dofs.free_dof(neighbour, 0) >= 0)
+        return io::format(
+            "node %d there shares an element with node %d of the static part: the ROI must hold the tool's nodes "
+            "and their neighbours",
+            n, neighbour);
+  }
+  grip.dofs = live.condensed() ? roi::node_dofs_in_reduced(grip.nodes, live.model->condensation->partition(), dofs)
+                               : roi::node_dofs_in_full(grip.nodes, dofs);
+  return grip;
+}
+
+void LiveScene::surface_displacement(std::size_t k, const Vector& u, double t, bool recover_static, std::vector<float>& out_mm) {
+  LiveModel& live = models_.at(k);
+  if (live.condensed() && recover_static) {
+    const Vector u_s = live.model->condensation->recover_static(u, t);
+    for (std::size_t i = 0; i < live.surface_static.size(); ++i)
+      if (live.surface_static[i] >= 0) live.static_surface_mm[i] = static_cast<float>(u_s[live.surface_static[i]] / mm);
+  }
+  out_mm.resize(live.surface_unknown.size());
+  for (std::size_t i = 0; i < out_mm.size(); ++i)
+    out_mm[i] = live.surface_unknown[i] >= 0 ? static_cast<float>(u[live.surface_unknown[i]] / mm) : live.static_surface_mm[i];
+}
+
+void LiveScene::map_surface(LiveModel& live) const {
+  const fem::DofMap& dofs = *live.model->full.dofs;
+  std::vector<Index> unknown(static_cast<std::size_t>(dofs.num_free()), -1), in_static(unknown.size(), -1);
+  if (live.condensed()) {
+    const roi::Partition& p = live.model->condensation->partition();
+    for (std::size_t a = 0; a < p.d.size(); ++a) unknown[static_cast<std::size_t>(p.d[a])] = static_cast<Index>(a);
+    for (std::size_t a = 0; a < p.s.size(); ++a) in_static[static_cast<std::size_t>(p.s[a])] = static_cast<Index>(a);
+  } else {
+    for (std::size_t a = 0; a < unknown.size(); ++a) unknown[a] = static_cast<Index>(a);
+  }
+  const std::size_t n = 3 * surface_.nodes.size();
+  live.surface_unknown.assign(n, -1);
+  live.surface_static.assign(n, -1);
+  live.static_surface_mm.assign(n, 0.0F);
+  for (std::size_t v = 0; v < surface_.nodes.size(); ++v)
+    for (int c = 0; c < 3; ++c) {
+      const int dof = dofs.free_dof(surface_.nodes[v], c);
+      if (dof < 0) continue;
+      live.surface_unknown[3 * v + static_cast<std::size_t>(c)] = unknown[static_cast<std::size_t>(dof)];
+      live.surface_static[3 * v + static_cast<std::size_t>(c)] = in_static[static_cast<std::size_t>(dof)];
+    }
+}
+
+}  // namespace roifem::serve

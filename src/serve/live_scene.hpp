@@ -1,0 +1,93 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+/// What `roifem serve` simulates: the scenario's brain as several models, each prepared once (its
+/// condensation and the haptic loop's factor) so that the page switches between them live:
+///   the full dynamic model, and with an [roi] the ROI condensed by each reduction of the static
+///   part that keeps the uncut mesh's linear model exact in its own terms (static, guyan,
+///   craig-bampton: POD learns its basis from the scenario's loads, not from a hand).
+/// The scenario's own [[tool]]s and [[cut]]s are left out (the page's hand is the tool); its
+/// mesh, material, supports, loads and ROI are kept. The hand holds, as `roifem run`'s footprint
+/// tool does, the boundary nodes within a radius of the point it picks (scenario/README.md).
+#include <array>
+#include <iosfwd>
+#include <memory>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "integrators/haptic_trapezoid.hpp"
+#include "scenario/scenario.hpp"
+#include "simulation/scenario_model.hpp"
+
+namespace roifem::serve {
+
+/// The mesh's surface as the page draws it: its boundary nodes (vertices) and faces.
+struct SurfaceView {
+  std::vector<int> nodes;                     ///< mesh nodes, ascending (vertex k is nodes[k])
+  std::vector<std::array<int, 3>> triangles;  ///< vertex indices, outward
+  std::vector<std::uint8_t> flags;            ///< per vertex: bit 0 fixed, bit 1 + k in model k's ROI
+};
+
+struct LiveModel {
+  std::string name;  ///< "full", or the reduction's label: "static", "guyan", "craig-bampton-10"
+  std::string description;
+  condensation::Reduction reduction;  ///< with an ROI
+  std::unique_ptr<simulation::ScenarioModel> model;
+  std::unique_ptr<integrators::HapticTrapezoid> haptic;
+  std::vector<char> in_roi;  ///< per mesh node: an unknown of this model's ROI (the full model: every free node)
+  /// Per surface vertex and component: its place among the unknowns u (-1: none), and for the
+  /// static part its place in u_s (-1: none), with the static part's last recovered values.
+  std::vector<Index> surface_unknown, surface_static;
+  std::vector<float> static_surface_mm;
+  bool condensed() const { return model->condensation != nullptr; }
+};
+
+/// A footprint the hand may hold in a model: its mesh nodes and their dofs in the model's system.
+struct Grip {
+  Vec3 center_mm = Vec3::Zero();  ///< as the page sent it (the replay's center_mm, exactly)
+  std::vector<int> nodes;
+  std::vector<std::array<Index, 3>> dofs;
+};
+
+class LiveScene {
+ public:
+  /// Reads the mesh, builds and condenses each model and factors its haptic loop at `rate_hz`.
+  /// `radius_mm`: the hand's footprint. `models`: "full" and reduction labels ("static", "guyan",
+  /// "craig-bampton-10"); empty: every one. InputError for an unknown name, POD, or a reduction
+  /// without an [roi]. Progress lines go to `log`.
+  LiveScene(const scenario::Scenario& scenario, double rate_hz, double radius_mm, const std::vector<std::string>& models,
+            std::ostream& log);
+  LiveScene(const LiveScene&) = delete;
+  LiveScene& operator=(const LiveScene&) = delete;
+
+  const scenario::Scenario& scenario() const { return scenario_; }
+  std::vector<LiveModel>& models() { return models_; }
+  const std::vector<LiveModel>& models() const { return models_; }
+  const mesh::TetMesh& mesh() const { return models_.front().model->mesh; }
+  const SurfaceView& surface() const { return surface_; }
+  double dt() const { return dt_; }
+  double radius_mm() const { return radius_mm_; }
+  /// The mesh's bounding box (m): targets are clamped to it, widened by the largest reach.
+  const Eigen::AlignedBox3d& box() const { return box_; }
+
+  /// The footprint at `center_mm` in model `k`, or why the hand cannot hold it there (no boundary
+  /// node within the radius, a fixed node, a node or a neighbour outside the ROI).
+  std::variant<Grip, std::string> grip(std::size_t k, const Vec3& center_mm) const;
+  /// Model k's displacement of every surface vertex (mm), from its state u at time t: the ROI's
+  /// unknowns directly; the static part recovered (u_s = K_ss^-1 (f_s - K_sI u_I), one solve with
+  /// the static part's factor) when `recover_static`, else as it was last recovered. Not
+  /// thread-safe per model (the recovery writes the factor's workspace): the display's thread alone.
+  void surface_displacement(std::size_t k, const Vector& u, double t, bool recover_static, std::vector<float>& out_mm);
+
+ private:
+  scenario::Scenario scenario_;
+  std::vector<LiveModel> models_;
+  SurfaceView surface_;
+  std::vector<std::vector<int>> neighbours_;  ///< per node, the nodes it shares a tetrahedron with
+  Eigen::AlignedBox3d box_;
+  double dt_, radius_mm_;
+  /// live's surface_unknown and surface_static (surface_ set).
+  void map_surface(LiveModel& live) const;
+};
+
+}  // namespace roifem::serve

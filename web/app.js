@@ -1,0 +1,375 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// roifem serve's page: draws the brain's surface as the server's frames move it, sends the hand.
+// Messages: src/serve/hand_message.hpp (page -> server), src/serve/page_messages.hpp (server -> page).
+import * as THREE from '/three/build/three.module.js';
+import { OrbitControls } from '/three/examples/jsm/controls/OrbitControls.js';
+
+const HAND = { pick: 1, target: 2, release: 3, model: 4, save: 5 };
+
+// What the tests (and a curious user's console) read: window.roifem.
+const live = {
+  hello: null, state: null, ready: false, frames: 0, framesDrawn: 0, fps: 0,
+  latencies: [], notices: [], role: null, shown: null,
+  screenOf: null,  // (x, y, z) mm at rest -> {x, y} in client pixels
+};
+window.roifem = live;
+
+// ---- The view ----
+const container = document.getElementById('view');
+// No antialiasing and one pixel per CSS pixel: a software renderer (headless Chromium's SwiftShader) draws
+// twice the frames.
+const renderer = new THREE.WebGLRenderer({ antialias: false });
+renderer.setPixelRatio(1);
+container.appendChild(renderer.domElement);
+const scene = new THREE.Scene();
+scene.background = new THREE.Color(0x15171c);
+const camera = new THREE.PerspectiveCamera(40, 1, 1, 5000);
+const controls = new OrbitControls(camera, renderer.domElement);
+scene.add(new THREE.AmbientLight(0xffffff, 0.45));
+const light = new THREE.DirectionalLight(0xffffff, 0.7);
+scene.add(light);
+
+function resize() {
+  const w = container.clientWidth, h = container.clientHeight;
+  renderer.setSize(w, h);
+  camera.aspect = w / h;
+  camera.updateProjectionMatrix();
+}
+window.addEventListener('resize', resize);
+resize();
+
+let brain = null;         // THREE.Mesh
+let rest = null;          // Float32Array 3V, mm
+let displacement = null;  // Float32Array 3V, mm
+let flags = null;         // Uint8Array V
+let triangles = null;     // Uint32Array 3T
+const roiPoints = [];     // per model: THREE.Points
+let fixedPoints = null;
+let tool = null;
+let barMax = 1;
+
+function colour(s, out, k) {  // s in [0, 1]: dark blue -> cyan -> yellow -> red
+  const stops = [[0.19, 0.22, 0.45], [0.15, 0.65, 0.75], [0.95, 0.85, 0.25], [0.85, 0.2, 0.15]];
+  const x = Math.min(Math.max(s, 0), 1) * (stops.length - 1), i = Math.min(Math.floor(x), stops.length - 2), f = x - i;
+  for (let c = 0; c < 3; ++c) out[k + c] = stops[i][c] * (1 - f) + stops[i + 1][c] * f;
+}
+
+function drawColourBar() {
+  const bar = document.getElementById('colour-bar'), g = bar.getContext('2d');
+  const rgb = [0, 0, 0];
+  for (let x = 0; x < bar.width; ++x) {
+    colour(x / (bar.width - 1), rgb, 0);
+    g.fillStyle = `rgb(${rgb.map((v) => Math.round(255 * v)).join(',')})`;
+    g.fillRect(x, 0, 1, bar.height);
+  }
+  document.getElementById('bar-max').textContent = barMax.toPrecision(2);
+}
+
+function onMesh(buffer) {
+  const view = new DataView(buffer);
+  const V = view.getUint32(4, true), T = view.getUint32(8, true);
+  let offset = 16;
+  rest = new Float32Array(buffer.slice(offset, offset + 12 * V)); offset += 12 * V;
+  triangles = new Uint32Array(buffer.slice(offset, offset + 12 * T)); offset += 12 * T;
+  flags = new Uint8Array(buffer.slice(offset, offset + V));
+  displacement = new Float32Array(3 * V);
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(rest), 3));
+  geometry.setAttribute('color', new THREE.BufferAttribute(new Float32Array(3 * V), 3));
+  geometry.setIndex(new THREE.BufferAttribute(triangles, 1));
+  geometry.computeVertexNormals();
+  brain = new THREE.Mesh(geometry, new THREE.MeshLambertMaterial({ vertexColors: THREE.VertexColors }));
+  scene.add(brain);
+  const points = (mask, colourHex, size) => {
+    const index = [];
+    for (let v = 0; v < V; ++v) if (flags[v] & mask) index.push(v);
+    const g = new THREE.BufferGeometry();
+    g.setAttribute('position', geometry.getAttribute('position'));
+    g.setIndex(new THREE.BufferAttribute(new Uint32Array(index), 1));
+    const p = new THREE.Points(g, new THREE.PointsMaterial({ color: colourHex, size, sizeAttenuation: false }));
+    scene.add(p);
+    return p;
+  };
+  fixedPoints = points(1, 0x8a8a8a, 3);
+  live.hello.models.forEach((m, k) => roiPoints.push(points(2 << k, 0x4fa3ff, 3)));
+  tool = new THREE.Mesh(new THREE.SphereGeometry(live.hello.radius_mm, 16, 12),
+                        new THREE.MeshPhongMaterial({ color: 0xe0e0e0, transparent: true, opacity: 0.6 }));
+  tool.visible = false;
+  scene.add(tool);
+  recolour();
+  drawColourBar();
+  const box = new THREE.Box3(new THREE.Vector3(...live.hello.box_mm[0]), new THREE.Vector3(...live.hello.box_mm[1]));
+  const centre = box.getCenter(new THREE.Vector3()), size = box.getSize(new THREE.Vector3()).length();
+  controls.target.copy(centre);
+  camera.position.copy(centre).add(new THREE.Vector3(0.15 * size, -1.6 * size, 0.7 * size));
+  camera.up.set(0, 0, 1);
+  camera.near = size / 100; camera.far = size * 20;
+  camera.updateProjectionMatrix();
+  controls.update();
+  showRoi();
+  live.ready = true;
+}
+
+function recolour() {
+  const V = rest.length / 3, position = brain.geometry.getAttribute('position'), colours = brain.geometry.getAttribute('color');
+  const p = position.array, size = recolour.size && recolour.size.length === V ? recolour.size : (recolour.size = new Float32Array(V));
+  let largest = 0;
+  for (let v = 0, i = 0; v < V; ++v, i += 3) {
+    const dx = displacement[i], dy = displacement[i + 1], dz = displacement[i + 2];
+    p[i] = rest[i] + dx;
+    p[i + 1] = rest[i + 1] + dy;
+    p[i + 2] = rest[i + 2] + dz;
+    const s = Math.sqrt(dx * dx + dy * dy + dz * dz);
+    size[v] = s;
+    if (s > largest) largest = s;
+  }
+  const decade = Math.pow(10, Math.floor(Math.log10(Math.max(largest, 1e-3))));
+  const top = [1, 2, 3, 5, 10].map((m) => m * decade).find((n) => n >= largest * (1 - 1e-6));
+  for (let v = 0; v < V; ++v) colour(size[v] / top, colours.array, 3 * v);
+  position.needsUpdate = true;
+  colours.needsUpdate = true;
+  brain.geometry.computeVertexNormals();
+  brain.geometry.computeBoundingSphere();
+  if (top !== barMax) {
+    barMax = top;
+    drawColourBar();
+  }
+}
+
+// ---- The socket ----
+const socket = new WebSocket(`ws://${location.host}/ws`);
+socket.binaryType = 'arraybuffer';
+let sequence = 0;
+const sentAt = new Map();  // target sequence -> performance.now()
+let pendingFrame = null, frameShows = 0;
+
+function send(kind, point, model) {
+  if (socket.readyState !== WebSocket.OPEN) return;
+  const size = kind === HAND.pick || kind === HAND.target ? 32 : kind === HAND.model ? 12 : 8;
+  const buffer = new ArrayBuffer(size), view = new DataView(buffer);
+  view.setUint8(0, kind);
+  view.setUint32(4, ++sequence, true);
+  if (point) point.forEach((x, c) => view.setFloat64(8 + 8 * c, x, true));
+  if (kind === HAND.model) view.setUint32(8, model, true);
+  if (kind === HAND.target) sentAt.set(sequence, performance.now());
+  socket.send(buffer);
+}
+
+socket.onmessage = (event) => {
+  if (typeof event.data === 'string') return onJson(JSON.parse(event.data));
+  const tag = new TextDecoder().decode(new Uint8Array(event.data, 0, 4));
+  if (tag === 'RFMS') onMesh(event.data);
+  if (tag === 'RFFR' && brain) pendingFrame = event.data;  // drawn at the next animation frame
+};
+socket.onclose = () => note('the server closed the connection');
+
+function onJson(m) {
+  if (m.type === 'hello') {
+    live.hello = m;
+    live.role = m.role;
+    document.getElementById('scenario').textContent = `${m.scenario}: ${m.vertices} surface nodes, ${m.rate_hz} Hz`;
+    const models = document.getElementById('models');
+    m.models.forEach((model, k) => {
+      const b = document.createElement('button');
+      b.textContent = model.name;
+      b.title = `${model.description} (${model.unknowns} unknowns)`;
+      b.onclick = () => send(HAND.model, null, k);
+      models.appendChild(b);
+    });
+    showRole();
+  } else if (m.type === 'state') {
+    live.state = m;
+    onState(m);
+  } else if (m.type === 'notice') {
+    note(m.text);
+  } else if (m.type === 'role') {
+    live.role = m.role;
+    showRole();
+  }
+}
+
+function showRole() {
+  document.getElementById('role').textContent = live.role === 'driver' ? 'You drive.' : 'You watch (another page drives).';
+}
+
+function note(text) {
+  live.notices.push(text);
+  const li = document.createElement('li');
+  li.textContent = text;
+  const list = document.getElementById('notices');
+  list.prepend(li);
+  while (list.children.length > 30) list.lastChild.remove();
+}
+
+// ---- Readouts ----
+const forceHistory = [];
+let currentModel = -1;
+let lastReadout = 0;
+function onState(m) {
+  const f = m.force_mN, magnitude = Math.hypot(...f);
+  forceHistory.push([m.t, magnitude, ...f]);
+  if (forceHistory.length > 600) forceHistory.shift();
+  if (m.model !== currentModel) {
+    currentModel = m.model;
+    document.querySelectorAll('#models button').forEach((b, k) => b.classList.toggle('current', k === m.model));
+    showRoi();
+  }
+  if (tool) {
+    tool.visible = m.grip_nodes > 0;
+    tool.position.set(...m.tool_mm);
+  }
+  // The readouts and the plot at 10 Hz: text a person reads, and each repaint costs a software
+  // renderer a share of the frames.
+  const now = performance.now();
+  if (now - lastReadout < 100) return;
+  lastReadout = now;
+  live.shown = m;  // the state the readouts show
+  plotDirty = true;
+  document.getElementById('force').textContent = magnitude.toFixed(2);
+  document.getElementById('force-parts').textContent = `(${f.map((x) => x.toFixed(2)).join(', ')})`;
+  const t = m.ticks;
+  document.getElementById('physics').textContent =
+    `${t.rate_hz.toFixed(0)} ticks/s, median ${t.median_ms.toFixed(3)} ms, p99 ${t.p99_ms.toFixed(3)} ms, ` +
+    `late ${t.late_per_10k.toFixed(1)} per 10,000 (of ${t.count})`;
+}
+
+function drawForcePlot() {
+  const canvas = document.getElementById('force-plot'), g = canvas.getContext('2d');
+  g.clearRect(0, 0, canvas.width, canvas.height);
+  if (forceHistory.length < 2) return;
+  const top = Math.max(1, ...forceHistory.map((r) => Math.max(...r.slice(1).map(Math.abs))));
+  const colours = ['#eee', '#e66', '#6e6', '#69f'];
+  for (let c = 0; c < 4; ++c) {
+    g.strokeStyle = colours[c];
+    g.beginPath();
+    forceHistory.forEach((r, k) => {
+      const x = (k / 599) * canvas.width, y = canvas.height / 2 - (r[1 + c] / top) * (canvas.height / 2 - 4);
+      if (k === 0) g.moveTo(x, y); else g.lineTo(x, y);
+    });
+    g.stroke();
+  }
+  g.fillStyle = '#aab';
+  g.fillText(`±${top.toPrecision(2)} mN  |F| x y z`, 4, 12);
+}
+
+function showRoi() {
+  const on = document.getElementById('show-roi').checked;
+  roiPoints.forEach((p, k) => { p.visible = on && k === currentModel; });
+  dirty = true;
+}
+document.getElementById('show-roi').onchange = showRoi;
+document.getElementById('save').onclick = () => send(HAND.save);
+
+// ---- The hand ----
+const raycaster = new THREE.Raycaster();
+let drag = null;  // {restPoint, hitPoint, plane, depth, lastY}
+function rayAt(event) {
+  const r = renderer.domElement.getBoundingClientRect();
+  raycaster.setFromCamera(new THREE.Vector2(((event.clientX - r.left) / r.width) * 2 - 1, -((event.clientY - r.top) / r.height) * 2 + 1), camera);
+}
+function restPointOf(hit) {  // the hit on the drawn (moved) surface, at rest
+  const f = hit.face, p = brain.geometry.getAttribute('position').array;
+  const at = (i, a) => new THREE.Vector3(a[3 * i], a[3 * i + 1], a[3 * i + 2]);
+  const bary = new THREE.Triangle(at(f.a, p), at(f.b, p), at(f.c, p)).getBarycoord(hit.point, new THREE.Vector3());
+  const moved = at(f.a, displacement).multiplyScalar(bary.x).add(at(f.b, displacement).multiplyScalar(bary.y))
+    .add(at(f.c, displacement).multiplyScalar(bary.z));
+  return hit.point.clone().sub(moved);
+}
+renderer.domElement.addEventListener('pointerdown', (event) => {
+  if (!brain || event.button !== 0) return;
+  rayAt(event);
+  const hit = raycaster.intersectObject(brain)[0];
+  if (!hit) return;
+  controls.enabled = false;
+  const restPoint = restPointOf(hit), normal = camera.getWorldDirection(new THREE.Vector3());
+  drag = { restPoint, hitPoint: hit.point.clone(), plane: new THREE.Plane().setFromNormalAndCoplanarPoint(normal, hit.point),
+           depth: 0, lastY: event.clientY, along: hit.point.clone() };
+  send(HAND.pick, restPoint.toArray());
+});
+window.addEventListener('pointermove', (event) => {
+  if (!drag) return;
+  const view = camera.getWorldDirection(new THREE.Vector3());
+  if (event.shiftKey) {  // depth: up moves away from the viewer
+    drag.depth += (drag.lastY - event.clientY) * 0.1;
+  } else {
+    rayAt(event);
+    const onPlane = raycaster.ray.intersectPlane(drag.plane, new THREE.Vector3());
+    if (onPlane) drag.along = onPlane;
+  }
+  drag.lastY = event.clientY;
+  const target = drag.restPoint.clone().add(drag.along.clone().sub(drag.hitPoint)).add(view.multiplyScalar(drag.depth));
+  send(HAND.target, target.toArray());
+});
+window.addEventListener('pointerup', () => {
+  if (!drag) return;
+  drag = null;
+  controls.enabled = true;
+  send(HAND.release);
+});
+
+// The share of the view's pixels that differ from its empty background, read right after a render
+// (the drawing buffer is not kept after it is shown).
+live.drawnShare = () => {
+  renderer.render(scene, camera);
+  const gl = renderer.getContext(), w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
+  const pixels = new Uint8Array(4 * w * h);
+  gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, pixels);
+  const background = [0x15, 0x17, 0x1c];
+  let differ = 0;
+  for (let i = 0; i < pixels.length; i += 4)
+    if (Math.abs(pixels[i] - background[0]) + Math.abs(pixels[i + 1] - background[1]) + Math.abs(pixels[i + 2] - background[2]) > 12) differ += 1;
+  return differ / (w * h);
+};
+
+live.screenOf = (x, y, z) => {
+  const p = new THREE.Vector3(x, y, z).project(camera), r = renderer.domElement.getBoundingClientRect();
+  return { x: r.left + ((p.x + 1) / 2) * r.width, y: r.top + ((1 - p.y) / 2) * r.height };
+};
+
+// ---- The loop: a frame that came is drawn (nothing else redraws but a turn of the view), then its
+// latency is measured. Drawing only what changed leaves a software renderer its time for the frames.
+let dirty = true, plotDirty = false;
+controls.addEventListener('change', () => { dirty = true; });
+window.addEventListener('resize', () => { dirty = true; });
+let second = performance.now(), drawnThisSecond = 0;
+function animate() {
+  requestAnimationFrame(animate);
+  const now = performance.now();
+  if (pendingFrame) {
+    const view = new DataView(pendingFrame);
+    const V = view.getUint32(4, true), seq = view.getUint32(8, true);
+    displacement.set(new Float32Array(pendingFrame, 24, 3 * V));
+    pendingFrame = null;
+    recolour();
+    live.frames += 1;
+    frameShows = seq;
+    dirty = true;
+  }
+  if (plotDirty) {
+    drawForcePlot();
+    plotDirty = false;
+  }
+  if (dirty) {
+    light.position.copy(camera.position);
+    renderer.render(scene, camera);
+    live.framesDrawn += 1;
+    ++drawnThisSecond;
+    dirty = false;
+  }
+  // Latency: from a target's sending to the first drawn frame that applied it.
+  for (const [seq, sent] of sentAt) {
+    if (seq > frameShows) continue;
+    live.latencies.push(now - sent);
+    sentAt.delete(seq);
+  }
+  if (live.latencies.length > 2000) live.latencies.splice(0, live.latencies.length - 2000);
+  if (now - second >= 1000) {
+    live.fps = (1000 * drawnThisSecond) / (now - second);
+    second = now;
+    drawnThisSecond = 0;
+    const f = live.state ? live.state.frame : null;
+    document.getElementById('display').textContent = `${live.fps.toFixed(0)} frames/s drawn, ${live.frames} from the server` +
+      (f ? `; the server builds one in ${f.build_ms.toFixed(2)} ms (the static part's surface: ${f.recovery_ms.toFixed(1)} ms, at most 1/40 of the time)` : '');
+  }
+}
+animate();
