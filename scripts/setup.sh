@@ -27,6 +27,9 @@ packages=(
   clang-format clang-tidy  # scripts/lint.sh (14 on Debian 12)
   python3-h5py python3-matplotlib python3-numpy   # plots (Debian's /usr/bin/python3)
   pybind11-dev python3-dev python3-pytest         # the Python module roifem (python/) and its tests
+  libboost-dev             # Beast and Asio: roifem serve's HTTP and WebSocket
+  libjs-three              # three.js, which roifem serve's page draws with (served locally)
+  chromium                 # the browser test (tests/browser): headless, software WebGL
 )
 
 missing=()
@@ -41,5 +44,19 @@ if ((${#missing[@]})); then
   export DEBIAN_FRONTEND=noninteractive
   $SUDO apt-get update -qq
   $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+# The browser test's driver: puppeteer-core from npm, pinned by tests/browser/package-lock.json,
+# with the machine's Node.js (Debian's nodejs and npm where it has none).
+browser_tests="$(dirname "$0")/../tests/browser"
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+  echo "setup: installing nodejs npm"
+  SUDO=""
+  [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends nodejs npm >/dev/null
+fi
+if [ ! -f "$browser_tests/node_modules/.package-lock.json" ] ||
+   [ "$browser_tests/package-lock.json" -nt "$browser_tests/node_modules/.package-lock.json" ]; then
+  echo "setup: installing the browser test's puppeteer-core (npm ci)"
+  (cd "$browser_tests" && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
 fi
 echo "setup: all packages present"

@@ -1,0 +1,151 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// roifem serve in a real browser: Debian's headless Chromium, driven by puppeteer-core.
+//   node page_test.mjs ROIFEM SCENARIO OUT_DIR [--pick-mm X,Y,Z] [-- SERVE_OPTIONS...]
+// (--pick-mm: where on the surface to press, default 0,-20,48 on the shipped brain; the rest goes to
+// roifem serve, e.g. -- --models full static for the 20k brain's measurement in docs/simulator.md)
+// Loads the page and checks that the brain is drawn (the canvas's pixels differ from its empty
+// background); switches to the condensed ROI model with the mouse; drags the tool along a known
+// path with the mouse; saves the grab and replays it with `roifem run`, whose force at the time the
+// page showed must equal the page's force; measures the frame rate, the physics rate and the
+// latency from the hand's message to the frame that shows it; stops the server with Ctrl-C.
+// Screenshots: OUT_DIR/page-loaded.png, OUT_DIR/page-drag.png. Figures: OUT_DIR/figures.json.
+import { spawn, execFileSync } from 'node:child_process';
+import { mkdirSync, rmSync, writeFileSync } from 'node:fs';
+import path from 'node:path';
+import puppeteer from 'puppeteer-core';
+
+const [roifem, scenario, out, ...rest] = process.argv.slice(2);
+if (!out) throw new Error('usage: node page_test.mjs ROIFEM SCENARIO OUT_DIR [--pick-mm X,Y,Z] [-- SERVE_OPTIONS...]');
+let pickMm = [0, -20, 48];
+if (rest[0] === '--pick-mm') pickMm = rest.splice(0, 2)[1].split(',').map(Number);
+const serveOptions = rest[0] === '--' ? rest.slice(1) : [];
+rmSync(out, { recursive: true, force: true });
+mkdirSync(out, { recursive: true });
+const record = path.join(out, 'grabs');
+const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+let failures = 0;
+function check(ok, what) {
+  console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}`);
+  if (!ok) failures += 1;
+}
+
+// ---- The server, on a free loopback port ----
+const server = spawn(roifem, ['serve', scenario, '--port', '0', '--record', record, ...serveOptions],
+                     { stdio: ['ignore', 'pipe', 'pipe'] });
+let log = '';
+server.stdout.on('data', (d) => { log += d; });
+server.stderr.on('data', (d) => { log += d; });
+const exited = new Promise((resolve) => server.on('exit', (code, signal) => resolve({ code, signal })));
+process.on('exit', () => server.kill('SIGKILL'));  // whatever failed, no server is left behind
+let url = null;
+for (let k = 0; k < 600 && !url; ++k) {
+  const m = log.match(/open (http:\/\/127\.0\.0\.1:[0-9]+\/)/);
+  if (m) url = m[1];
+  else await sleep(100);
+}
+if (!url) { console.log(log); throw new Error('the server did not start within 60 s'); }
+
+const browser = await puppeteer.launch({
+  executablePath: '/usr/bin/chromium', headless: true,
+  args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--disable-background-networking',
+         '--disable-component-update', '--disable-sync', '--no-first-run', '--disable-quic', '--window-size=1200,800'],
+});
+try {
+  const page = await browser.newPage();
+  await page.setViewport({ width: 1200, height: 800 });
+  const pageErrors = [];
+  page.on('pageerror', (e) => pageErrors.push(e.message));
+  await page.goto(url);
+  await page.waitForFunction(() => window.roifem && window.roifem.ready && window.roifem.frames > 3, { timeout: 30000 });
+
+  // ---- Drawn: the share of the view's pixels that are not its empty background ----
+  const drawn = await page.evaluate(() => window.roifem.drawnShare());
+  await page.screenshot({ path: path.join(out, 'page-loaded.png') });
+  check(drawn > 0.05, `the brain is drawn: ${(100 * drawn).toFixed(1)}% of the view's pixels differ from the empty canvas`);
+
+  // ---- The condensed ROI, chosen with the mouse ----
+  const hello = await page.evaluate(() => window.roifem.hello);
+  const roiModel = hello.models.findIndex((m) => m.name === 'static');
+  await page.click(`#models button:nth-child(${roiModel + 1})`);
+  await page.waitForFunction((k) => window.roifem.state && window.roifem.state.model === k, { timeout: 10000 }, roiModel);
+
+  // ---- A drag along a known path: 20 px right, 12 px up, in 40 moves over 0.8 s, then circles ----
+  const target = await page.evaluate((p) => window.roifem.screenOf(...p), pickMm);
+  await page.mouse.move(target.x, target.y);
+  await page.mouse.down();
+  await page.waitForFunction(() => window.roifem.state && window.roifem.state.holding, { timeout: 10000 }).catch(async () => {
+    throw new Error(`no grab at (${pickMm}) mm: ${await page.evaluate(() => window.roifem.notices.join('; '))}`);
+  });
+  const latencyFrom = await page.evaluate(() => window.roifem.latencies.length);
+  const framesBefore = await page.evaluate(() => window.roifem.framesDrawn);
+  const started = Date.now();
+  for (let k = 1; k <= 40; ++k) {
+    await page.mouse.move(target.x + 0.5 * k, target.y - 0.3 * k);
+    await sleep(20);
+  }
+  // Circles of 4 px while the frame rate is measured (2 s).
+  for (let k = 0; k < 100; ++k) {
+    await page.mouse.move(target.x + 20 + 4 * Math.cos(k / 8), target.y - 12 + 4 * Math.sin(k / 8));
+    await sleep(20);
+  }
+  const seconds = (Date.now() - started) / 1000;
+  const measured = await page.evaluate((from) => ({
+    frames: window.roifem.framesDrawn, latencies: window.roifem.latencies.slice(from), state: window.roifem.state,
+  }), latencyFrom);
+  await page.screenshot({ path: path.join(out, 'page-drag.png') });
+  const fps = (measured.frames - framesBefore) / seconds;
+  const lat = measured.latencies.sort((a, b) => a - b);
+  const median = (a) => a[Math.floor(a.length / 2)];
+  const figures = {
+    frames_per_s: fps, latency_ms_median: median(lat), latency_ms_p90: lat[Math.floor(0.9 * lat.length)],
+    latency_samples: lat.length, physics_rate_hz: measured.state.ticks.rate_hz, tick_median_ms: measured.state.ticks.median_ms,
+    tick_p99_ms: measured.state.ticks.p99_ms, late_per_10k: measured.state.ticks.late_per_10k, model: measured.state.model_name,
+    surface_nodes: hello.vertices, force_mN: measured.state.force_mN, t: measured.state.t, server_frame_ms: measured.state.frame.build_ms,
+    static_recovery_ms: measured.state.frame.recovery_ms,
+  };
+  console.log('figures', JSON.stringify(figures));
+  writeFileSync(path.join(out, 'figures.json'), JSON.stringify(figures, null, 1));
+  check(Math.hypot(...measured.state.g_mm) > 1, `the tool moved with the mouse: ${Math.hypot(...measured.state.g_mm).toFixed(2)} mm`);
+  check(fps > 5, `frames drawn while dragging: ${fps.toFixed(1)} per second`);
+  check(measured.state.ticks.rate_hz > 500, `physics: ${measured.state.ticks.rate_hz} ticks per second`);
+  check(lat.length > 10, `latency measured ${lat.length} times: median ${median(lat).toFixed(1)} ms`);
+
+  // ---- Hold still, so that the readout and the state agree; then the force against the library's ----
+  await sleep(600);
+  const held = await page.evaluate(() => ({ state: window.roifem.shown, shown: document.getElementById('force').textContent }));
+  const magnitude = Math.hypot(...held.state.force_mN);
+  check(Math.abs(parseFloat(held.shown) - magnitude) <= 0.005 + 1e-9,
+        `the page shows ${held.shown} mN for the state's ${magnitude.toFixed(4)} mN`);
+  await page.mouse.up();
+  await page.waitForFunction(() => window.roifem.state && !window.roifem.state.holding, { timeout: 10000 });
+  await sleep(300);
+  await page.click('#save');
+  await page.waitForFunction(() => window.roifem.notices.some((n) => n.startsWith('saved')), { timeout: 10000 });
+  const saved = await page.evaluate(() => window.roifem.notices.find((n) => n.startsWith('saved')));
+  const toml = saved.match(/: (\S+\.toml),/)[1];
+  execFileSync(roifem, ['run', toml, '--out', path.join(out, 'replay')], { stdio: 'ignore' });
+  // The replay's step at the page's t (k = t / dt; its time_s says so), read with h5py.
+  const replayed = JSON.parse(execFileSync('/usr/bin/python3', ['-c', `
+import h5py, json, sys
+with h5py.File(sys.argv[1]) as f:
+    t = f["time_s"][:]
+    k = int(abs(t - float(sys.argv[2])).argmin())
+    print(json.dumps({"k": k, "t": float(t[k]), "force": f["tools/hand/force_N"][k].tolist()}))
+`, path.join(out, 'replay', 'results.h5'), String(held.state.t)]).toString());
+  check(replayed.k > 0 && Math.abs(replayed.t - held.state.t) < 1e-7, `the replay reached the page's t = ${held.state.t} s`);
+  const library = replayed.force.map((f) => 1e3 * f);
+  const error = Math.hypot(...library.map((f, c) => f - held.state.force_mN[c])) / Math.hypot(...library);
+  check(error < 1e-5, `at t = ${held.state.t} s the page shows (${held.state.force_mN.join(', ')}) mN, roifem run's replay ` +
+        `(${library.map((f) => f.toPrecision(6)).join(', ')}) mN: relative difference ${error.toExponential(2)} (the page's 6 digits)`);
+  check(pageErrors.length === 0, `no error on the page${pageErrors.length ? ': ' + pageErrors.join('; ') : ''}`);
+} finally {
+  await browser.close();
+}
+
+// ---- Ctrl-C ----
+server.kill('SIGINT');
+const { code } = await exited;
+check(code === 130, `Ctrl-C stops the server (exit ${code}, as every roifem command stopped by Ctrl-C)`);
+check(/serve: stopping \(signal 2\)/.test(log), 'its log says it stopped on the signal');
+if (failures) { console.log(log); process.exit(1); }
+console.log('browser test: all checks passed');
