@@ -4,7 +4,7 @@
 import * as THREE from '/three/build/three.module.js';
 import { OrbitControls } from '/three/examples/jsm/controls/OrbitControls.js';
 
-const HAND = { pick: 1, target: 2, release: 3, model: 4, save: 5 };
+const HAND = { pick: 1, target: 2, release: 3, model: 4, save: 5, compare: 6 };
 
 // What the tests (and a curious user's console) read: window.roifem.
 const live = {
@@ -145,12 +145,12 @@ let pendingFrame = null, frameShows = 0;
 
 function send(kind, point, model) {
   if (socket.readyState !== WebSocket.OPEN) return;
-  const size = kind === HAND.pick || kind === HAND.target ? 32 : kind === HAND.model ? 12 : 8;
+  const size = kind === HAND.pick || kind === HAND.target ? 32 : kind === HAND.model || kind === HAND.compare ? 12 : 8;
   const buffer = new ArrayBuffer(size), view = new DataView(buffer);
   view.setUint8(0, kind);
   view.setUint32(4, ++sequence, true);
   if (point) point.forEach((x, c) => view.setFloat64(8 + 8 * c, x, true));
-  if (kind === HAND.model) view.setUint32(8, model, true);
+  if (kind === HAND.model || kind === HAND.compare) view.setUint32(8, model, true);
   if (kind === HAND.target) sentAt.set(sequence, performance.now());
   socket.send(buffer);
 }
@@ -228,6 +228,7 @@ function onState(m) {
   document.getElementById('force').textContent = magnitude.toFixed(2);
   document.getElementById('force-parts').textContent = `(${f.map((x) => x.toFixed(2)).join(', ')})`;
   const t = m.ticks;
+  showComparison(m);
   document.getElementById('physics').textContent =
     `${t.rate_hz.toFixed(0)} ticks/s, median ${t.median_ms.toFixed(3)} ms, p99 ${t.p99_ms.toFixed(3)} ms, ` +
     `late ${t.late_per_10k.toFixed(1)} per 10,000 (of ${t.count})`;
@@ -250,6 +251,34 @@ function drawForcePlot() {
   }
   g.fillStyle = '#aab';
   g.fillText(`±${top.toPrecision(2)} mN  |F| x y z`, 4, 12);
+}
+
+// ---- Compare: the live model's force error against the full model on the same hand ----
+const errorHistory = [];
+document.getElementById('compare').onchange = (event) => send(HAND.compare, null, event.target.checked ? 1 : 0);
+function showComparison(m) {
+  const text = document.getElementById('compare-text'), c = m.compare;
+  if (!c) { text.textContent = ''; return; }
+  if (m.model_name === 'full') { text.textContent = 'The live model is the full model: nothing to compare.'; return; }
+  if (c.t === 0) { text.textContent = 'From the next grab.'; return; }
+  const e = Math.hypot(...c.error_mN);
+  errorHistory.push(e);
+  if (errorHistory.length > 600) errorHistory.shift();
+  text.textContent = `at t = ${c.t.toFixed(3)} s the full model feels ${Math.hypot(...c.full_force_mN).toFixed(2)} mN; ` +
+    `${m.model_name}'s error ${e.toFixed(3)} mN (the grab's largest ${c.largest_error_mN.toFixed(3)} mN of ` +
+    `${c.largest_full_force_mN.toFixed(2)} mN), ${c.behind_s.toFixed(2)} s behind`;
+  const canvas = document.getElementById('error-plot'), g = canvas.getContext('2d');
+  g.clearRect(0, 0, canvas.width, canvas.height);
+  const top = Math.max(1e-3, ...errorHistory);
+  g.strokeStyle = '#fa4';
+  g.beginPath();
+  errorHistory.forEach((v, k) => {
+    const x = (k / 599) * canvas.width, y = canvas.height - 2 - (v / top) * (canvas.height - 14);
+    if (k === 0) g.moveTo(x, y); else g.lineTo(x, y);
+  });
+  g.stroke();
+  g.fillStyle = '#aab';
+  g.fillText(`|F_roi - F_full| up to ${top.toPrecision(2)} mN`, 4, 12);
 }
 
 function showRoi() {

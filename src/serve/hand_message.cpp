@@ -16,6 +16,7 @@ std::size_t size_of(HandKind kind) {
     case HandKind::target:
       return header_bytes + 3 * sizeof(double);
     case HandKind::model:
+    case HandKind::compare:
       return header_bytes + sizeof(std::uint32_t);
     case HandKind::release:
     case HandKind::save:
@@ -36,6 +37,8 @@ const char* name_of(HandKind kind) {
       return "release";
     case HandKind::save:
       return "save";
+    case HandKind::compare:
+      return "compare";
   }
   return "?";
 }
@@ -53,7 +56,8 @@ std::variant<HandMessage, std::string> decode_hand_message(std::span<const std::
   if (bytes.size() < header_bytes)
     return "a message of " + std::to_string(bytes.size()) + " bytes (the header alone is " + std::to_string(header_bytes) + ")";
   const std::uint8_t kind = bytes[0];
-  if (kind < 1 || kind > 5) return "an unknown kind " + std::to_string(kind) + " (1 pick, 2 target, 3 release, 4 model, 5 save)";
+  if (kind < 1 || kind > 6)
+    return "an unknown kind " + std::to_string(kind) + " (1 pick, 2 target, 3 release, 4 model, 5 save, 6 compare)";
   if (bytes[1] != 0 || bytes[2] != 0 || bytes[3] != 0) return "a header whose padding bytes 1-3 are not zero";
   HandMessage m;
   m.kind = static_cast<HandKind>(kind);
@@ -66,7 +70,7 @@ std::variant<HandMessage, std::string> decode_hand_message(std::span<const std::
       m.point_mm[c] = read_at<double>(bytes, header_bytes + sizeof(double) * static_cast<std::size_t>(c));
     if (!m.point_mm.allFinite()) return std::string("a ") + name_of(m.kind) + " at a point that is not finite";
   }
-  if (m.kind == HandKind::model) m.model = read_at<std::uint32_t>(bytes, header_bytes);
+  if (m.kind == HandKind::model || m.kind == HandKind::compare) m.model = read_at<std::uint32_t>(bytes, header_bytes);
   return m;
 }
 
@@ -79,7 +83,8 @@ std::string encode_hand_message(const HandMessage& message) {
       const double x = message.point_mm[c];
       std::memcpy(out.data() + header_bytes + sizeof(double) * static_cast<std::size_t>(c), &x, sizeof(double));
     }
-  if (message.kind == HandKind::model) std::memcpy(out.data() + header_bytes, &message.model, sizeof(std::uint32_t));
+  if (message.kind == HandKind::model || message.kind == HandKind::compare)
+    std::memcpy(out.data() + header_bytes, &message.model, sizeof(std::uint32_t));
   return out;
 }
 

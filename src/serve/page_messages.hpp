@@ -47,8 +47,17 @@ struct FrameFigures {
   double build_ms = 0, recovery_ms = 0;
 };
 
+/// Compare: the full model's force on the same hand at the latest tick it reached (N), the live
+/// model's error against it there, the largest error and force of the grab so far, how far behind.
+struct CompareFigures {
+  bool on = false;
+  double t = 0;
+  Vec3 reference_force = Vec3::Zero(), error = Vec3::Zero();
+  double largest_error = 0, largest_force = 0, behind_s = 0;
+};
+
 std::string state_message(const LiveScene& scene, const PhysicsSnapshot& snapshot, const TickFigures& ticks,
-                          const FrameFigures& frame, bool recording);
+                          const FrameFigures& frame, const CompareFigures& compare, bool recording);
 std::string notice_message(const std::string& text);
 std::string role_message(bool driver);
 /// text as a JSON string literal (quotes, backslashes and control characters escaped).

@@ -140,7 +140,8 @@ void PhysicsLoop::handle(const HandMessage& event) {
       break;
     case HandKind::target:
     case HandKind::save:
-      break;  // not queued
+    case HandKind::compare:
+      break;  // not queued: the server's
   }
 }
 

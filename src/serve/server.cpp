@@ -14,6 +14,7 @@
 #include "common/errors.hpp"
 #include "common/interrupt.hpp"
 #include "io/csv.hpp"
+#include "serve/compare_loop.hpp"
 #include "serve/hand_message.hpp"
 #include "serve/hand_recording.hpp"
 #include "serve/page_messages.hpp"
@@ -127,6 +128,11 @@ class Server::Impl {
   double next_recovery_ = 0, frame_ms_ = 0, recovery_ms_ = 0;
   std::uint32_t recovered_grab_ = 0;
   std::size_t recovered_model_ = 0;
+  // Compare: the full model on the same hand, and the live model's force error against it.
+  std::unique_ptr<CompareLoop> compare_;
+  std::vector<CompareSample> compared_;
+  CompareFigures comparison_;
+  std::uint32_t compare_lost_grab_ = 0;
   const std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 
   void accept();
@@ -142,6 +148,9 @@ class Server::Impl {
   /// Writes the grab in progress for replay (with --record, or when the page asks).
   void finish_grab();
   void save_grab(const std::string& why);
+  void set_compare(bool on);
+  /// The reference's forces that came, against the live grab's at the same ticks.
+  void follow_comparison();
   void shut_down();
   WsSession* driver() const { return sessions_.empty() ? nullptr : sessions_.front().get(); }
 };
@@ -352,6 +361,7 @@ void Server::Impl::received(WsSession& session, const std::string& bytes, bool t
   }
   const HandMessage& message = std::get<HandMessage>(decoded);
   if (message.kind == HandKind::save) return save_grab("the page asked");
+  if (message.kind == HandKind::compare) return set_compare(message.model != 0);
   if (const std::string refused = physics_.post(message); !refused.empty()) ++r.queue;
 }
 
@@ -378,6 +388,7 @@ void Server::Impl::collect_frame(int tries) {
     ticks_.add(tick_seconds_, now);
     for (const std::string& notice : physics_.take_notices()) say(notice);
     follow_grab();
+    follow_comparison();
     if (!physics_.take_snapshot(snapshot_)) {
       if (tries < 40) collect_frame(tries + 1);
       return;
@@ -403,9 +414,10 @@ void Server::Impl::collect_frame(int tries) {
     }
     frame_ms_ = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - built).count();
     broadcast(std::make_shared<const Outgoing>(Outgoing{frame_message(snapshot_, displacement_), true}));
-    broadcast(std::make_shared<const Outgoing>(Outgoing{
-        state_message(scene_, snapshot_, ticks_.figures(physics_.slips()), {frame_ms_, recovery_ms_}, !options_.record.empty()),
-        false}));
+    broadcast(
+        std::make_shared<const Outgoing>(Outgoing{state_message(scene_, snapshot_, ticks_.figures(physics_.slips()),
+                                                                {frame_ms_, recovery_ms_}, comparison_, !options_.record.empty()),
+                                                  false}));
   });
 }
 
@@ -460,8 +472,13 @@ void Server::Impl::follow_grab() {
     if (s.grab != grab_.grab) {
       finish_grab();
       grab_ = GrabRecord{.grab = s.grab, .model = s.model, .center_mm = s.center_mm, .grip_nodes = s.grip_nodes, .samples = {}};
+      comparison_ = CompareFigures{.on = compare_ != nullptr};
     }
     grab_.samples.push_back(s);
+    if (compare_ && s.grab != compare_lost_grab_ && !compare_->feed(s)) {
+      compare_lost_grab_ = s.grab;
+      say(io::format("compare: the full model fell 65,536 ticks behind grab %u: its comparison stops", s.grab));
+    }
   }
 }
 
@@ -481,6 +498,46 @@ void Server::Impl::save_grab(const std::string& why) {
   }
 }
 
+void Server::Impl::set_compare(bool on) {
+  if (on == (compare_ != nullptr)) return;
+  if (!on) {
+    compare_.reset();
+    comparison_ = {};
+    return say("compare: off");
+  }
+  if (scene_.models().front().condensed())
+    return say("compare: not prepared (start the server with the full model among --models)");
+  compare_ = std::make_unique<CompareLoop>(scene_, 0);
+  compare_->start();
+  compare_lost_grab_ = grab_.grab;  // from the next grab: this one's start is gone
+  comparison_ = CompareFigures{.on = true};
+  say("compare: on, from the next grab: the full model follows the same hand in a thread of its own");
+}
+
+void Server::Impl::follow_comparison() {
+  if (!compare_) return;
+  if (const std::string why = compare_->failure(); !why.empty()) {
+    say("compare: stopped: " + why);
+    compare_.reset();
+    comparison_ = {};
+    return;
+  }
+  compared_.clear();
+  compare_->drain(compared_);
+  for (const CompareSample& c : compared_) {
+    if (c.grab != grab_.grab) continue;
+    const auto k = static_cast<std::size_t>(std::lround(c.t / scene_.dt()));
+    if (k >= grab_.samples.size()) continue;
+    const Vec3 error = grab_.samples[k].force - c.force;
+    comparison_.t = c.t;
+    comparison_.reference_force = c.force;
+    comparison_.error = error;
+    comparison_.largest_error = std::max(comparison_.largest_error, error.norm());
+    comparison_.largest_force = std::max(comparison_.largest_force, c.force.norm());
+    comparison_.behind_s = grab_.samples.back().t - c.t;
+  }
+}
+
 void Server::Impl::shut_down() {
   if (stopping_) return;
   stopping_ = true;
@@ -488,6 +545,7 @@ void Server::Impl::shut_down() {
   acceptor_.close(ignored);
   frame_timer_.cancel();
   collect_timer_.cancel();
+  compare_.reset();
   second_timer_.cancel();
   for (const auto& s : sessions_) {
     report_refusals(*s);

@@ -69,6 +69,10 @@ try {
   await page.click(`#models button:nth-child(${roiModel + 1})`);
   await page.waitForFunction((k) => window.roifem.state && window.roifem.state.model === k, { timeout: 10000 }, roiModel);
 
+  // Compare: the full model follows the same hand in a thread of its own.
+  await page.click('#compare');
+  await page.waitForFunction(() => window.roifem.notices.some((n) => n.startsWith('compare: on')), { timeout: 10000 });
+
   // ---- A drag along a known path: 20 px right, 12 px up, in 40 moves over 0.8 s, then circles ----
   const target = await page.evaluate((p) => window.roifem.screenOf(...p), pickMm);
   await page.mouse.move(target.x, target.y);
@@ -101,7 +105,7 @@ try {
     latency_samples: lat.length, physics_rate_hz: measured.state.ticks.rate_hz, tick_median_ms: measured.state.ticks.median_ms,
     tick_p99_ms: measured.state.ticks.p99_ms, late_per_10k: measured.state.ticks.late_per_10k, model: measured.state.model_name,
     surface_nodes: hello.vertices, force_mN: measured.state.force_mN, t: measured.state.t, server_frame_ms: measured.state.frame.build_ms,
-    static_recovery_ms: measured.state.frame.recovery_ms,
+    static_recovery_ms: measured.state.frame.recovery_ms, compare: measured.state.compare,
   };
   console.log('figures', JSON.stringify(figures));
   writeFileSync(path.join(out, 'figures.json'), JSON.stringify(figures, null, 1));
@@ -109,6 +113,10 @@ try {
   check(fps > 5, `frames drawn while dragging: ${fps.toFixed(1)} per second`);
   check(measured.state.ticks.rate_hz > 500, `physics: ${measured.state.ticks.rate_hz} ticks per second`);
   check(lat.length > 10, `latency measured ${lat.length} times: median ${median(lat).toFixed(1)} ms`);
+  const c = measured.state.compare;
+  check(c && c.t > 0 && c.largest_full_force_mN > 0,
+        `compare: the full model followed to t = ${c ? c.t : '-'} s (${c ? c.behind_s : '-'} s behind); the static model's largest ` +
+        `force error ${c ? c.largest_error_mN : '-'} mN of ${c ? c.largest_full_force_mN : '-'} mN`);
 
   // ---- Hold still, so that the readout and the state agree; then the force against the library's ----
   await sleep(600);

@@ -8,6 +8,7 @@
 
 #include "common/errors.hpp"
 #include "h5_read.hpp"
+#include "serve/compare_loop.hpp"
 #include "serve/hand_recording.hpp"
 #include "serve/physics_loop.hpp"
 #include "serve_test_support.hpp"
@@ -79,6 +80,48 @@ TEST(ServeReplay, AGrabReplayedByRoifemRunFeelsTheLiveForceOnEveryModel) {
     std::printf("[ figures ] %-18s %zu ticks, largest force %.4g N, replayed within %.2e of it\n",
                 scene->models()[k].name.c_str(), grab.samples.size() - 1, largest, difference / largest);
   }
+}
+
+TEST(ServeCompare, TheFullModelOnTheLiveHandFeelsWhatRoifemRunsFullReplayFeels) {
+  const auto scene = test::paper_scene();
+  const Vec3 point = test::pickable_point(*scene);
+  const GrabRecord grab = live_grab(*scene, 1, point);  // on the static model
+  ASSERT_EQ(scene->models()[1].name, "static");
+  CompareLoop compare(*scene, 0);
+  compare.start();
+  for (const HandSample& s : grab.samples) ASSERT_TRUE(compare.feed(s));
+  std::vector<CompareSample> compared;
+  for (int wait = 0; wait < 1000 && compared.size() + 1 < grab.samples.size(); ++wait) {
+    compare.drain(compared);
+    std::this_thread::sleep_for(5ms);
+  }
+  compare.stop();
+  ASSERT_TRUE(compare.failure().empty()) << compare.failure();
+  ASSERT_EQ(compared.size() + 1, grab.samples.size());
+  // The same hand replayed on the full model by roifem run: the grab written as the full model's.
+  GrabRecord on_full = grab;
+  on_full.model = 0;
+  roifem::test::TempDir dir;
+  const auto toml = write_replay(*scene, on_full, dir.path(), "full");
+  std::ostringstream log;
+  simulation::run_scenario(scenario::read_scenario(toml), dir / "replay", log);
+  const auto force = roifem::test::read_h5(dir / "replay/results.h5", "tools/hand/force_N");
+  double largest = 0, difference = 0, roi_error = 0;
+  for (std::size_t i = 0; i < compared.size(); ++i) {
+    const Vec3 replayed(force[3 * (i + 1)], force[3 * (i + 1) + 1], force[3 * (i + 1) + 2]);
+    EXPECT_EQ(compared[i].grab, grab.grab);
+    EXPECT_NEAR(compared[i].t, grab.samples[i + 1].t, 1e-12);
+    largest = std::max(largest, replayed.norm());
+    difference = std::max(difference, (compared[i].force - replayed).norm());
+    roi_error = std::max(roi_error, (grab.samples[i + 1].force - replayed).norm());
+  }
+  EXPECT_LT(difference, 1e-9 * largest);
+  // The static condensation's force differs from the full model's (the reduction error the page
+  // plots), but not by much on the paper's ROI.
+  EXPECT_GT(roi_error, 1e-6 * largest);
+  EXPECT_LT(roi_error, 0.5 * largest);
+  std::printf("[ figures ] compare: the full model's force %.4g N at most, replayed within %.2e; static's error %.3g of it\n",
+              largest, difference / largest, roi_error / largest);
 }
 
 TEST(ServeReplay, AReplayNeedsTicks) {
