@@ -138,6 +138,11 @@ class Server::Impl {
   void accept();
   void on_frame_timer();
   void collect_frame(int tries);
+  /// What the physics left since the last frame: tick times, notices, the hand's samples (the grab
+  /// and Compare follow them).
+  void take_what_came(double now);
+  /// The snapshot's surface and state, to every client.
+  void send_frame(double now);
   void on_second_timer();
   void broadcast(const std::shared_ptr<const Outgoing>& message);
   /// Logs what the client had refused since the last report, in one line, and starts counting afresh.
@@ -382,43 +387,48 @@ void Server::Impl::collect_frame(int tries) {
   collect_timer_.expires_after(std::chrono::microseconds(500));
   collect_timer_.async_wait([this, tries](beast::error_code ec) {
     if (ec || stopping_) return;
+    const bool fresh = physics_.take_snapshot(snapshot_);
+    if (!fresh && tries < 40) return collect_frame(tries + 1);
     const double now = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    tick_seconds_.clear();
-    physics_.drain_tick_seconds(tick_seconds_);
-    ticks_.add(tick_seconds_, now);
-    for (const std::string& notice : physics_.take_notices()) say(notice);
-    follow_grab();
-    follow_comparison();
-    if (!physics_.take_snapshot(snapshot_)) {
-      if (tries < 40) collect_frame(tries + 1);
-      return;
-    }
-    if (sessions_.empty()) return;
-    const auto built = std::chrono::steady_clock::now();
-    if (snapshot_.u.size() > 0) {
-      // The static part's surface is recovered (a solve with its factor) at most every 0.1 s and at
-      // most 1/40 of the time: the solve reads the whole static factor, which pushes the haptic
-      // loop's factor out of the shared cache while it runs (0.25 s on the 20k brain: ticks late).
-      // The ROI's surface moves every frame.
-      const bool recover = snapshot_.grab != recovered_grab_ || snapshot_.model != recovered_model_ || now >= next_recovery_;
-      scene_.surface_displacement(snapshot_.model, snapshot_.u, snapshot_.t, recover, displacement_);
-      if (recover) {
-        const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - built).count();
-        next_recovery_ = now + std::max(0.1, 40 * took);
-        recovered_grab_ = snapshot_.grab;
-        recovered_model_ = snapshot_.model;
-        recovery_ms_ = 1e3 * took;
-      }
-    } else {
-      displacement_.assign(3 * scene_.surface().nodes.size(), 0.0F);
-    }
-    frame_ms_ = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - built).count();
-    broadcast(std::make_shared<const Outgoing>(Outgoing{frame_message(snapshot_, displacement_), true}));
-    broadcast(
-        std::make_shared<const Outgoing>(Outgoing{state_message(scene_, snapshot_, ticks_.figures(physics_.slips()),
-                                                                {frame_ms_, recovery_ms_}, comparison_, !options_.record.empty()),
-                                                  false}));
+    take_what_came(now);
+    if (fresh && !sessions_.empty()) send_frame(now);
   });
+}
+
+void Server::Impl::take_what_came(double now) {
+  tick_seconds_.clear();
+  physics_.drain_tick_seconds(tick_seconds_);
+  ticks_.add(tick_seconds_, now);
+  for (const std::string& notice : physics_.take_notices()) say(notice);
+  follow_grab();
+  follow_comparison();
+}
+
+void Server::Impl::send_frame(double now) {
+  const auto built = std::chrono::steady_clock::now();
+  if (snapshot_.u.size() > 0) {
+    // The static part's surface is recovered (a solve with its factor) at most every 0.1 s and at
+    // most 1/40 of the time: the solve reads the whole static factor, which pushes the haptic
+    // loop's factor out of the shared cache while it runs (0.25 s on the 20k brain: ticks late).
+    // The ROI's surface moves every frame.
+    const bool recover = snapshot_.grab != recovered_grab_ || snapshot_.model != recovered_model_ || now >= next_recovery_;
+    scene_.surface_displacement(snapshot_.model, snapshot_.u, snapshot_.t, recover, displacement_);
+    if (recover) {
+      const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - built).count();
+      next_recovery_ = now + std::max(0.1, 40 * took);
+      recovered_grab_ = snapshot_.grab;
+      recovered_model_ = snapshot_.model;
+      recovery_ms_ = 1e3 * took;
+    }
+  } else {
+    displacement_.assign(3 * scene_.surface().nodes.size(), 0.0F);
+  }
+  frame_ms_ = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - built).count();
+  broadcast(std::make_shared<const Outgoing>(Outgoing{frame_message(snapshot_, displacement_), true}));
+  broadcast(
+      std::make_shared<const Outgoing>(Outgoing{state_message(scene_, snapshot_, ticks_.figures(physics_.slips()),
+                                                              {frame_ms_, recovery_ms_}, comparison_, !options_.record.empty()),
+                                                false}));
 }
 
 void Server::Impl::on_second_timer() {
