@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "serve/hand_message.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstring>
 
@@ -10,37 +11,49 @@ namespace {
 
 constexpr std::size_t header_bytes = 8;
 
-std::size_t size_of(HandKind kind) {
-  switch (kind) {
-    case HandKind::pick:
-    case HandKind::target:
+/// What follows a kind's header.
+enum class Payload { none, point, index };
+
+struct KindInfo {
+  HandKind kind;
+  const char* name;
+  Payload payload;
+};
+
+/// Every kind once, in the order of their codes (1, 2, ...): decode, encode and the refusals read it.
+constexpr std::array<KindInfo, 6> kinds{{{HandKind::pick, "pick", Payload::point},
+                                         {HandKind::target, "target", Payload::point},
+                                         {HandKind::release, "release", Payload::none},
+                                         {HandKind::model, "model", Payload::index},
+                                         {HandKind::save, "save", Payload::none},
+                                         {HandKind::compare, "compare", Payload::index}}};
+
+constexpr bool in_code_order() {
+  for (std::size_t k = 0; k < kinds.size(); ++k)
+    if (static_cast<std::size_t>(kinds[k].kind) != k + 1) return false;
+  return true;
+}
+static_assert(in_code_order(), "the kinds' table is indexed by code - 1");
+
+const KindInfo& info(HandKind kind) { return kinds[static_cast<std::size_t>(kind) - 1]; }
+
+std::size_t size_of(Payload payload) {
+  switch (payload) {
+    case Payload::point:
       return header_bytes + 3 * sizeof(double);
-    case HandKind::model:
-    case HandKind::compare:
+    case Payload::index:
       return header_bytes + sizeof(std::uint32_t);
-    case HandKind::release:
-    case HandKind::save:
+    case Payload::none:
       return header_bytes;
   }
-  return 0;
+  return header_bytes;
 }
 
-const char* name_of(HandKind kind) {
-  switch (kind) {
-    case HandKind::pick:
-      return "pick";
-    case HandKind::target:
-      return "target";
-    case HandKind::model:
-      return "model";
-    case HandKind::release:
-      return "release";
-    case HandKind::save:
-      return "save";
-    case HandKind::compare:
-      return "compare";
-  }
-  return "?";
+/// "1 pick, 2 target, ...".
+std::string kind_list() {
+  std::string list;
+  for (std::size_t k = 0; k < kinds.size(); ++k) list += (k ? ", " : "") + std::to_string(k + 1) + " " + kinds[k].name;
+  return list;
 }
 
 template <class T>
@@ -55,36 +68,36 @@ T read_at(std::span<const std::uint8_t> bytes, std::size_t offset) {
 std::variant<HandMessage, std::string> decode_hand_message(std::span<const std::uint8_t> bytes) {
   if (bytes.size() < header_bytes)
     return "a message of " + std::to_string(bytes.size()) + " bytes (the header alone is " + std::to_string(header_bytes) + ")";
-  const std::uint8_t kind = bytes[0];
-  if (kind < 1 || kind > 6)
-    return "an unknown kind " + std::to_string(kind) + " (1 pick, 2 target, 3 release, 4 model, 5 save, 6 compare)";
+  const std::uint8_t code = bytes[0];
+  if (code < 1 || code > kinds.size()) return "an unknown kind " + std::to_string(code) + " (" + kind_list() + ")";
   if (bytes[1] != 0 || bytes[2] != 0 || bytes[3] != 0) return "a header whose padding bytes 1-3 are not zero";
   HandMessage m;
-  m.kind = static_cast<HandKind>(kind);
-  if (bytes.size() != size_of(m.kind))
-    return std::string("a ") + name_of(m.kind) + " message of " + std::to_string(bytes.size()) + " bytes (it has " +
-           std::to_string(size_of(m.kind)) + ")";
+  m.kind = static_cast<HandKind>(code);
+  const KindInfo& kind = info(m.kind);
+  if (bytes.size() != size_of(kind.payload))
+    return std::string("a ") + kind.name + " message of " + std::to_string(bytes.size()) + " bytes (it has " +
+           std::to_string(size_of(kind.payload)) + ")";
   m.sequence = read_at<std::uint32_t>(bytes, 4);
-  if (m.kind == HandKind::pick || m.kind == HandKind::target) {
+  if (kind.payload == Payload::point) {
     for (int c = 0; c < 3; ++c)
       m.point_mm[c] = read_at<double>(bytes, header_bytes + sizeof(double) * static_cast<std::size_t>(c));
-    if (!m.point_mm.allFinite()) return std::string("a ") + name_of(m.kind) + " at a point that is not finite";
+    if (!m.point_mm.allFinite()) return std::string("a ") + kind.name + " at a point that is not finite";
   }
-  if (m.kind == HandKind::model || m.kind == HandKind::compare) m.model = read_at<std::uint32_t>(bytes, header_bytes);
+  if (kind.payload == Payload::index) m.model = read_at<std::uint32_t>(bytes, header_bytes);
   return m;
 }
 
 std::string encode_hand_message(const HandMessage& message) {
-  std::string out(size_of(message.kind), '\0');
+  const Payload payload = info(message.kind).payload;
+  std::string out(size_of(payload), '\0');
   out[0] = static_cast<char>(message.kind);
   std::memcpy(out.data() + 4, &message.sequence, sizeof(std::uint32_t));
-  if (message.kind == HandKind::pick || message.kind == HandKind::target)
+  if (payload == Payload::point)
     for (int c = 0; c < 3; ++c) {
       const double x = message.point_mm[c];
       std::memcpy(out.data() + header_bytes + sizeof(double) * static_cast<std::size_t>(c), &x, sizeof(double));
     }
-  if (message.kind == HandKind::model || message.kind == HandKind::compare)
-    std::memcpy(out.data() + header_bytes, &message.model, sizeof(std::uint32_t));
+  if (payload == Payload::index) std::memcpy(out.data() + header_bytes, &message.model, sizeof(std::uint32_t));
   return out;
 }
 
