@@ -123,6 +123,7 @@ function recolour() {
     size[v] = s;
     if (s > largest) largest = s;
   }
+  live.largestDisplacementMm = largest;
   const decade = Math.pow(10, Math.floor(Math.log10(Math.max(largest, 1e-3))));
   const top = [1, 2, 3, 5, 10].map((m) => m * decade).find((n) => n >= largest * (1 - 1e-6));
   for (let v = 0; v < V; ++v) colour(size[v] / top, colours.array, 3 * v);
@@ -171,7 +172,7 @@ function onJson(m) {
     const models = document.getElementById('models');
     m.models.forEach((model, k) => {
       const b = document.createElement('button');
-      b.textContent = model.name;
+      b.textContent = model.nonlinear ? `${model.name} (NL)` : model.name;
       b.title = `${model.description} (${model.unknowns} unknowns)`;
       b.onclick = () => send(HAND.model, null, k);
       models.appendChild(b);
@@ -232,6 +233,10 @@ function onState(m) {
   document.getElementById('physics').textContent =
     `${t.rate_hz.toFixed(0)} ticks/s, median ${t.median_ms.toFixed(3)} ms, p99 ${t.p99_ms.toFixed(3)} ms, ` +
     `late ${t.late_per_10k.toFixed(1)} per 10,000 (of ${t.count})`;
+  // A neo-Hookean model: what its fixed budget of Newton iterations left of the law's correction.
+  document.getElementById('newton').textContent = m.newton
+    ? `neo-Hookean: ${m.newton.iterations} Newton iterations a tick, residual ${m.newton.residual.toExponential(1)} of the law's correction`
+    : '';
 }
 
 function drawForcePlot() {
@@ -259,12 +264,20 @@ document.getElementById('compare').onchange = (event) => send(HAND.compare, null
 function showComparison(m) {
   const text = document.getElementById('compare-text'), c = m.compare;
   if (!c) { text.textContent = ''; return; }
-  if (m.model_name === 'full') { text.textContent = 'The live model is the full model: nothing to compare.'; return; }
+  if (live.hello.models[m.model].roi_nodes === 0) {
+    text.textContent = 'The live model is a full model: nothing to compare.';
+    return;
+  }
+  if (m.grab > 0 && c.reference === null) {
+    text.textContent = `No full model with ${m.model_name}'s law is prepared (roifem serve --models ... full` +
+      `${m.newton ? '-neo-hookean' : ''}): nothing to compare.`;
+    return;
+  }
   if (c.t === 0) { text.textContent = 'From the next grab.'; return; }
   const e = Math.hypot(...c.error_mN);
   errorHistory.push(e);
   if (errorHistory.length > 600) errorHistory.shift();
-  text.textContent = `at t = ${c.t.toFixed(3)} s the full model feels ${Math.hypot(...c.full_force_mN).toFixed(2)} mN; ` +
+  text.textContent = `at t = ${c.t.toFixed(3)} s ${c.reference} feels ${Math.hypot(...c.full_force_mN).toFixed(2)} mN; ` +
     `${m.model_name}'s error ${e.toFixed(3)} mN (the grab's largest ${c.largest_error_mN.toFixed(3)} mN of ` +
     `${c.largest_full_force_mN.toFixed(2)} mN), ${c.behind_s.toFixed(2)} s behind`;
   const canvas = document.getElementById('error-plot'), g = canvas.getContext('2d');

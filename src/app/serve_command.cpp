@@ -19,7 +19,7 @@ namespace {
 bool is_loopback(const std::string& host) { return host == "127.0.0.1" || host == "::1" || host.rfind("127.", 0) == 0; }
 
 void serve(const std::string& scenario_file, const serve::ServeOptions& options, double rate_hz, double radius_mm,
-           const std::vector<std::string>& models, const serve::PhysicsSettings& hand) {
+           const std::vector<std::string>& models, const serve::PhysicsSettings& hand, integrators::HapticNewton newton) {
   if (!is_loopback(options.host))
     std::cerr << "roifem serve: warning: listening on " << options.host
               << ", not the loopback address: anyone who reaches this machine can open the page and steer the model\n";
@@ -29,7 +29,7 @@ void serve(const std::string& scenario_file, const serve::ServeOptions& options,
   const solvers::BlasThreadsScope blas(1);
   if (!options.record.empty()) check_output_directory(options.record);
   std::cout << "roifem serve: preparing the models of " << scenario_file << "\n" << std::flush;
-  serve::LiveScene scene(scenario, rate_hz, radius_mm, models, std::cout);
+  serve::LiveScene scene(scenario, rate_hz, radius_mm, models, std::cout, newton);
   serve::PhysicsLoop physics(scene, hand);
   serve::Server server(scene, physics, serve::AssetFiles({{"/", serve::page_directory()}, {"/three/", serve::three_directory()}}),
                        options, std::cout);
@@ -51,12 +51,14 @@ void add_serve_command(CLI::App& app, Action& action) {
     double rate_hz = 1000, radius_mm = 5;
     std::vector<std::string> models;
     serve::PhysicsSettings hand;
+    integrators::HapticNewton newton;
   };
   auto o = std::make_shared<Options>();
   auto* cmd = app.add_subcommand(
       "serve",
       "Serve a page on which you steer the scenario's brain live: drag a tool on its surface, see it deform and read the "
-      "force, at the haptic rate, and switch between the full model and the condensed ROI (static, Guyan, Craig-Bampton). "
+      "force, at the haptic rate, and switch between the full model and the condensed ROI (static, Guyan, Craig-Bampton), "
+      "linear or at large deformation (neo-Hookean: the whole brain, or the hybrid ROI). "
       "The scenario's own tools and cuts are left out; every grab starts from rest and can be saved for `roifem run` to "
       "replay (--record). Nothing is fetched from outside: three.js is Debian's libjs-three");
   cmd->add_option("SCENARIO", o->scenario, "Scenario file (.toml): mesh, material, supports, loads, ROI")->required();
@@ -67,9 +69,13 @@ void add_serve_command(CLI::App& app, Action& action) {
                   "machine can steer it: a warning says so)")
       ->capture_default_str();
   cmd->add_option("--models", o->models,
-                  "The models to prepare and switch between: full, static, guyan, craig-bampton-K (default: full and, with an "
-                  "[roi], static, guyan and craig-bampton-10; on a large brain Guyan's and Craig-Bampton's preparation takes "
-                  "minutes)");
+                  "The models to prepare and switch between. Linear: full, static, guyan, craig-bampton-K. Large deformation: "
+                  "full-neo-hookean (the whole brain neo-Hookean) and static-neo-hookean (the hybrid ROI: the ROI's elements "
+                  "neo-Hookean over the "
+                  "linear condensed remainder), with the scenario's moduli as the law's small-strain moduli. Default: full and, "
+                  "with an [roi], static, guyan, craig-bampton-10 and static-neo-hookean (a neo-Hookean scenario's "
+                  "full-neo-hookean and static-neo-hookean first); on a large brain Guyan's and Craig-Bampton's preparation "
+                  "takes minutes");
   cmd->add_option("--rate-hz", o->rate_hz, "The haptic loop's rate (one trapezoidal step per tick)")->capture_default_str();
   cmd->add_option("--tool-radius-mm", o->radius_mm,
                   "The tool's footprint: the boundary nodes within this radius of the picked point")
@@ -77,13 +83,21 @@ void add_serve_command(CLI::App& app, Action& action) {
   cmd->add_option("--hand-speed-mm-s", o->hand.hand_speed_mm_s, "The tool's fastest motion towards the mouse")
       ->capture_default_str();
   cmd->add_option("--reach-mm", o->hand.reach_mm, "The farthest the tool goes from where it picked")->capture_default_str();
+  cmd->add_option("--newton-iterations", o->newton.iterations,
+                  "A neo-Hookean model's modified-Newton iterations per tick, on the linear factor (a fixed budget: the page "
+                  "shows the residual it leaves)")
+      ->capture_default_str();
+  cmd->add_option("--newton-tolerance", o->newton.tolerance,
+                  "Stop a tick's iterations earlier, once the residual is within this share of the law's correction (0: "
+                  "never; e.g. 1e-12 with --newton-iterations 200 converges every tick, as roifem run's replay does)")
+      ->capture_default_str();
   cmd->add_option("--record", o->record,
                   "Write every grab to DIR (grab-NNN-K.csv, its path; -force.csv, the live force; .toml, the scenario "
                   "`roifem run` replays it with)");
   cmd->callback([&action, o] {
     action = [o] {
       o->serve.record = o->record;
-      serve(o->scenario, o->serve, o->rate_hz, o->radius_mm, o->models, o->hand);
+      serve(o->scenario, o->serve, o->rate_hz, o->radius_mm, o->models, o->hand, o->newton);
     };
   });
 }

@@ -2,14 +2,13 @@
 #include "serve/compare_loop.hpp"
 
 #include <chrono>
+#include <map>
 
 #include "common/errors.hpp"
 
 namespace roifem::serve {
 
-CompareLoop::CompareLoop(LiveScene& scene, std::size_t reference) : scene_(scene), reference_(reference) {
-  if (reference >= scene.models().size()) throw Error("internal: compare: no model " + std::to_string(reference));
-}
+CompareLoop::CompareLoop(LiveScene& scene) : scene_(scene) {}
 
 CompareLoop::~CompareLoop() { stop(); }
 
@@ -30,14 +29,13 @@ std::string CompareLoop::failure() const {
 }
 
 void CompareLoop::run() {
-  std::unique_ptr<integrators::HapticTrapezoid> haptic;
+  std::map<std::size_t, std::unique_ptr<integrators::HapticTrapezoid>> references;
+  integrators::HapticTrapezoid* haptic = nullptr;  // the current grab's reference
   model::State state;
   std::uint32_t grab = 0;
   bool following = false;  // attached to the current grab
   std::vector<HandSample> batch;
   try {
-    const model::SecondOrderSystem& system = scene_.models()[reference_].model->system();
-    haptic = std::make_unique<integrators::HapticTrapezoid>(system, scene_.dt());
     while (running_.load(std::memory_order_relaxed)) {
       batch.clear();
       if (samples_.drain(batch) == 0) {
@@ -48,9 +46,16 @@ void CompareLoop::run() {
         if (s.grab != grab) {  // a new grab: the same footprint, from rest
           grab = s.grab;
           following = false;
-          if (s.model == reference_) continue;  // the reference against itself: nothing to compare
-          const auto grip = scene_.grip(reference_, s.center_mm);
+          const auto reference = scene_.reference_of(s.model);
+          if (!reference) continue;  // a full model, or no full model with its law: nothing to compare
+          const auto grip = scene_.grip(*reference, s.center_mm);
           if (!std::holds_alternative<Grip>(grip)) continue;
+          auto& made = references[*reference];
+          const model::SecondOrderSystem& system = scene_.models()[*reference].model->system();
+          if (!made)
+            made = std::make_unique<integrators::HapticTrapezoid>(
+                system, scene_.dt(), integrators::HapticNewton{.iterations = 200, .tolerance = 1e-12});
+          haptic = made.get();
           haptic->attach(std::get<Grip>(grip).dofs);
           state = model::State::at_rest(system.size());
           haptic->reset(state);

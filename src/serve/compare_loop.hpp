@@ -1,11 +1,14 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-/// "Compare": the reference model (the full dynamic model) on the hand's path, in a thread of its
-/// own, behind the live loop as far as the machine makes it. It takes the live loop's samples (the
-/// tool's displacement per tick, from each grab's start) and ticks its own haptic loop (its own
-/// factor of the reference model: the live loop may tick that model too) with the same grip and
-/// the same displacements, so that its force at each tick is what the full model would have felt
-/// on the same hand. The page plots the live model's force error against it.
+/// "Compare": the reference model (the full dynamic model with the live model's law:
+/// LiveScene::reference_of) on the hand's path, in a thread of its own, behind the live loop as far
+/// as the machine makes it. It takes the live loop's samples (the tool's displacement per tick,
+/// from each grab's start) and ticks its own haptic loop (its own factor of the reference model:
+/// the live loop may tick that model too) with the same grip and the same displacements, so that
+/// its force at each tick is what the full model would have felt on the same hand. A neo-Hookean
+/// reference is solved to convergence every tick (modified Newton to 1e-12 of the law's
+/// correction), whatever the live loop's budget. The page plots the live model's force error
+/// against it.
 /// The thread runs at ordinary priority and sleeps a millisecond whenever it has caught up.
 #include <atomic>
 #include <memory>
@@ -27,8 +30,8 @@ struct CompareSample {
 
 class CompareLoop {
  public:
-  /// `reference`: the model index (0, the full model). Factors its own haptic loop in the thread.
-  CompareLoop(LiveScene& scene, std::size_t reference);
+  /// Factors its own haptic loop of each reference in the thread, when a grab first needs it.
+  explicit CompareLoop(LiveScene& scene);
   ~CompareLoop();
   CompareLoop(const CompareLoop&) = delete;
   CompareLoop& operator=(const CompareLoop&) = delete;
@@ -41,11 +44,9 @@ class CompareLoop {
   std::size_t drain(std::vector<CompareSample>& out) { return results_.drain(out); }
   /// Why the reference stopped comparing (empty: it did not), for the log.
   std::string failure() const;
-  std::size_t reference() const { return reference_; }
 
  private:
   LiveScene& scene_;
-  std::size_t reference_;
   std::thread thread_;
   std::atomic<bool> running_{false};
   SpscRing<HandSample> samples_{1 << 16};

@@ -41,7 +41,7 @@ std::string force_csv(const GrabRecord& grab) {
 
 scenario::Scenario replay_scenario(const LiveScene& scene, const GrabRecord& grab, const std::string& path_file) {
   const LiveModel& live = scene.models().at(grab.model);
-  scenario::Scenario replay = scene.scenario();
+  scenario::Scenario replay = scene.scenario_of(grab.model);
   replay.mesh = fs::absolute(replay.mesh);
   model::SetTool hand;
   hand.name = "hand";
@@ -78,10 +78,22 @@ fs::path write_replay(const LiveScene& scene, const GrabRecord& grab, const fs::
   write_file(directory / path_file, path_csv(grab));
   write_file(directory / (name + "-force.csv"), force_csv(grab));
   fs::path toml = directory / (name + ".toml");
-  write_file(toml, "# A grab on roifem serve's page (" + scene.models()[grab.model].name +
-                       " model), replayed by:\n#   roifem run " + toml.filename().string() +
-                       " --out DIR\n# Its tools/hand/force_N equals " + name +
-                       "-force.csv (the live loop's force) to round-off.\n" + replay.resolved_toml());
+  const LiveModel& live = scene.models()[grab.model];
+  const integrators::HapticNewton& newton = scene.newton();
+  const std::string equals =
+      !live.nonlinear() ? "to round-off.\n"
+      : newton.tolerance > 0
+          ? io::format(
+                "to the live loop's Newton tolerance (%g of the law's correction, at most %d iterations a tick;\n# "
+                "roifem run solves each step by Newton to convergence).\n",
+                newton.tolerance, newton.iterations)
+          : io::format(
+                "within what the live loop's fixed budget of %d Newton iterations a tick left unresolved\n# (roifem "
+                "run solves each step by Newton to convergence; roifem serve --newton-tolerance converges live).\n",
+                newton.iterations);
+  write_file(toml, "# A grab on roifem serve's page (" + live.name + " model), replayed by:\n#   roifem run " +
+                       toml.filename().string() + " --out DIR\n# Its tools/hand/force_N equals " + name +
+                       "-force.csv (the live loop's force) " + equals + replay.resolved_toml());
   return toml;
 }
 

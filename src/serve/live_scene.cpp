@@ -57,68 +57,115 @@ std::vector<std::vector<int>> node_neighbours(const mesh::TetMesh& mesh) {
   return neighbours;
 }
 
-/// The models to prepare: every one, or those named.
-std::vector<std::pair<std::string, std::optional<condensation::Reduction>>> model_plan(const scenario::Scenario& scenario,
-                                                                                       const std::vector<std::string>& names) {
-  std::vector<std::pair<std::string, std::optional<condensation::Reduction>>> plan;
+/// A model to prepare: its name, its reduction (none: the full model) and its law.
+struct PlannedModel {
+  std::string name;
+  std::optional<condensation::Reduction> reduction;
+  fem::MaterialModel law = fem::MaterialModel::linear;
+};
+
+bool is_neo_hookean(const scenario::Scenario& scenario) {
+  if (scenario.material.model != fem::MaterialModel::linear) return true;
+  return std::any_of(scenario.material_regions.begin(), scenario.material_regions.end(),
+                     [](const fem::RegionMaterial& r) { return r.material.model != fem::MaterialModel::linear; });
+}
+
+/// The models to prepare: those named, or by default the linear ones and the hybrid ROI (a
+/// neo-Hookean scenario's own law first).
+std::vector<PlannedModel> model_plan(const scenario::Scenario& scenario, const std::vector<std::string>& names) {
+  const std::string suffix = kNeoHookeanSuffix;
+  std::vector<PlannedModel> plan;
   if (names.empty()) {
-    plan.emplace_back("full", std::nullopt);
-    if (scenario.roi)
-      for (const auto& r : live_reductions(scenario)) plan.emplace_back(r.label(), r);
+    const auto neo = fem::MaterialModel::neo_hookean;
+    std::vector<PlannedModel> linear{{"full", std::nullopt, fem::MaterialModel::linear}},
+        hybrid{{"full" + suffix, std::nullopt, neo}};
+    if (scenario.roi) {
+      for (const auto& r : live_reductions(scenario)) linear.push_back({r.label(), r, fem::MaterialModel::linear});
+      condensation::Reduction static_condensation;
+      hybrid.push_back({static_condensation.label() + suffix, static_condensation, neo});
+    }
+    if (is_neo_hookean(scenario)) {
+      plan = hybrid;
+      plan.insert(plan.end(), linear.begin(), linear.end());
+    } else {
+      plan = linear;
+      if (scenario.roi) plan.push_back(hybrid.back());
+    }
     return plan;
   }
   for (const std::string& name : names) {
-    if (name == "full") {
-      plan.emplace_back("full", std::nullopt);
+    const bool neo = name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+    const std::string base = neo ? name.substr(0, name.size() - suffix.size()) : name;
+    const fem::MaterialModel law = neo ? fem::MaterialModel::neo_hookean : fem::MaterialModel::linear;
+    if (base == "full") {
+      plan.push_back({name, std::nullopt, law});
       continue;
     }
     condensation::Reduction r;
     try {
-      r = condensation::parse_reduction(name);
+      r = condensation::parse_reduction(base);
     } catch (const InputError& e) {
-      throw InputError("serve: --models: '" + name + "' is neither full nor a reduction: " + e.what());
+      throw InputError(io::format("serve: --models: '%s' is neither full nor a reduction (either with %s or not): %s",
+                                  name.c_str(), kNeoHookeanSuffix, e.what()));
     }
     if (r.info().learns_from_loads)
       throw InputError("serve: --models: " + name + " learns its basis from the scenario's loads, not from a hand");
     if (!scenario.roi)
       throw InputError("serve: --models: " + name + " reduces an ROI, and " + scenario.file.string() + " has no [roi]");
-    plan.emplace_back(r.label(), r);
+    if (neo && !r.is_static_condensation())
+      throw InputError(
+          io::format("serve: --models: %s: a reduction by modes linearizes the ROI's motion; the neo-Hookean "
+                     "ROI takes static condensation (static%s)",
+                     name.c_str(), kNeoHookeanSuffix));
+    plan.push_back({r.label() + (neo ? suffix : ""), r, law});
   }
   return plan;
+}
+
+/// `scenario` with `law` on every material.
+scenario::Scenario with_law(scenario::Scenario scenario, fem::MaterialModel law) {
+  scenario.material.model = law;
+  for (fem::RegionMaterial& r : scenario.material_regions) r.material.model = law;
+  return scenario;
 }
 
 }  // namespace
 
 LiveScene::LiveScene(const scenario::Scenario& scenario, double rate_hz, double radius_mm, const std::vector<std::string>& models,
-                     std::ostream& log)
-    : scenario_(scenario), dt_(1.0 / rate_hz), radius_mm_(radius_mm) {
+                     std::ostream& log, integrators::HapticNewton newton)
+    : scenario_(scenario), dt_(1.0 / rate_hz), radius_mm_(radius_mm), newton_(newton) {
   if (!(rate_hz > 0) || !(rate_hz <= 100000))
     throw InputError(io::format("serve: a haptic rate of %g Hz (0 < rate <= 100 kHz)", rate_hz));
   if (!(radius_mm > 0)) throw InputError(io::format("serve: a tool radius of %g mm (it must be positive)", radius_mm));
+  if (newton.iterations < 1 || newton.iterations > 1000 || !(newton.tolerance >= 0))
+    throw InputError(io::format("serve: %d Newton iterations a tick within %g (1 to 1,000 iterations, a tolerance >= 0)",
+                                newton.iterations, newton.tolerance));
   if (scenario.element != fem::Element::tet4) throw InputError(scenario.file.string() + ": serve takes tet4 elements only");
   if (!scenario_.tools.empty() || !scenario_.cuts.empty())
     log << "serve: the scenario's " << scenario_.tools.size() << " [[tool]](s) and " << scenario_.cuts.size()
         << " [[cut]](s) are left out: the page's hand is the tool\n";
   scenario_.tools.clear();
   scenario_.cuts.clear();
-  for (const auto& [name, reduction] : model_plan(scenario_, models)) {
+  for (const auto& [name, reduction, law] : model_plan(scenario_, models)) {
     const Stopwatch clock;
-    scenario::Scenario variant = scenario_;
+    scenario::Scenario variant = with_law(scenario_, law);
     if (!reduction) variant.roi.reset();
     if (reduction) variant.reduction = *reduction;
     LiveModel live;
     live.name = name;
+    live.law = law;
     live.model = simulation::build_scenario_model(variant);
-    if (live.model->full.system.is_nonlinear())
-      throw InputError(scenario.file.string() +
-                       ": serve takes linear materials only (the hybrid ROI's haptic page is not built)");
+    const std::string law_text = law == fem::MaterialModel::linear ? "" : ", neo-Hookean";
     if (reduction) {
       live.reduction = *reduction;
-      live.description = std::string(reduction->info().description);
+      live.description = law == fem::MaterialModel::linear
+                             ? std::string(reduction->info().description)
+                             : "the hybrid ROI: the ROI's elements neo-Hookean over the linear static part, condensed";
     } else {
-      live.description = "the full dynamic model of the whole brain";
+      live.description = "the full dynamic model of the whole brain" + law_text;
     }
-    live.haptic = std::make_unique<integrators::HapticTrapezoid>(live.model->system(), dt_);
+    live.haptic = std::make_unique<integrators::HapticTrapezoid>(live.model->system(), dt_,
+                                                                 live.nonlinear() ? newton_ : integrators::HapticNewton{});
     const auto& mesh = live.model->mesh;
     live.in_roi.assign(static_cast<std::size_t>(mesh.num_nodes()), 0);
     const fem::DofMap& dofs = *live.model->full.dofs;
@@ -144,6 +191,16 @@ LiveScene::LiveScene(const scenario::Scenario& scenario, double rate_hz, double 
       if (models_[k].in_roi[static_cast<std::size_t>(n)]) surface_.flags[v] |= static_cast<std::uint8_t>(2u << k);
   }
 }
+
+std::optional<std::size_t> LiveScene::reference_of(std::size_t k) const {
+  const LiveModel& live = models_.at(k);
+  if (!live.condensed()) return std::nullopt;
+  for (std::size_t j = 0; j < models_.size(); ++j)
+    if (!models_[j].condensed() && models_[j].law == live.law) return j;
+  return std::nullopt;
+}
+
+scenario::Scenario LiveScene::scenario_of(std::size_t k) const { return with_law(scenario_, models_.at(k).law); }
 
 std::variant<Grip, std::string> LiveScene::grip(std::size_t k, const Vec3& center_mm) const {
   const LiveModel& live = models_.at(k);

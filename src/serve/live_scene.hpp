@@ -4,13 +4,20 @@
 /// condensation and the haptic loop's factor) so that the page switches between them live:
 ///   the full dynamic model, and with an [roi] the ROI condensed by each reduction of the static
 ///   part that keeps the uncut mesh's linear model exact in its own terms (static, guyan,
-///   craig-bampton: POD learns its basis from the scenario's loads, not from a hand).
+///   craig-bampton: POD learns its basis from the scenario's loads, not from a hand);
+///   and at large deformation, the same with the neo-Hookean law (a name's "-neo-hookean"): the
+///   whole brain (full-neo-hookean) or the hybrid ROI (static-neo-hookean: the ROI's elements
+///   neo-Hookean over the linear condensed remainder, model/hyperelastic_force.hpp), ticked by
+///   modified Newton on the linear K_eff with a stated budget (integrators/haptic_trapezoid.hpp).
+/// A model's name states its law, whatever the scenario's [material] model says; the scenario's
+/// moduli are the law's small-strain moduli.
 /// The scenario's own [[tool]]s and [[cut]]s are left out (the page's hand is the tool); its
 /// mesh, material, supports, loads and ROI are kept. The hand holds, as `roifem run`'s footprint
 /// tool does, the boundary nodes within a radius of the point it picks (scenario/README.md).
 #include <array>
 #include <iosfwd>
 #include <memory>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -28,9 +35,15 @@ struct SurfaceView {
   std::vector<std::uint8_t> flags;            ///< per vertex: bit 0 fixed, bit 1 + k in model k's ROI
 };
 
+/// The suffix of a model's name that takes the neo-Hookean law.
+inline constexpr const char* kNeoHookeanSuffix = "-neo-hookean";
+
 struct LiveModel {
-  std::string name;  ///< "full", or the reduction's label: "static", "guyan", "craig-bampton-10"
+  /// "full", or the reduction's label ("static", "guyan", "craig-bampton-10"), with
+  /// kNeoHookeanSuffix for the neo-Hookean law
+  std::string name;
   std::string description;
+  fem::MaterialModel law = fem::MaterialModel::linear;
   condensation::Reduction reduction;  ///< with an ROI
   std::unique_ptr<simulation::ScenarioModel> model;
   std::unique_ptr<integrators::HapticTrapezoid> haptic;
@@ -40,6 +53,7 @@ struct LiveModel {
   std::vector<Index> surface_unknown, surface_static;
   std::vector<float> static_surface_mm;
   bool condensed() const { return model->condensation != nullptr; }
+  bool nonlinear() const { return law != fem::MaterialModel::linear; }
 };
 
 /// A footprint the hand may hold in a model: its mesh nodes and their dofs in the model's system.
@@ -53,10 +67,13 @@ class LiveScene {
  public:
   /// Reads the mesh, builds and condenses each model and factors its haptic loop at `rate_hz`.
   /// `radius_mm`: the hand's footprint. `models`: "full" and reduction labels ("static", "guyan",
-  /// "craig-bampton-10"); empty: every one. InputError for an unknown name, POD, or a reduction
-  /// without an [roi]. Progress lines go to `log`.
+  /// "craig-bampton-10"), each with kNeoHookeanSuffix or not; empty: full, static, guyan,
+  /// craig-bampton-10 and static-neo-hookean (a neo-Hookean scenario's: full-neo-hookean and
+  /// static-neo-hookean first), those an [roi] needs only with one. InputError for an unknown name,
+  /// POD, a reduction without an [roi], or the neo-Hookean law with a reduction by modes.
+  /// `newton`: the neo-Hookean models' iterations per tick. Progress lines go to `log`.
   LiveScene(const scenario::Scenario& scenario, double rate_hz, double radius_mm, const std::vector<std::string>& models,
-            std::ostream& log);
+            std::ostream& log, integrators::HapticNewton newton = {});
   LiveScene(const LiveScene&) = delete;
   LiveScene& operator=(const LiveScene&) = delete;
 
@@ -69,6 +86,12 @@ class LiveScene {
   double radius_mm() const { return radius_mm_; }
   /// The mesh's bounding box (m): targets are clamped to it, widened by the largest reach.
   const Eigen::AlignedBox3d& box() const { return box_; }
+  const integrators::HapticNewton& newton() const { return newton_; }
+  /// The model Compare holds model k's force against: the full model with k's law (none for a
+  /// full model, or when that one is not prepared).
+  std::optional<std::size_t> reference_of(std::size_t k) const;
+  /// The served scenario as model k is built from it: its law on every material.
+  scenario::Scenario scenario_of(std::size_t k) const;
 
   /// The footprint at `center_mm` in model `k`, or why the hand cannot hold it there (no boundary
   /// node within the radius, a fixed node, a node or a neighbour outside the ROI).
@@ -86,6 +109,7 @@ class LiveScene {
   std::vector<std::vector<int>> neighbours_;  ///< per node, the nodes it shares a tetrahedron with
   Eigen::AlignedBox3d box_;
   double dt_, radius_mm_;
+  integrators::HapticNewton newton_;
   /// live's surface_unknown and surface_static (surface_ set).
   void map_surface(LiveModel& live) const;
 };

@@ -83,9 +83,10 @@ std::string hello_message(const LiveScene& scene, std::size_t model, bool driver
   std::string models;
   for (const LiveModel& m : scene.models()) {
     if (!models.empty()) models += ",";
-    models += io::format("{\"name\":%s,\"description\":%s,\"unknowns\":%ld,\"roi_nodes\":%zu}", json_string(m.name).c_str(),
-                         json_string(m.description).c_str(), static_cast<long>(m.model->system().size()),
-                         m.condensed() ? m.model->roi_nodes.size() : std::size_t{0});
+    models +=
+        io::format("{\"name\":%s,\"description\":%s,\"unknowns\":%ld,\"roi_nodes\":%zu,\"nonlinear\":%s}",
+                   json_string(m.name).c_str(), json_string(m.description).c_str(), static_cast<long>(m.model->system().size()),
+                   m.condensed() ? m.model->roi_nodes.size() : std::size_t{0}, m.nonlinear() ? "true" : "false");
   }
   const auto& box = scene.box();
   return io::format(
@@ -100,20 +101,24 @@ std::string state_message(const LiveScene& scene, const PhysicsSnapshot& s, cons
                           const CompareFigures& compare, bool recording) {
   const std::string comparison =
       compare.on ? io::format(
-                       ",\"compare\":{\"t\":%.6f,\"full_force_mN\":%s,\"error_mN\":%s,\"largest_error_mN\":%.6g,"
+                       ",\"compare\":{\"reference\":%s,\"t\":%.6f,\"full_force_mN\":%s,\"error_mN\":%s,\"largest_error_mN\":%.6g,"
                        "\"largest_full_force_mN\":%.6g,\"behind_s\":%.4f}",
-                       compare.t, vec3(1e3 * compare.reference_force).c_str(), vec3(1e3 * compare.error).c_str(),
+                       compare.reference.empty() ? "null" : json_string(compare.reference).c_str(), compare.t,
+                       vec3(1e3 * compare.reference_force).c_str(), vec3(1e3 * compare.error).c_str(),
                        1e3 * compare.largest_error, 1e3 * compare.largest_force, compare.behind_s)
                  : std::string();
+  const std::string newton = scene.models()[s.model].nonlinear() ? io::format(",\"newton\":{\"iterations\":%d,\"residual\":%.3g}",
+                                                                              s.newton_iterations, s.newton_residual)
+                                                                 : std::string();
   return io::format(
       "{\"type\":\"state\",\"t\":%.6f,\"model\":%zu,\"model_name\":%s,\"grab\":%u,\"holding\":%s,\"grip_nodes\":%zu,"
       "\"force_mN\":%s,\"tool_mm\":%s,\"g_mm\":%s,\"seq\":%u,\"recording\":%s,"
       "\"ticks\":{\"median_ms\":%.4f,\"p99_ms\":%.4f,\"late_per_10k\":%.2f,\"rate_hz\":%.1f,\"count\":%ld,\"slips\":%ld},"
-      "\"frame\":{\"build_ms\":%.3f,\"recovery_ms\":%.3f}%s}",
+      "\"frame\":{\"build_ms\":%.3f,\"recovery_ms\":%.3f}%s%s}",
       s.t, s.model, json_string(scene.models()[s.model].name).c_str(), s.grab, s.holding ? "true" : "false", s.grip_nodes,
       vec3(1e3 * s.force).c_str(), vec3(s.grip_center_mm + s.g / mm).c_str(), vec3(s.g / mm).c_str(), s.hand_sequence,
       recording ? "true" : "false", ticks.median_ms, ticks.p99_ms, ticks.late_per_10k, ticks.rate_hz, ticks.count, ticks.slips,
-      frame.build_ms, frame.recovery_ms, comparison.c_str());
+      frame.build_ms, frame.recovery_ms, comparison.c_str(), newton.c_str());
 }
 
 std::string notice_message(const std::string& text) { return "{\"type\":\"notice\",\"text\":" + json_string(text) + "}"; }

@@ -51,6 +51,7 @@ struct FrameFigures {
 /// model's error against it there, the largest error and force of the grab so far, how far behind.
 struct CompareFigures {
   bool on = false;
+  std::string reference;  ///< the grab's reference model (empty: none for its model)
   double t = 0;
   Vec3 reference_force = Vec3::Zero(), error = Vec3::Zero();
   double largest_error = 0, largest_force = 0, behind_s = 0;

@@ -217,6 +217,9 @@ void PhysicsLoop::publish() {
   snapshot_.grip_nodes = attached_ ? grip_.nodes.size() : 0;
   snapshot_.hand_sequence = hand_sequence_;
   snapshot_.ticks = ticks_;
+  const LiveModel& live = scene_.models()[model_];
+  snapshot_.newton_iterations = live.nonlinear() && attached_ ? live.haptic->last_iterations() : 0;
+  snapshot_.newton_residual = live.nonlinear() && attached_ ? live.haptic->last_residual() : 0;
   snapshot_fresh_ = true;
   snapshot_wanted_.store(false, std::memory_order_release);
 }

@@ -57,6 +57,10 @@ struct PhysicsSnapshot {
   std::size_t grip_nodes = 0;
   std::uint32_t hand_sequence = 0;  ///< the last page message applied
   long ticks = 0;                   ///< since the loop started
+  /// A neo-Hookean model's last tick: its Newton iterations and the residual they left (relative
+  /// to the law's correction; integrators/haptic_trapezoid.hpp). 0 on a linear model.
+  int newton_iterations = 0;
+  double newton_residual = 0;
 };
 
 class PhysicsLoop {

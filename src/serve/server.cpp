@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "serve/server.hpp"
 
+#include <algorithm>
 #include <boost/asio.hpp>
 #include <boost/beast.hpp>
 #include <chrono>
@@ -482,7 +483,12 @@ void Server::Impl::follow_grab() {
     if (s.grab != grab_.grab) {
       finish_grab();
       grab_ = GrabRecord{.grab = s.grab, .model = s.model, .center_mm = s.center_mm, .grip_nodes = s.grip_nodes, .samples = {}};
+      const auto reference = scene_.reference_of(s.model);
       comparison_ = CompareFigures{.on = compare_ != nullptr};
+      if (reference) comparison_.reference = scene_.models()[*reference].name;
+      if (compare_ && !reference && scene_.models()[s.model].condensed())
+        say("compare: no full model with the " + scene_.models()[s.model].name + " model's law is prepared (--models: full" +
+            (scene_.models()[s.model].nonlinear() ? std::string(kNeoHookeanSuffix) : std::string()) + "): nothing to compare");
     }
     grab_.samples.push_back(s);
     if (compare_ && s.grab != compare_lost_grab_ && !compare_->feed(s)) {
@@ -515,13 +521,14 @@ void Server::Impl::set_compare(bool on) {
     comparison_ = {};
     return say("compare: off");
   }
-  if (scene_.models().front().condensed())
+  if (std::all_of(scene_.models().begin(), scene_.models().end(), [](const LiveModel& m) { return m.condensed(); }))
     return say("compare: not prepared (start the server with the full model among --models)");
-  compare_ = std::make_unique<CompareLoop>(scene_, 0);
+  compare_ = std::make_unique<CompareLoop>(scene_);
   compare_->start();
   compare_lost_grab_ = grab_.grab;  // from the next grab: this one's start is gone
   comparison_ = CompareFigures{.on = true};
-  say("compare: on, from the next grab: the full model follows the same hand in a thread of its own");
+  say("compare: on, from the next grab: the full model (with the live model's law) follows the same hand in a thread of its "
+      "own");
 }
 
 void Server::Impl::follow_comparison() {

@@ -11,10 +11,11 @@
 
 namespace roifem::serve::test {
 
-inline std::unique_ptr<LiveScene> paper_scene(double rate_hz = 1000) {
+inline std::unique_ptr<LiveScene> paper_scene(const std::vector<std::string>& models = {},
+                                              integrators::HapticNewton newton = {}) {
   std::ostringstream log;
-  return std::make_unique<LiveScene>(scenario::read_scenario(ROIFEM_SCENARIO_DIR "/paper-setup1.toml"), rate_hz, 5.0,
-                                     std::vector<std::string>{}, log);
+  return std::make_unique<LiveScene>(scenario::read_scenario(ROIFEM_SCENARIO_DIR "/paper-setup1.toml"), 1000, 5.0, models, log,
+                                     newton);
 }
 
 /// The surface node nearest the ROI's target whose footprint every model can hold (mm).
