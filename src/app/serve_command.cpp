@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // roifem serve SCENARIO.toml [--port P] [--host H]: the browser simulator (src/serve, web/).
 #include <iostream>
+#include <optional>
 
 #include "app/commands.hpp"
 #include "common/atomic_file.hpp"
@@ -18,24 +19,33 @@ namespace {
 
 bool is_loopback(const std::string& host) { return host == "127.0.0.1" || host == "::1" || host.rfind("127.", 0) == 0; }
 
-void serve(const std::string& scenario_file, const serve::ServeOptions& options, double rate_hz, double radius_mm,
-           const std::vector<std::string>& models, const serve::PhysicsSettings& hand, integrators::HapticNewton newton) {
+/// What the command line gives, over the scenario's [haptic] table, over the defaults.
+struct HapticChoice {
+  std::optional<double> rate_hz;
+  std::optional<int> newton_iterations;
+  double newton_tolerance = 0;
+};
+
+void serve(const std::string& scenario_file, const serve::ServeOptions& options, const HapticChoice& haptic, double radius_mm,
+           const std::vector<std::string>& models, const serve::PhysicsSettings& hand) {
   if (!is_loopback(options.host))
     std::cerr << "roifem serve: warning: listening on " << options.host
               << ", not the loopback address: anyone who reaches this machine can open the page and steer the model\n";
   const scenario::Scenario scenario = scenario::read_scenario(scenario_file);
+  const serve::HapticSettings settings =
+      serve::haptic_settings(scenario, haptic.rate_hz, haptic.newton_iterations, haptic.newton_tolerance);
   // One BLAS thread: the physics thread takes a core, and OpenBLAS's threads spinning beside it
   // would slow every other solve (a recovery of the static part: 0.25 s with two, against ms).
   const solvers::BlasThreadsScope blas(1);
   if (!options.record.empty()) check_output_directory(options.record);
   std::cout << "roifem serve: preparing the models of " << scenario_file << "\n" << std::flush;
-  serve::LiveScene scene(scenario, rate_hz, radius_mm, models, std::cout, newton);
+  serve::LiveScene scene(scenario, settings.rate_hz, radius_mm, models, std::cout, settings.newton);
   serve::PhysicsLoop physics(scene, hand);
   serve::Server server(scene, physics, serve::AssetFiles({{"/", serve::page_directory()}, {"/three/", serve::three_directory()}}),
                        options, std::cout);
   std::cout << "roifem serve: open http://"
             << (options.host.find(':') != std::string::npos ? "[" + options.host + "]" : options.host) << ":" << server.port()
-            << "/ in a browser (Ctrl-C stops)\n"
+            << "/ in a browser (the haptic loop at " << settings.rate_hz << " Hz; Ctrl-C stops)\n"
             << std::flush;
   if (const int signal = server.run(); signal != 0)
     throw Interrupted(signal, "serve stopped by signal " + std::to_string(signal) + ": every client closed, every grab kept");
@@ -48,10 +58,10 @@ void add_serve_command(CLI::App& app, Action& action) {
     std::string scenario;
     serve::ServeOptions serve;
     std::string record;
-    double rate_hz = 1000, radius_mm = 5;
+    HapticChoice haptic;
+    double radius_mm = 5;
     std::vector<std::string> models;
     serve::PhysicsSettings hand;
-    integrators::HapticNewton newton;
   };
   auto o = std::make_shared<Options>();
   auto* cmd = app.add_subcommand(
@@ -76,18 +86,18 @@ void add_serve_command(CLI::App& app, Action& action) {
                   "with an [roi], static, guyan, craig-bampton-10 and static-neo-hookean (a neo-Hookean scenario's "
                   "full-neo-hookean and static-neo-hookean first); on a large brain Guyan's and Craig-Bampton's preparation "
                   "takes minutes");
-  cmd->add_option("--rate-hz", o->rate_hz, "The haptic loop's rate (one trapezoidal step per tick)")->capture_default_str();
+  cmd->add_option("--rate-hz", o->haptic.rate_hz,
+                  "The haptic loop's rate, one trapezoidal step per tick (default: the scenario's [haptic] rate_hz, else 1000)");
   cmd->add_option("--tool-radius-mm", o->radius_mm,
                   "The tool's footprint: the boundary nodes within this radius of the picked point")
       ->capture_default_str();
   cmd->add_option("--hand-speed-mm-s", o->hand.hand_speed_mm_s, "The tool's fastest motion towards the mouse")
       ->capture_default_str();
   cmd->add_option("--reach-mm", o->hand.reach_mm, "The farthest the tool goes from where it picked")->capture_default_str();
-  cmd->add_option("--newton-iterations", o->newton.iterations,
+  cmd->add_option("--newton-iterations", o->haptic.newton_iterations,
                   "A neo-Hookean model's modified-Newton iterations per tick, on the linear factor (a fixed budget: the page "
-                  "shows the residual it leaves)")
-      ->capture_default_str();
-  cmd->add_option("--newton-tolerance", o->newton.tolerance,
+                  "shows the residual it leaves; default: the scenario's [haptic] newton_iterations, else 2)");
+  cmd->add_option("--newton-tolerance", o->haptic.newton_tolerance,
                   "Stop a tick's iterations earlier, once the residual is within this share of the law's correction (0: "
                   "never; e.g. 1e-12 with --newton-iterations 200 converges every tick, as roifem run's replay does)")
       ->capture_default_str();
@@ -97,7 +107,7 @@ void add_serve_command(CLI::App& app, Action& action) {
   cmd->callback([&action, o] {
     action = [o] {
       o->serve.record = o->record;
-      serve(o->scenario, o->serve, o->rate_hz, o->radius_mm, o->models, o->hand, o->newton);
+      serve(o->scenario, o->serve, o->haptic, o->radius_mm, o->models, o->hand);
     };
   });
 }

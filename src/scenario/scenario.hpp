@@ -41,6 +41,10 @@ struct Scenario {
   /// The absolute tolerance in force: atol, or rtol x 1 mm.
   double absolute_tolerance() const { return atol.value_or(rtol.value_or(0) * 1e-3); }
   long field_every = 10;  ///< full displacement field every k steps (0: none)
+  /// [haptic]: the haptic loop's settings (`roifem serve`), where the file gives them: its rate (Hz,
+  /// default 1 kHz) and a neo-Hookean model's modified-Newton iterations per tick (default 2).
+  std::optional<double> haptic_rate_hz;
+  std::optional<int> haptic_newton_iterations;
   /// The scenario as resolved (defaults filled in), as TOML text: stored with the results.
   std::string resolved_toml() const;
 };

@@ -552,6 +552,18 @@ Scenario scenario_from_table(const toml::table& root, const std::string& source,
       throw InputError(cut.where + ": " + cut.describe() + " starts at t = " + number_text(cut.start) + " s, when the run (" +
                        std::to_string(s.steps) + " steps of " + number_text(s.dt) + " s) has ended at t = " + number_text(t_end) +
                        " s");  // a POD basis learns from the run's own step and length
+  if (const toml::table* t = top.subtable("haptic")) {
+    StrictTable haptic(*t, source, "haptic");
+    s.haptic_rate_hz = haptic.number("rate_hz");
+    const auto iterations = haptic.integer("newton_iterations");
+    haptic.close();
+    if (s.haptic_rate_hz && !(*s.haptic_rate_hz > 0 && *s.haptic_rate_hz <= 100000))
+      throw InputError(source + ": key 'haptic.rate_hz' must lie in (0, 100000] (got " + number_text(*s.haptic_rate_hz) + ")");
+    if (iterations && (*iterations < 1 || *iterations > 1000))
+      throw InputError(source + ": key 'haptic.newton_iterations' must lie in [1, 1000] (got " + std::to_string(*iterations) +
+                       ")");
+    if (iterations) s.haptic_newton_iterations = static_cast<int>(*iterations);
+  }
   if (const toml::table* t = top.subtable("output")) {
     StrictTable output(*t, source, "output");
     s.field_every = output.integer("field_every").value_or(s.field_every);
@@ -642,6 +654,11 @@ std::string Scenario::resolved_toml() const {
   }
   o << "\n[time]\nintegrator = \"" << integrator << "\"\ndt_s = " << toml_number(dt) << "\nsteps = " << steps << "\n";
   if (rtol) o << "rtol = " << toml_number(*rtol) << "\natol = " << toml_number(absolute_tolerance()) << "\n";
+  if (haptic_rate_hz || haptic_newton_iterations) {
+    o << "\n[haptic]\n";
+    if (haptic_rate_hz) o << "rate_hz = " << toml_number(*haptic_rate_hz) << "\n";
+    if (haptic_newton_iterations) o << "newton_iterations = " << *haptic_newton_iterations << "\n";
+  }
   o << "\n[output]\nfield_every = " << field_every << "\n";
   return o.str();
 }

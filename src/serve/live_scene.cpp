@@ -192,6 +192,15 @@ LiveScene::LiveScene(const scenario::Scenario& scenario, double rate_hz, double 
   }
 }
 
+HapticSettings haptic_settings(const scenario::Scenario& scenario, std::optional<double> rate_hz,
+                               std::optional<int> newton_iterations, double newton_tolerance) {
+  HapticSettings settings;
+  settings.rate_hz = rate_hz.value_or(scenario.haptic_rate_hz.value_or(settings.rate_hz));
+  settings.newton.iterations = newton_iterations.value_or(scenario.haptic_newton_iterations.value_or(settings.newton.iterations));
+  settings.newton.tolerance = newton_tolerance;
+  return settings;
+}
+
 std::optional<std::size_t> LiveScene::reference_of(std::size_t k) const {
   const LiveModel& live = models_.at(k);
   if (!live.condensed()) return std::nullopt;

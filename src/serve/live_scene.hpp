@@ -63,6 +63,15 @@ struct Grip {
   std::vector<std::array<Index, 3>> dofs;
 };
 
+/// The haptic loop's rate and a neo-Hookean model's Newton budget: the command line's where it
+/// gives them, else the scenario's [haptic] table's, else 1 kHz and 2 iterations a tick.
+struct HapticSettings {
+  double rate_hz = 1000;
+  integrators::HapticNewton newton;
+};
+HapticSettings haptic_settings(const scenario::Scenario& scenario, std::optional<double> rate_hz,
+                               std::optional<int> newton_iterations, double newton_tolerance);
+
 class LiveScene {
  public:
   /// Reads the mesh, builds and condenses each model and factors its haptic loop at `rate_hz`.

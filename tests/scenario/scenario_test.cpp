@@ -92,6 +92,23 @@ TEST(ScenarioReader, ResolvedTomlKeepsEachCutsMode) {
   }
 }
 
+TEST(ScenarioReader, ReadsTheHapticTableAndRefusesARateOrBudgetOutOfRange) {
+  const Scenario plain = parse_scenario(valid, "s.toml", "/data");
+  EXPECT_FALSE(plain.haptic_rate_hz);
+  EXPECT_EQ(plain.resolved_toml().find("[haptic]"), std::string::npos);  // as before: no table given, none written
+  const Scenario s = parse_scenario(valid + "[haptic]\nrate_hz = 500\nnewton_iterations = 3\n", "s.toml", "/data");
+  EXPECT_EQ(s.haptic_rate_hz, std::optional<double>(500));
+  EXPECT_EQ(s.haptic_newton_iterations, std::optional<int>(3));
+  const Scenario again = parse_scenario(s.resolved_toml(), "resolved.toml", "/data");
+  EXPECT_EQ(again.haptic_rate_hz, s.haptic_rate_hz);
+  EXPECT_EQ(again.haptic_newton_iterations, s.haptic_newton_iterations);
+  EXPECT_EQ(error_of(valid + "[haptic]\nrate_hz = 0\n"), "s.toml: key 'haptic.rate_hz' must lie in (0, 100000] (got 0)");
+  EXPECT_EQ(error_of(valid + "[haptic]\nnewton_iterations = 0\n"),
+            "s.toml: key 'haptic.newton_iterations' must lie in [1, 1000] (got 0)");
+  EXPECT_NE(error_of(valid + "[haptic]\nrate = 500\n").find("did you mean 'rate_hz'"), std::string::npos)
+      << error_of(valid + "[haptic]\nrate = 500\n");
+}
+
 TEST(ScenarioReader, ReadsTheElementAndNamesAnUnknownOne) {
   EXPECT_EQ(parse_scenario(valid, "s.toml", "/data").element, fem::Element::tet4);
   const std::string nodal = replaced(valid, "mesh = \"brain.msh\"", "mesh = \"brain.msh\"\nelement = \"nodal-pressure\"");

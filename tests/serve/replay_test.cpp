@@ -243,6 +243,21 @@ TEST(ServeModels, TheDefaultsAndTheNamesStateEachModelsLaw) {
   EXPECT_NE(refusal({"static-neo-hookean"}, {.iterations = 0, .tolerance = 0}).find("0 Newton iterations"), std::string::npos);
 }
 
+TEST(ServeModels, TheHapticRateAndBudgetComeFromTheCommandLineElseTheScenarioElseTheDefaults) {
+  scenario::Scenario sc = scenario::read_scenario(ROIFEM_SCENARIO_DIR "/paper-setup1.toml");
+  EXPECT_EQ(haptic_settings(sc, std::nullopt, std::nullopt, 0).rate_hz, 1000);
+  EXPECT_EQ(haptic_settings(sc, std::nullopt, std::nullopt, 0).newton.iterations, 2);
+  sc.haptic_rate_hz = 500;
+  sc.haptic_newton_iterations = 3;
+  const HapticSettings from_file = haptic_settings(sc, std::nullopt, std::nullopt, 0);
+  EXPECT_EQ(from_file.rate_hz, 500);
+  EXPECT_EQ(from_file.newton.iterations, 3);
+  const HapticSettings given = haptic_settings(sc, 2000.0, 5, 1e-9);
+  EXPECT_EQ(given.rate_hz, 2000);
+  EXPECT_EQ(given.newton.iterations, 5);
+  EXPECT_EQ(given.newton.tolerance, 1e-9);
+}
+
 TEST(ServeReplay, AReplayNeedsTicks) {
   const auto scene = test::paper_scene();
   roifem::test::TempDir dir;
