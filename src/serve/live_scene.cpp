@@ -74,29 +74,28 @@ bool is_neo_hookean(const scenario::Scenario& scenario) {
 /// neo-Hookean scenario's own law first).
 std::vector<PlannedModel> model_plan(const scenario::Scenario& scenario, const std::vector<std::string>& names) {
   const std::string suffix = kNeoHookeanSuffix;
+  const auto linear = fem::MaterialModel::linear, neo_hookean = fem::MaterialModel::neo_hookean;
   std::vector<PlannedModel> plan;
   if (names.empty()) {
-    const auto neo = fem::MaterialModel::neo_hookean;
-    std::vector<PlannedModel> linear{{"full", std::nullopt, fem::MaterialModel::linear}},
-        hybrid{{"full" + suffix, std::nullopt, neo}};
-    if (scenario.roi) {
-      for (const auto& r : live_reductions(scenario)) linear.push_back({r.label(), r, fem::MaterialModel::linear});
-      condensation::Reduction static_condensation;
-      hybrid.push_back({static_condensation.label() + suffix, static_condensation, neo});
+    const condensation::Reduction static_condensation;
+    std::vector<PlannedModel> linear_models{{"full", std::nullopt, linear}};
+    if (scenario.roi)
+      for (const auto& r : live_reductions(scenario)) linear_models.push_back({r.label(), r, linear});
+    const PlannedModel hybrid{static_condensation.label() + suffix, static_condensation, neo_hookean};
+    if (!is_neo_hookean(scenario)) {  // the linear models, then the hybrid ROI
+      plan = linear_models;
+      if (scenario.roi) plan.push_back(hybrid);
+      return plan;
     }
-    if (is_neo_hookean(scenario)) {
-      plan = hybrid;
-      plan.insert(plan.end(), linear.begin(), linear.end());
-    } else {
-      plan = linear;
-      if (scenario.roi) plan.push_back(hybrid.back());
-    }
+    plan.push_back({"full" + suffix, std::nullopt, neo_hookean});  // the scenario's own law first
+    if (scenario.roi) plan.push_back(hybrid);
+    plan.insert(plan.end(), linear_models.begin(), linear_models.end());
     return plan;
   }
   for (const std::string& name : names) {
-    const bool neo = name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+    const bool neo = name.size() > suffix.size() && name.ends_with(suffix);
     const std::string base = neo ? name.substr(0, name.size() - suffix.size()) : name;
-    const fem::MaterialModel law = neo ? fem::MaterialModel::neo_hookean : fem::MaterialModel::linear;
+    const fem::MaterialModel law = neo ? neo_hookean : linear;
     if (base == "full") {
       plan.push_back({name, std::nullopt, law});
       continue;
@@ -155,14 +154,14 @@ LiveScene::LiveScene(const scenario::Scenario& scenario, double rate_hz, double 
     live.name = name;
     live.law = law;
     live.model = simulation::build_scenario_model(variant);
-    const std::string law_text = law == fem::MaterialModel::linear ? "" : ", neo-Hookean";
     if (reduction) {
       live.reduction = *reduction;
-      live.description = law == fem::MaterialModel::linear
-                             ? std::string(reduction->info().description)
-                             : "the hybrid ROI: the ROI's elements neo-Hookean over the linear static part, condensed";
+      live.description = live.nonlinear()
+                             ? "the hybrid ROI: the ROI's elements neo-Hookean over the linear static part, condensed"
+                             : std::string(reduction->info().description);
     } else {
-      live.description = "the full dynamic model of the whole brain" + law_text;
+      live.description = live.nonlinear() ? "the full dynamic model of the whole brain, neo-Hookean"
+                                          : "the full dynamic model of the whole brain";
     }
     live.haptic = std::make_unique<integrators::HapticTrapezoid>(live.model->system(), dt_,
                                                                  live.nonlinear() ? newton_ : integrators::HapticNewton{});

@@ -486,9 +486,10 @@ void Server::Impl::follow_grab() {
       const auto reference = scene_.reference_of(s.model);
       comparison_ = CompareFigures{.on = compare_ != nullptr};
       if (reference) comparison_.reference = scene_.models()[*reference].name;
-      if (compare_ && !reference && scene_.models()[s.model].condensed())
-        say("compare: no full model with the " + scene_.models()[s.model].name + " model's law is prepared (--models: full" +
-            (scene_.models()[s.model].nonlinear() ? std::string(kNeoHookeanSuffix) : std::string()) + "): nothing to compare");
+      const LiveModel& live = scene_.models()[s.model];
+      if (compare_ && !reference && live.condensed())
+        say(io::format("compare: no full model with the %s model's law is prepared (--models: full%s): nothing to compare",
+                       live.name.c_str(), live.nonlinear() ? kNeoHookeanSuffix : ""));
     }
     grab_.samples.push_back(s);
     if (compare_ && s.grab != compare_lost_grab_ && !compare_->feed(s)) {
