@@ -48,6 +48,11 @@ let fixedPoints = null;
 let tool = null;
 let barMax = 1;
 
+// The 2D canvases (plots, colour bar) drawn on the CPU: drawn by the GPU process (Chromium's
+// default), each plot's redraw held up the WebGL frames behind it under a software renderer
+// (latency p90 74-94 ms against 50-54; docs/simulator.md).
+const CPU_CANVAS = { willReadFrequently: true };
+
 function colour(s, out, k) {  // s in [0, 1]: dark blue -> cyan -> yellow -> red
   const stops = [[0.19, 0.22, 0.45], [0.15, 0.65, 0.75], [0.95, 0.85, 0.25], [0.85, 0.2, 0.15]];
   const x = Math.min(Math.max(s, 0), 1) * (stops.length - 1), i = Math.min(Math.floor(x), stops.length - 2), f = x - i;
@@ -55,7 +60,7 @@ function colour(s, out, k) {  // s in [0, 1]: dark blue -> cyan -> yellow -> red
 }
 
 function drawColourBar() {
-  const bar = document.getElementById('colour-bar'), g = bar.getContext('2d');
+  const bar = document.getElementById('colour-bar'), g = bar.getContext('2d', CPU_CANVAS);
   const rgb = [0, 0, 0];
   for (let x = 0; x < bar.width; ++x) {
     colour(x / (bar.width - 1), rgb, 0);
@@ -240,7 +245,7 @@ function onState(m) {
 }
 
 function drawForcePlot() {
-  const canvas = document.getElementById('force-plot'), g = canvas.getContext('2d');
+  const canvas = document.getElementById('force-plot'), g = canvas.getContext('2d', CPU_CANVAS);
   g.clearRect(0, 0, canvas.width, canvas.height);
   if (forceHistory.length < 2) return;
   const top = Math.max(1, ...forceHistory.map((r) => Math.max(...r.slice(1).map(Math.abs))));
@@ -280,7 +285,7 @@ function showComparison(m) {
   text.textContent = `at t = ${c.t.toFixed(3)} s ${c.reference} feels ${Math.hypot(...c.full_force_mN).toFixed(2)} mN; ` +
     `${m.model_name}'s error ${e.toFixed(3)} mN (the grab's largest ${c.largest_error_mN.toFixed(3)} mN of ` +
     `${c.largest_full_force_mN.toFixed(2)} mN), ${c.behind_s.toFixed(2)} s behind`;
-  const canvas = document.getElementById('error-plot'), g = canvas.getContext('2d');
+  const canvas = document.getElementById('error-plot'), g = canvas.getContext('2d', CPU_CANVAS);
   g.clearRect(0, 0, canvas.width, canvas.height);
   const top = Math.max(1e-3, ...errorHistory);
   g.strokeStyle = '#fa4';
