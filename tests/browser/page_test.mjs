@@ -13,10 +13,10 @@
 // (static-neo-hookean, a default model), drags it and reads its Newton readout; stops the server
 // with Ctrl-C. Screenshots: OUT_DIR/page-loaded.png, page-drag.png, page-neo-hookean.png. Figures:
 // OUT_DIR/figures.json.
-import { spawn, execFileSync } from 'node:child_process';
+import { execFileSync } from 'node:child_process';
 import { mkdirSync, rmSync, writeFileSync } from 'node:fs';
 import path from 'node:path';
-import puppeteer from 'puppeteer-core';
+import { launchChromium, sleep, startServe } from './serve_page.mjs';
 
 const [roifem, scenario, out, ...rest] = process.argv.slice(2);
 if (!out) {
@@ -38,7 +38,6 @@ const serveOptions = rest[0] === '--' ? rest.slice(1) : [];
 rmSync(out, { recursive: true, force: true });
 mkdirSync(out, { recursive: true });
 const record = path.join(out, 'grabs');
-const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
 let failures = 0;
 function check(ok, what) {
   console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}`);
@@ -46,26 +45,8 @@ function check(ok, what) {
 }
 
 // ---- The server, on a free loopback port ----
-const server = spawn(roifem, ['serve', scenario, '--port', '0', '--record', record, ...serveOptions],
-                     { stdio: ['ignore', 'pipe', 'pipe'] });
-let log = '';
-server.stdout.on('data', (d) => { log += d; });
-server.stderr.on('data', (d) => { log += d; });
-const exited = new Promise((resolve) => server.on('exit', (code, signal) => resolve({ code, signal })));
-process.on('exit', () => server.kill('SIGKILL'));  // whatever failed, no server is left behind
-let url = null;
-for (let k = 0; k < 600 && !url; ++k) {
-  const m = log.match(/open (http:\/\/127\.0\.0\.1:[0-9]+\/)/);
-  if (m) url = m[1];
-  else await sleep(100);
-}
-if (!url) { console.log(log); throw new Error('the server did not start within 60 s'); }
-
-const browser = await puppeteer.launch({
-  executablePath: '/usr/bin/chromium', headless: true,
-  args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--disable-background-networking',
-         '--disable-component-update', '--disable-sync', '--no-first-run', '--disable-quic', '--window-size=1200,800'],
-});
+const { server, url, log, exited } = await startServe(roifem, scenario, ['--record', record, ...serveOptions], 60);
+const browser = await launchChromium();
 try {
   const page = await browser.newPage();
   await page.setViewport({ width: 1200, height: 800 });
@@ -218,6 +199,6 @@ with h5py.File(sys.argv[1]) as f:
 server.kill('SIGINT');
 const { code } = await exited;
 check(code === 130, `Ctrl-C stops the server (exit ${code}, as every roifem command stopped by Ctrl-C)`);
-check(/serve: stopping \(signal 2\)/.test(log), 'its log says it stopped on the signal');
-if (failures) { console.log(log); process.exit(1); }
+check(/serve: stopping \(signal 2\)/.test(log()), 'its log says it stopped on the signal');
+if (failures) { console.log(log()); process.exit(1); }
 console.log('browser test: all checks passed');
