@@ -24,6 +24,7 @@
 #include "model/system_change.hpp"
 #include "scenario/scenario.hpp"
 #include "simulation/cut_event.hpp"
+#include "simulation/element_cuts.hpp"
 #include "simulation/scenario_model.hpp"
 #include "simulation/scenario_splits.hpp"
 
@@ -54,7 +55,7 @@ class ScenarioCuts {
   /// The tetrahedra's corners in the state at time t, the splits since undone (`mesh`: the model's, now).
   std::vector<mesh::Tet> tets_at(double t, const mesh::TetMesh& mesh) const;
   /// Per tetrahedron, whether it is still in the mesh (empty without cuts).
-  const std::vector<bool>& still_there() const { return remover_ ? remover_->still_there() : no_cuts_; }
+  const std::vector<bool>& still_there() const { return cutter_ && !splits_ ? cutter_->still_there() : no_cuts_; }
 
  private:
   CutEvent remove_due(double t, ScenarioModel& model, model::State& state);
@@ -67,13 +68,10 @@ class ScenarioCuts {
   const cutting::SplitPlan* split_plan_ = nullptr;
   std::optional<ScenarioSplits> splits_;
   std::vector<std::pair<double, cutting::Rewire>> moves_;
-  std::size_t nodes_split_ = 0;                 ///< split mode: each corner moved, and when
-  double time_slack_ = 0;                       ///< 1e-9 dt: a blade reaching a tetrahedron at t_k is due at t_k
-  std::optional<fem::ElementRemover> remover_;  ///< the mesh as the cuts leave it
+  std::size_t nodes_split_ = 0;        ///< split mode: each corner moved, and when
+  double time_slack_ = 0;              ///< 1e-9 dt: a blade reaching a tetrahedron at t_k is due at t_k
+  std::optional<ElementCuts> cutter_;  ///< the mesh as the cuts leave it, and what a removal changes
   std::vector<bool> no_cuts_;
-  std::vector<Index> system_dof_;  ///< per free dof of the full model: its unknown in the system (-1: static part)
-  std::vector<std::pair<std::size_t, Vec3>> gravity_;  ///< load terms that are gravity, and g
-  std::vector<bool> supported_;                        ///< per node: fixed, held by a tool or in the static part
 };
 
 }  // namespace roifem::simulation
