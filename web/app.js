@@ -4,12 +4,12 @@
 import * as THREE from '/three/build/three.module.js';
 import { OrbitControls } from '/three/examples/jsm/controls/OrbitControls.js';
 
-const HAND = { pick: 1, target: 2, release: 3, model: 4, save: 5, compare: 6 };
+const HAND = { pick: 1, target: 2, release: 3, model: 4, save: 5, compare: 6, cut: 7 };
 
 // What the tests (and a curious user's console) read: window.roifem.
 const live = {
   hello: null, state: null, ready: false, frames: 0, framesDrawn: 0, fps: 0,
-  latencies: [], notices: [], role: null, shown: null,
+  latencies: [], notices: [], role: null, shown: null, meshes: 0,
   screenOf: null,  // (x, y, z) mm at rest -> {x, y} in client pixels
 };
 window.roifem = live;
@@ -70,7 +70,17 @@ function drawColourBar() {
   document.getElementById('bar-max').textContent = barMax.toPrecision(2);
 }
 
+// A surface the server sends: the first, then a cut model's after each cut (or a switch to a model with
+// another surface). The view stays where the user turned it.
 function onMesh(buffer) {
+  const first = brain === null;
+  if (!first) {
+    for (const o of [brain, fixedPoints, ...roiPoints]) {
+      scene.remove(o);
+      o.geometry.dispose();
+    }
+    roiPoints.length = 0;
+  }
   const view = new DataView(buffer);
   const V = view.getUint32(4, true), T = view.getUint32(8, true);
   let offset = 16;
@@ -97,11 +107,15 @@ function onMesh(buffer) {
   };
   fixedPoints = points(1, 0x8a8a8a, 3);
   live.hello.models.forEach((m, k) => roiPoints.push(points(2 << k, 0x4fa3ff, 3)));
+  live.meshes += 1;
+  live.triangles = T;
+  recolour();
+  showRoi();
+  if (!first) return;
   tool = new THREE.Mesh(new THREE.SphereGeometry(live.hello.radius_mm, 16, 12),
                         new THREE.MeshPhongMaterial({ color: 0xe0e0e0, transparent: true, opacity: 0.6 }));
   tool.visible = false;
   scene.add(tool);
-  recolour();
   drawColourBar();
   const box = new THREE.Box3(new THREE.Vector3(...live.hello.box_mm[0]), new THREE.Vector3(...live.hello.box_mm[1]));
   const centre = box.getCenter(new THREE.Vector3()), size = box.getSize(new THREE.Vector3()).length();
@@ -177,7 +191,7 @@ function onJson(m) {
     const models = document.getElementById('models');
     m.models.forEach((model, k) => {
       const b = document.createElement('button');
-      b.textContent = model.nonlinear ? `${model.name} (NL)` : model.name;
+      b.textContent = model.nonlinear ? `${model.name} (NL)` : model.cut ? `${model.name} (cut)` : model.name;
       b.title = `${model.description} (${model.unknowns} unknowns)`;
       b.onclick = () => send(HAND.model, null, k);
       models.appendChild(b);
@@ -269,6 +283,10 @@ document.getElementById('compare').onchange = (event) => send(HAND.compare, null
 function showComparison(m) {
   const text = document.getElementById('compare-text'), c = m.compare;
   if (!c) { text.textContent = ''; return; }
+  if (live.hello.models[m.model].cut) {
+    text.textContent = `${m.model_name} is the scalpel's: the full model stays whole, nothing to compare.`;
+    return;
+  }
   if (live.hello.models[m.model].roi_nodes === 0) {
     text.textContent = 'The live model is a full model: nothing to compare.';
     return;
@@ -322,18 +340,64 @@ function restPointOf(hit) {  // the hit on the drawn (moved) surface, at rest
     .add(at(f.c, displacement).multiplyScalar(bary.z));
   return hit.point.clone().sub(moved);
 }
+// The scalpel (a cut model): press on the surface, drag, release. The blade's edge runs along the view
+// direction from just above the surface point pressed to the depth set; the stroke sweeps it by the
+// drag in the view plane. The server removes every tetrahedron the swept surface crosses (a [[cut]]
+// in remove mode, docs/simulator.md).
+const scalpelBox = document.getElementById('scalpel'), depthInput = document.getElementById('cut-depth');
+let stroke = null;  // {edgeFrom, edgeTo, hitPoint, plane, along, line}
+function strokeLine(a, b) {
+  const g = new THREE.BufferGeometry().setFromPoints([a, b]);
+  const line = new THREE.Line(g, new THREE.LineBasicMaterial({ color: 0xff5050, depthTest: false }));
+  scene.add(line);
+  return line;
+}
+function startStroke(hit) {
+  const direction = camera.getWorldDirection(new THREE.Vector3()), restPoint = restPointOf(hit);
+  const depth = Math.max(0.5, Number(depthInput.value) || 10);
+  stroke = { edgeFrom: restPoint.clone().addScaledVector(direction, -2), edgeTo: restPoint.clone().addScaledVector(direction, depth),
+             hitPoint: hit.point.clone(), along: hit.point.clone(),
+             plane: new THREE.Plane().setFromNormalAndCoplanarPoint(direction, hit.point), line: strokeLine(hit.point, hit.point) };
+}
+function endStroke() {
+  const move = stroke.along.clone().sub(stroke.hitPoint);
+  scene.remove(stroke.line);
+  stroke.line.geometry.dispose();
+  if (move.length() >= 0.5) sendCut(stroke.edgeFrom.toArray(), stroke.edgeTo.toArray(), move.toArray());
+  else note('cut: not sent (drag at least 0.5 mm)');
+  stroke = null;
+  dirty = true;
+}
+function sendCut(edgeFrom, edgeTo, move) {
+  if (socket.readyState !== WebSocket.OPEN) return;
+  const buffer = new ArrayBuffer(80), view = new DataView(buffer);
+  view.setUint8(0, HAND.cut);
+  view.setUint32(4, ++sequence, true);
+  [...edgeFrom, ...edgeTo, ...move].forEach((x, k) => view.setFloat64(8 + 8 * k, x, true));
+  socket.send(buffer);
+}
+live.sendCut = sendCut;  // the browser test's stroke, stated in mm
 renderer.domElement.addEventListener('pointerdown', (event) => {
   if (!brain || event.button !== 0) return;
   rayAt(event);
   const hit = raycaster.intersectObject(brain)[0];
   if (!hit) return;
   controls.enabled = false;
+  if (scalpelBox.checked) return startStroke(hit);
   const restPoint = restPointOf(hit), normal = camera.getWorldDirection(new THREE.Vector3());
   drag = { restPoint, hitPoint: hit.point.clone(), plane: new THREE.Plane().setFromNormalAndCoplanarPoint(normal, hit.point),
            depth: 0, lastY: event.clientY, along: hit.point.clone() };
   send(HAND.pick, restPoint.toArray());
 });
 window.addEventListener('pointermove', (event) => {
+  if (stroke) {
+    rayAt(event);
+    const onPlane = raycaster.ray.intersectPlane(stroke.plane, new THREE.Vector3());
+    if (onPlane) stroke.along = onPlane;
+    stroke.line.geometry.setFromPoints([stroke.hitPoint, stroke.along]);
+    dirty = true;
+    return;
+  }
   if (!drag) return;
   const view = camera.getWorldDirection(new THREE.Vector3());
   if (event.shiftKey) {  // depth: up moves away from the viewer
@@ -348,6 +412,10 @@ window.addEventListener('pointermove', (event) => {
   send(HAND.target, target.toArray());
 });
 window.addEventListener('pointerup', () => {
+  if (stroke) {
+    controls.enabled = true;
+    return endStroke();
+  }
   if (!drag) return;
   drag = null;
   controls.enabled = true;
@@ -385,12 +453,14 @@ function animate() {
   if (pendingFrame) {
     const view = new DataView(pendingFrame);
     const V = view.getUint32(4, true), seq = view.getUint32(8, true);
-    displacement.set(new Float32Array(pendingFrame, 24, 3 * V));
+    if (3 * V === displacement.length) {  // a frame of the surface drawn (not one sent before a new surface)
+      displacement.set(new Float32Array(pendingFrame, 24, 3 * V));
+      recolour();
+      live.frames += 1;
+      frameShows = seq;
+      dirty = true;
+    }
     pendingFrame = null;
-    recolour();
-    live.frames += 1;
-    frameShows = seq;
-    dirty = true;
   }
   if (plotDirty) {
     drawForcePlot();

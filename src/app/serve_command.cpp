@@ -81,11 +81,12 @@ void add_serve_command(CLI::App& app, Action& action) {
   cmd->add_option("--models", o->models,
                   "The models to prepare and switch between. Linear: full, static, guyan, craig-bampton-K. Large deformation: "
                   "full-neo-hookean (the whole brain neo-Hookean) and static-neo-hookean (the hybrid ROI: the ROI's elements "
-                  "neo-Hookean over the "
-                  "linear condensed remainder), with the scenario's moduli as the law's small-strain moduli. Default: full and, "
-                  "with an [roi], static, guyan, craig-bampton-10 and static-neo-hookean (a neo-Hookean scenario's "
-                  "full-neo-hookean and static-neo-hookean first); on a large brain Guyan's and Craig-Bampton's preparation "
-                  "takes minutes");
+                  "neo-Hookean over the linear condensed remainder), with the scenario's moduli as the law's small-strain "
+                  "moduli. Cut by the page's scalpel: full-cut and static-cut (a copy of full or static that the strokes "
+                  "cut; the others stay whole). Default: full and, with an [roi], static, guyan, craig-bampton-10, "
+                  "static-cut and static-neo-hookean (a neo-Hookean scenario's full-neo-hookean and static-neo-hookean "
+                  "first; without an [roi], full-cut); on a large brain Guyan's and Craig-Bampton's preparation takes "
+                  "minutes");
   cmd->add_option("--rate-hz", o->haptic.rate_hz,
                   "The haptic loop's rate, one trapezoidal step per tick (default: the scenario's [haptic] rate_hz, else 1000)");
   cmd->add_option("--tool-radius-mm", o->radius_mm,

@@ -12,7 +12,7 @@ namespace {
 constexpr std::size_t header_bytes = 8;
 
 /// What follows a kind's header.
-enum class Payload { none, point, index };
+enum class Payload { none, point, index, stroke };
 
 struct KindInfo {
   HandKind kind;
@@ -21,12 +21,13 @@ struct KindInfo {
 };
 
 /// Every kind once, in the order of their codes (1, 2, ...): decode, encode and the refusals read it.
-constexpr std::array<KindInfo, 6> kinds{{{HandKind::pick, "pick", Payload::point},
+constexpr std::array<KindInfo, 7> kinds{{{HandKind::pick, "pick", Payload::point},
                                          {HandKind::target, "target", Payload::point},
                                          {HandKind::release, "release", Payload::none},
                                          {HandKind::model, "model", Payload::index},
                                          {HandKind::save, "save", Payload::none},
-                                         {HandKind::compare, "compare", Payload::index}}};
+                                         {HandKind::compare, "compare", Payload::index},
+                                         {HandKind::cut, "cut", Payload::stroke}}};
 
 constexpr bool in_code_order() {
   for (std::size_t k = 0; k < kinds.size(); ++k)
@@ -43,6 +44,8 @@ std::size_t size_of(Payload payload) {
       return header_bytes + 3 * sizeof(double);
     case Payload::index:
       return header_bytes + sizeof(std::uint32_t);
+    case Payload::stroke:
+      return header_bytes + 9 * sizeof(double);
     case Payload::none:
       return header_bytes;
   }
@@ -84,6 +87,16 @@ std::variant<HandMessage, std::string> decode_hand_message(std::span<const std::
     if (!m.point_mm.allFinite()) return std::string("a ") + kind.name + " at a point that is not finite";
   }
   if (kind.payload == Payload::index) m.model = read_at<std::uint32_t>(bytes, header_bytes);
+  if (kind.payload == Payload::stroke) {
+    std::array<Vec3*, 3> points{&m.point_mm, &m.edge_to_mm, &m.move_mm};
+    for (std::size_t p = 0; p < 3; ++p)
+      for (int c = 0; c < 3; ++c)
+        (*points[p])[c] = read_at<double>(bytes, header_bytes + sizeof(double) * (3 * p + static_cast<std::size_t>(c)));
+    if (!m.point_mm.allFinite() || !m.edge_to_mm.allFinite() || !m.move_mm.allFinite())
+      return std::string("a cut whose blade is not finite");
+    if (m.point_mm == m.edge_to_mm) return std::string("a cut whose blade's edge has no length");
+    if (m.move_mm.isZero(0.0)) return std::string("a cut whose blade does not move (it sweeps nothing)");
+  }
   return m;
 }
 
@@ -98,6 +111,14 @@ std::string encode_hand_message(const HandMessage& message) {
       std::memcpy(out.data() + header_bytes + sizeof(double) * static_cast<std::size_t>(c), &x, sizeof(double));
     }
   if (payload == Payload::index) std::memcpy(out.data() + header_bytes, &message.model, sizeof(std::uint32_t));
+  if (payload == Payload::stroke) {
+    const std::array<const Vec3*, 3> points{&message.point_mm, &message.edge_to_mm, &message.move_mm};
+    for (std::size_t p = 0; p < 3; ++p)
+      for (int c = 0; c < 3; ++c) {
+        const double x = (*points[p])[c];
+        std::memcpy(out.data() + header_bytes + sizeof(double) * (3 * p + static_cast<std::size_t>(c)), &x, sizeof(double));
+      }
+  }
   return out;
 }
 

@@ -6,6 +6,7 @@
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
 #include "io/csv.hpp"
+#include "serve/scalpel.hpp"
 
 namespace roifem::serve {
 
@@ -51,6 +52,10 @@ scenario::Scenario replay_scenario(const LiveScene& scene, const GrabRecord& gra
   hand.path.trajectory_file = path_file;
   replay.tools = {hand};
   replay.cuts.clear();
+  const double dt = scene.dt();
+  for (const LiveCut& c : grab.cuts)
+    replay.cuts.push_back(scalpel_blade("scalpel" + std::to_string(replay.cuts.size() + 1), c.edge_from_mm, c.edge_to_mm,
+                                        c.move_mm, c.during ? c.t + dt / 2 : 0.0, dt / 2));
   if (!live.condensed()) {
     replay.roi.reset();
   } else {

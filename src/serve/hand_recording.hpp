@@ -7,6 +7,10 @@
 /// trapezoidal rule at the haptic dt for as many steps as the grab ticked. The replay's tool is
 /// eliminated where the live loop constrained it: the same discrete solution (haptic_trapezoid.hpp),
 /// so its tools/hand/force_N equals the live force to round-off.
+/// A cut model's cuts become [[cut]] tables, each stroke's blade sweeping within half a step so
+/// that `roifem run` removes the same tetrahedra at the start of the same step: one taken between
+/// grabs from start_s = 0 (before the first step), one taken after the live tick at t_n from
+/// t_n + dt/2 (the start of the step from t_n), each over dt/2.
 /// A "nearest" ROI counts free nodes, and the replay's tool nodes are not free: it asks for as
 /// many fewer as the tool holds, which selects the same nodes.
 #include <filesystem>
@@ -24,6 +28,8 @@ struct GrabRecord {
   Vec3 center_mm = Vec3::Zero();
   std::size_t grip_nodes = 0;
   std::vector<HandSample> samples;  ///< the first at t = 0, g = 0
+  /// A cut model's: the cuts taken before the grab and during it (before its last tick), in order.
+  std::vector<LiveCut> cuts;
 };
 
 /// Writes DIR/NAME.csv (the path), DIR/NAME-force.csv (t_s,fx_N,fy_N,fz_N: the live force per

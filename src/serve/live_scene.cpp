@@ -62,6 +62,7 @@ struct PlannedModel {
   std::string name;
   std::optional<condensation::Reduction> reduction;
   fem::MaterialModel law = fem::MaterialModel::linear;
+  bool cut = false;  ///< the page's scalpel cuts it
 };
 
 bool is_neo_hookean(const scenario::Scenario& scenario) {
@@ -81,6 +82,10 @@ std::vector<PlannedModel> model_plan(const scenario::Scenario& scenario, const s
     std::vector<PlannedModel> linear_models{{"full", std::nullopt, linear}};
     if (scenario.roi)
       for (const auto& r : live_reductions(scenario)) linear_models.push_back({r.label(), r, linear});
+    if (scenario.roi)
+      linear_models.push_back({static_condensation.label() + kCutSuffix, static_condensation, linear, true});
+    else
+      linear_models.push_back({std::string("full") + kCutSuffix, std::nullopt, linear, true});
     const PlannedModel hybrid{static_condensation.label() + suffix, static_condensation, neo_hookean};
     if (!is_neo_hookean(scenario)) {  // the linear models, then the hybrid ROI
       plan = linear_models;
@@ -92,12 +97,22 @@ std::vector<PlannedModel> model_plan(const scenario::Scenario& scenario, const s
     plan.insert(plan.end(), linear_models.begin(), linear_models.end());
     return plan;
   }
+  const std::string cut_suffix = kCutSuffix;
   for (const std::string& name : names) {
-    const bool neo = name.size() > suffix.size() && name.ends_with(suffix);
-    const std::string base = neo ? name.substr(0, name.size() - suffix.size()) : name;
+    const bool cut = name.size() > cut_suffix.size() && name.ends_with(cut_suffix);
+    const std::string uncut = cut ? name.substr(0, name.size() - cut_suffix.size()) : name;
+    const bool neo = uncut.size() > suffix.size() && uncut.ends_with(suffix);
+    const std::string base = neo ? uncut.substr(0, uncut.size() - suffix.size()) : uncut;
     const fem::MaterialModel law = neo ? neo_hookean : linear;
+    if (cut && (neo || (base != "full" && base != condensation::Reduction{}.label())))
+      throw InputError(io::format(
+          "serve: --models: %s: the page's scalpel cuts the linear full model (full%s) or static condensation (static%s): "
+          "%s",
+          name.c_str(), kCutSuffix, kCutSuffix,
+          neo ? "cuts are built for the linear material"
+              : "a reduction by modes keeps the uncut mesh's modes, and the haptic loop takes a cut on a lumped mass"));
     if (base == "full") {
-      plan.push_back({name, std::nullopt, law});
+      plan.push_back({name, std::nullopt, law, cut});
       continue;
     }
     condensation::Reduction r;
@@ -116,7 +131,7 @@ std::vector<PlannedModel> model_plan(const scenario::Scenario& scenario, const s
           io::format("serve: --models: %s: a reduction by modes linearizes the ROI's motion; the neo-Hookean "
                      "ROI takes static condensation (static%s)",
                      name.c_str(), kNeoHookeanSuffix));
-    plan.push_back({r.label() + (neo ? suffix : ""), r, law});
+    plan.push_back({r.label() + (neo ? suffix : "") + (cut ? cut_suffix : ""), r, law, cut});
   }
   return plan;
 }
@@ -145,7 +160,7 @@ LiveScene::LiveScene(const scenario::Scenario& scenario, double rate_hz, double 
         << " [[cut]](s) are left out: the page's hand is the tool\n";
   scenario_.tools.clear();
   scenario_.cuts.clear();
-  for (const auto& [name, reduction, law] : model_plan(scenario_, models)) {
+  for (const auto& [name, reduction, law, cut] : model_plan(scenario_, models)) {
     const Stopwatch clock;
     scenario::Scenario variant = with_law(scenario_, law);
     if (!reduction) variant.roi.reset();
@@ -163,6 +178,11 @@ LiveScene::LiveScene(const scenario::Scenario& scenario, double rate_hz, double 
       live.description = live.nonlinear() ? "the full dynamic model of the whole brain, neo-Hookean"
                                           : "the full dynamic model of the whole brain";
     }
+    if (cut) {
+      live.cuts = std::make_unique<simulation::ElementCuts>(variant, *live.model);
+      live.on_cut.assign(static_cast<std::size_t>(live.model->mesh.num_nodes()), 0);
+      live.description += ", cut by the page's scalpel";
+    }
     live.haptic = std::make_unique<integrators::HapticTrapezoid>(live.model->system(), dt_,
                                                                  live.nonlinear() ? newton_ : integrators::HapticNewton{});
     const auto& mesh = live.model->mesh;
@@ -178,17 +198,40 @@ LiveScene::LiveScene(const scenario::Scenario& scenario, double rate_hz, double 
     models_.push_back(std::move(live));
   }
   const mesh::TetMesh& m = mesh();
-  surface_ = surface_of(m);
+  auto surface = std::make_shared<SurfaceView>(surface_of(m));
+  flag_vertices(*surface);
+  surface_ = std::move(surface);
   neighbours_ = node_neighbours(m);
   for (Index n = 0; n < m.num_nodes(); ++n) box_.extend(m.node(static_cast<int>(n)));
-  for (LiveModel& live : models_) map_surface(live);
-  const fem::DofMap& dofs = *models_.front().model->full.dofs;
-  for (std::size_t v = 0; v < surface_.nodes.size(); ++v) {
-    const int n = surface_.nodes[v];
-    if (dofs.free_dof(n, 0) < 0 || dofs.free_dof(n, 1) < 0 || dofs.free_dof(n, 2) < 0) surface_.flags[v] |= 1;
-    for (std::size_t k = 0; k < models_.size() && k < 7; ++k)
-      if (models_[k].in_roi[static_cast<std::size_t>(n)]) surface_.flags[v] |= static_cast<std::uint8_t>(2u << k);
+  for (LiveModel& live : models_) {
+    live.view = surface_;
+    if (live.cuttable()) live.shown_tets.assign(m.tets.size(), true);
+    map_surface(live);
   }
+}
+
+void LiveScene::flag_vertices(SurfaceView& view) const {
+  const fem::DofMap& dofs = *models_.front().model->full.dofs;
+  for (std::size_t v = 0; v < view.nodes.size(); ++v) {
+    const int n = view.nodes[v];
+    if (dofs.free_dof(n, 0) < 0 || dofs.free_dof(n, 1) < 0 || dofs.free_dof(n, 2) < 0) view.flags[v] |= 1;
+    for (std::size_t k = 0; k < models_.size() && k < 7; ++k)
+      if (models_[k].in_roi[static_cast<std::size_t>(n)]) view.flags[v] |= static_cast<std::uint8_t>(2u << k);
+  }
+}
+
+void LiveScene::cut_surface(std::size_t k, const std::vector<Index>& removed) {
+  LiveModel& live = models_.at(k);
+  if (!live.cuttable()) throw Error("internal: serve: the display cut the uncut model " + live.name);
+  for (const Index e : removed) live.shown_tets.at(static_cast<std::size_t>(e)) = false;
+  mesh::TetMesh left;
+  left.nodes = mesh().nodes;
+  for (std::size_t e = 0; e < live.shown_tets.size(); ++e)
+    if (live.shown_tets[e]) left.tets.push_back(mesh().tets[e]);
+  auto view = std::make_shared<SurfaceView>(surface_of(left));
+  flag_vertices(*view);
+  live.view = std::move(view);
+  map_surface(live);
 }
 
 HapticSettings haptic_settings(const scenario::Scenario& scenario, std::optional<double> rate_hz,
@@ -202,9 +245,9 @@ HapticSettings haptic_settings(const scenario::Scenario& scenario, std::optional
 
 std::optional<std::size_t> LiveScene::reference_of(std::size_t k) const {
   const LiveModel& live = models_.at(k);
-  if (!live.condensed()) return std::nullopt;
+  if (!live.condensed() || live.cuttable()) return std::nullopt;
   for (std::size_t j = 0; j < models_.size(); ++j)
-    if (!models_[j].condensed() && models_[j].law == live.law) return j;
+    if (!models_[j].condensed() && !models_[j].cuttable() && models_[j].law == live.law) return j;
   return std::nullopt;
 }
 
@@ -216,7 +259,7 @@ std::variant<Grip, std::string> LiveScene::grip(std::size_t k, const Vec3& cente
   Grip grip{.center_mm = center_mm, .nodes = {}, .dofs = {}};
   const Vec3 center = center_mm * mm;  // as the scenario reader reads center_mm
   const double radius = radius_mm_ * mm;
-  for (const int n : surface_.nodes)
+  for (const int n : surface_->nodes)
     if ((m.node(n) - center).norm() <= radius) grip.nodes.push_back(n);
   if (grip.nodes.empty())
     return io::format("no boundary node within %g mm of (%.1f, %.1f, %.1f) mm", radius_mm_, center_mm.x(), center_mm.y(),
@@ -261,13 +304,14 @@ void LiveScene::map_surface(LiveModel& live) const {
   } else {
     for (std::size_t a = 0; a < unknown.size(); ++a) unknown[a] = static_cast<Index>(a);
   }
-  const std::size_t n = 3 * surface_.nodes.size();
+  const SurfaceView& view = *live.view;
+  const std::size_t n = 3 * view.nodes.size();
   live.surface_unknown.assign(n, -1);
   live.surface_static.assign(n, -1);
   live.static_surface_mm.assign(n, 0.0F);
-  for (std::size_t v = 0; v < surface_.nodes.size(); ++v)
+  for (std::size_t v = 0; v < view.nodes.size(); ++v)
     for (int c = 0; c < 3; ++c) {
-      const int dof = dofs.free_dof(surface_.nodes[v], c);
+      const int dof = dofs.free_dof(view.nodes[v], c);
       if (dof < 0) continue;
       live.surface_unknown[3 * v + static_cast<std::size_t>(c)] = unknown[static_cast<std::size_t>(dof)];
       live.surface_static[3 * v + static_cast<std::size_t>(c)] = in_static[static_cast<std::size_t>(dof)];

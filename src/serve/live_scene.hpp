@@ -8,7 +8,10 @@
 ///   and at large deformation, the same with the neo-Hookean law (a name's "-neo-hookean"): the
 ///   whole brain (full-neo-hookean) or the hybrid ROI (static-neo-hookean: the ROI's elements
 ///   neo-Hookean over the linear condensed remainder, model/hyperelastic_force.hpp), ticked by
-///   modified Newton on the linear K_eff with a stated budget (integrators/haptic_trapezoid.hpp).
+///   modified Newton on the linear K_eff with a stated budget (integrators/haptic_trapezoid.hpp);
+///   and models the page's scalpel cuts (a name's "-cut": full-cut, static-cut), each its own copy
+///   of the linear full model or static condensation, cut in place (simulation/element_cuts.hpp)
+///   while the others stay whole.
 /// A model's name states its law, whatever the scenario's [material] model says; the scenario's
 /// moduli are the law's small-strain moduli.
 /// The scenario's own [[tool]]s and [[cut]]s are left out (the page's hand is the tool); its
@@ -24,6 +27,7 @@
 
 #include "integrators/haptic_trapezoid.hpp"
 #include "scenario/scenario.hpp"
+#include "simulation/element_cuts.hpp"
 #include "simulation/scenario_model.hpp"
 
 namespace roifem::serve {
@@ -37,6 +41,8 @@ struct SurfaceView {
 
 /// The suffix of a model's name that takes the neo-Hookean law.
 inline constexpr const char* kNeoHookeanSuffix = "-neo-hookean";
+/// The suffix of a model's name that the page's scalpel cuts.
+inline constexpr const char* kCutSuffix = "-cut";
 
 struct LiveModel {
   /// "full", or the reduction's label ("static", "guyan", "craig-bampton-10"), with
@@ -48,12 +54,22 @@ struct LiveModel {
   std::unique_ptr<simulation::ScenarioModel> model;
   std::unique_ptr<integrators::HapticTrapezoid> haptic;
   std::vector<char> in_roi;  ///< per mesh node: an unknown of this model's ROI (the full model: every free node)
-  /// Per surface vertex and component: its place among the unknowns u (-1: none), and for the
-  /// static part its place in u_s (-1: none), with the static part's last recovered values.
+  /// A cut model's (kCutSuffix): the mesh as the cuts left it and what a removal changes (the
+  /// physics thread's, with the nodes of removed tetrahedra and whether the haptic loop's factor
+  /// predates a cut taken while no grab held the model).
+  std::unique_ptr<simulation::ElementCuts> cuts;
+  std::vector<char> on_cut;
+  bool haptic_stale = false;
+  /// The display's (its thread's alone): the surface drawn, the tetrahedra it bounds, and per
+  /// vertex and component its place among the unknowns u (-1: none), for the static part its
+  /// place in u_s (-1: none), with the static part's last recovered values.
+  std::shared_ptr<const SurfaceView> view;
+  std::vector<bool> shown_tets;
   std::vector<Index> surface_unknown, surface_static;
   std::vector<float> static_surface_mm;
   bool condensed() const { return model->condensation != nullptr; }
   bool nonlinear() const { return law != fem::MaterialModel::linear; }
+  bool cuttable() const { return cuts != nullptr; }
 };
 
 /// A footprint the hand may hold in a model: its mesh nodes and their dofs in the model's system.
@@ -77,9 +93,10 @@ class LiveScene {
   /// Reads the mesh, builds and condenses each model and factors its haptic loop at `rate_hz`.
   /// `radius_mm`: the hand's footprint. `models`: "full" and reduction labels ("static", "guyan",
   /// "craig-bampton-10"), each with kNeoHookeanSuffix or not; empty: full, static, guyan,
-  /// craig-bampton-10 and static-neo-hookean (a neo-Hookean scenario's: full-neo-hookean and
-  /// static-neo-hookean first), those an [roi] needs only with one. InputError for an unknown name,
-  /// POD, a reduction without an [roi], or the neo-Hookean law with a reduction by modes.
+  /// craig-bampton-10, static-neo-hookean and static-cut (a neo-Hookean scenario's: full-neo-hookean
+  /// and static-neo-hookean first; without an [roi], full and full-cut). InputError for an unknown
+  /// name, POD, a reduction without an [roi], the neo-Hookean law with a reduction by modes, or a
+  /// cut model other than full-cut and static-cut.
   /// `newton`: the neo-Hookean models' iterations per tick. Progress lines go to `log`.
   LiveScene(const scenario::Scenario& scenario, double rate_hz, double radius_mm, const std::vector<std::string>& models,
             std::ostream& log, integrators::HapticNewton newton = {});
@@ -90,20 +107,29 @@ class LiveScene {
   std::vector<LiveModel>& models() { return models_; }
   const std::vector<LiveModel>& models() const { return models_; }
   const mesh::TetMesh& mesh() const { return models_.front().model->mesh; }
-  const SurfaceView& surface() const { return surface_; }
+  /// The uncut mesh's surface (where the hand may pick), and model k's as the display draws it
+  /// (a cut model's as its cuts left it: the display's thread alone).
+  const SurfaceView& surface() const { return *surface_; }
+  const SurfaceView& surface(std::size_t k) const { return *models_.at(k).view; }
+  std::shared_ptr<const SurfaceView> view_of(std::size_t k) const { return models_.at(k).view; }
+  /// The display's thread: model k's surface without the tetrahedra `removed` (ascending), as
+  /// the physics thread cut them (its vertices' places follow).
+  void cut_surface(std::size_t k, const std::vector<Index>& removed);
   double dt() const { return dt_; }
   double radius_mm() const { return radius_mm_; }
   /// The mesh's bounding box (m): targets are clamped to it, widened by the largest reach.
   const Eigen::AlignedBox3d& box() const { return box_; }
   const integrators::HapticNewton& newton() const { return newton_; }
-  /// The model Compare holds model k's force against: the full model with k's law (none for a
-  /// full model, or when that one is not prepared).
+  /// The model Compare holds model k's force against: the full model with k's law, uncut (none
+  /// for a full model, a cut model, or when that one is not prepared).
   std::optional<std::size_t> reference_of(std::size_t k) const;
   /// The served scenario as model k is built from it: its law on every material.
   scenario::Scenario scenario_of(std::size_t k) const;
 
   /// The footprint at `center_mm` in model `k`, or why the hand cannot hold it there (no boundary
-  /// node within the radius, a fixed node, a node or a neighbour outside the ROI).
+  /// node of the uncut surface within the radius, a fixed node, a node or a neighbour outside the
+  /// ROI). A cut model's grip is refused by the physics thread where it holds a node of a removed
+  /// tetrahedron (PhysicsLoop).
   std::variant<Grip, std::string> grip(std::size_t k, const Vec3& center_mm) const;
   /// Model k's displacement of every surface vertex (mm), from its state u at time t: the ROI's
   /// unknowns directly; the static part recovered (u_s = K_ss^-1 (f_s - K_sI u_I), one solve with
@@ -114,13 +140,15 @@ class LiveScene {
  private:
   scenario::Scenario scenario_;
   std::vector<LiveModel> models_;
-  SurfaceView surface_;
+  std::shared_ptr<const SurfaceView> surface_;
   std::vector<std::vector<int>> neighbours_;  ///< per node, the nodes it shares a tetrahedron with
   Eigen::AlignedBox3d box_;
   double dt_, radius_mm_;
   integrators::HapticNewton newton_;
-  /// live's surface_unknown and surface_static (surface_ set).
+  /// live's surface_unknown and surface_static, for live.view.
   void map_surface(LiveModel& live) const;
+  /// The vertices' flags (fixed, each model's ROI).
+  void flag_vertices(SurfaceView& view) const;
 };
 
 }  // namespace roifem::serve

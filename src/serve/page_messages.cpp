@@ -53,8 +53,7 @@ TickFigures TickWindow::figures(long slips) const {
   return f;
 }
 
-std::string mesh_message(const LiveScene& scene) {
-  const SurfaceView& s = scene.surface();
+std::string mesh_message(const LiveScene& scene, const SurfaceView& s) {
   const auto V = static_cast<std::uint32_t>(s.nodes.size()), T = static_cast<std::uint32_t>(s.triangles.size());
   std::string out = "RFMS";
   append(out, V);
@@ -83,10 +82,10 @@ std::string hello_message(const LiveScene& scene, std::size_t model, bool driver
   std::string models;
   for (const LiveModel& m : scene.models()) {
     if (!models.empty()) models += ",";
-    models +=
-        io::format("{\"name\":%s,\"description\":%s,\"unknowns\":%ld,\"roi_nodes\":%zu,\"nonlinear\":%s}",
-                   json_string(m.name).c_str(), json_string(m.description).c_str(), static_cast<long>(m.model->system().size()),
-                   m.condensed() ? m.model->roi_nodes.size() : std::size_t{0}, m.nonlinear() ? "true" : "false");
+    models += io::format("{\"name\":%s,\"description\":%s,\"unknowns\":%ld,\"roi_nodes\":%zu,\"nonlinear\":%s,\"cut\":%s}",
+                         json_string(m.name).c_str(), json_string(m.description).c_str(),
+                         static_cast<long>(m.model->system().size()), m.condensed() ? m.model->roi_nodes.size() : std::size_t{0},
+                         m.nonlinear() ? "true" : "false", m.cuttable() ? "true" : "false");
   }
   const auto& box = scene.box();
   return io::format(

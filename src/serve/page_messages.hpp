@@ -39,7 +39,8 @@ class TickWindow {
   static constexpr std::size_t capacity = 10000;
 };
 
-std::string mesh_message(const LiveScene& scene);
+/// A surface as the page draws it (LiveScene::surface(k)).
+std::string mesh_message(const LiveScene& scene, const SurfaceView& surface);
 std::string frame_message(const PhysicsSnapshot& snapshot, const std::vector<float>& displacement_mm);
 std::string hello_message(const LiveScene& scene, std::size_t model, bool driver);
 /// What a frame cost the server (ms): building it, and the static part's last recovery.

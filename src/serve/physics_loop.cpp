@@ -11,6 +11,7 @@
 #include "common/errors.hpp"
 #include "common/timer.hpp"
 #include "io/csv.hpp"
+#include "simulation/cut_event.hpp"
 
 namespace roifem::serve {
 
@@ -83,12 +84,24 @@ std::vector<std::string> PhysicsLoop::take_notices() {
   return std::exchange(notices_, {});
 }
 
+std::vector<LiveCut> PhysicsLoop::take_cuts() {
+  const std::lock_guard lock(notice_mutex_);
+  return std::exchange(cuts_, {});
+}
+
 void PhysicsLoop::say(std::string notice) {
   pending_notices_.push_back(std::move(notice));
+  deliver();
+}
+
+void PhysicsLoop::deliver() {
+  if (pending_notices_.empty() && pending_cuts_.empty()) return;
   const std::unique_lock lock(notice_mutex_, std::try_to_lock);
   if (!lock.owns_lock()) return;  // the next turn delivers them
   for (auto& n : pending_notices_) notices_.push_back(std::move(n));
+  for (auto& c : pending_cuts_) cuts_.push_back(std::move(c));
   pending_notices_.clear();
+  pending_cuts_.clear();
 }
 
 void PhysicsLoop::take_inbox() {
@@ -98,6 +111,7 @@ void PhysicsLoop::take_inbox() {
   {
     const std::unique_lock lock(inbox_mutex_, std::try_to_lock);
     if (!lock.owns_lock()) return;
+    deliver();
     if (target_fresh_) {
       target = target_;
       target_fresh_ = false;
@@ -138,6 +152,9 @@ void PhysicsLoop::handle(const HandMessage& event) {
       state_ = {};
       say("model: " + scene_.models()[model_].name);
       break;
+    case HandKind::cut:
+      cut(event);
+      break;
     case HandKind::target:
     case HandKind::save:
     case HandKind::compare:
@@ -152,7 +169,23 @@ void PhysicsLoop::pick(const HandMessage& event) {
     return;
   }
   const Stopwatch clock;
-  integrators::HapticTrapezoid& haptic = *scene_.models()[model_].haptic;
+  LiveModel& live = scene_.models()[model_];
+  if (live.cuttable())
+    for (const int n : std::get<Grip>(grip).nodes)
+      if (live.on_cut[static_cast<std::size_t>(n)]) {
+        say(
+            io::format("refused pick: node %d there lies on a cut (a tetrahedron at it was removed): the hand holds whole "
+                       "tissue, pick beside the cut",
+                       n));
+        return;
+      }
+  std::string refactored;
+  if (live.haptic_stale) {  // cut between grabs: a fresh factor of the cut model
+    live.haptic = std::make_unique<integrators::HapticTrapezoid>(live.model->system(), scene_.dt());
+    live.haptic_stale = false;
+    refactored = io::format(" (its factor made afresh after the cuts: %.1f ms)", 1e3 * clock.seconds());
+  }
+  integrators::HapticTrapezoid& haptic = *live.haptic;
   try {
     haptic.attach(std::get<Grip>(grip).dofs);
   } catch (const Error& e) {
@@ -167,9 +200,92 @@ void PhysicsLoop::pick(const HandMessage& event) {
   g_ = target_g_ = force_ = Vec3::Zero();
   ++grab_;
   samples_.push(sample());
-  say(io::format("grab %u: %zu nodes at (%.1f, %.1f, %.1f) mm on the %s model, attached in %.1f ms", grab_, grip_.nodes.size(),
+  say(io::format("grab %u: %zu nodes at (%.1f, %.1f, %.1f) mm on the %s model, attached in %.1f ms%s", grab_, grip_.nodes.size(),
                  grip_.center_mm.x(), grip_.center_mm.y(), grip_.center_mm.z(), scene_.models()[model_].name.c_str(),
-                 1e3 * clock.seconds()));
+                 1e3 * clock.seconds(), refactored.c_str()));
+}
+
+void PhysicsLoop::cut(const HandMessage& event) {
+  LiveModel& live = scene_.models()[model_];
+  if (!live.cuttable()) {
+    say(io::format("refused cut: the %s model is not cut by the scalpel (choose a model whose name ends in %s)",
+                   live.name.c_str(), kCutSuffix));
+    return;
+  }
+  const Stopwatch clock;
+  const std::vector<bool>& there = live.cuts->still_there();
+  const simulation::CutSupports& at = live.cuts->supports();
+  const mesh::TetMesh& mesh = live.model->mesh;
+  std::vector<Index> elements;
+  for (const Index e : event.crossed)
+    if (there[static_cast<std::size_t>(e)]) elements.push_back(e);
+  if (elements.empty()) {
+    say(event.crossed.empty()
+            ? std::string("cut: the stroke's blade crosses no tetrahedron")
+            : io::format("cut: the %zu tetrahedra the stroke crosses are already removed", event.crossed.size()));
+    return;
+  }
+  for (const Index e : elements)
+    for (const int n : mesh.tets[static_cast<std::size_t>(e)]) {
+      if (at.in_static_part[static_cast<std::size_t>(n)]) {
+        say(
+            io::format("refused cut: it reaches tetrahedron %ld, which touches node %d of the static part: a cut stays inside "
+                       "the ROI (cut nearer the target, or serve a larger [roi])",
+                       static_cast<long>(e), n));
+        return;
+      }
+      if (attached_ && std::binary_search(grip_.nodes.begin(), grip_.nodes.end(), n)) {
+        say(
+            io::format("refused cut: it reaches tetrahedron %ld, which holds node %d of the hand: a cut stays clear of the "
+                       "hand (release, or cut farther from it)",
+                       static_cast<long>(e), n));
+        return;
+      }
+    }
+  std::size_t left = 0;
+  for (std::size_t e = 0; e < there.size(); ++e)
+    if (there[e] && std::none_of(mesh.tets[e].begin(), mesh.tets[e].end(),
+                                 [&](int n) { return at.in_static_part[static_cast<std::size_t>(n)]; }))
+      ++left;
+  if (left == elements.size()) {
+    say(io::format("refused cut: it would remove the last %zu tetrahedra of the %s: nothing would be left to move", left,
+                   live.condensed() ? "ROI" : "mesh"));
+    return;
+  }
+  model::State between = attached_ ? model::State{} : model::State::at_rest(live.model->system().size());
+  model::State& state = attached_ ? state_ : between;
+  simulation::CutEvent taken;
+  try {
+    taken = live.cuts->remove(elements, *live.model, state);
+  } catch (const Error& e) {  // nothing removed
+    say(std::string("refused cut: ") + e.what());
+    return;
+  }
+  live.haptic_stale = !attached_;
+  if (attached_) try {
+      live.haptic->take_change(taken.change, state_);
+    } catch (const Error& e) {  // the model is cut: the next pick factors it afresh
+      live.haptic_stale = true;
+      attached_ = holding_ = false;
+      say(std::string("the cut's correction failed, the grab ends: ") + e.what());
+    }
+  for (const Index e : taken.elements)
+    for (const int n : mesh.tets[static_cast<std::size_t>(e)]) live.on_cut[static_cast<std::size_t>(n)] = 1;
+  std::string said = io::format(
+      "cut: %zu tetrahedra removed from the %s model %s in %.1f ms", taken.elements.size(), live.name.c_str(),
+      attached_ ? io::format("at t = %.3f s of grab %u", state_.t, grab_).c_str() : "between grabs", 1e3 * clock.seconds());
+  if (!taken.orphan_nodes.empty())
+    said += io::format("; %zu node(s) left with no tetrahedron, held at rest", taken.orphan_nodes.size());
+  for (const std::string& w : taken.warnings) said += "; " + w;
+  pending_cuts_.push_back({.model = model_,
+                           .grab = grab_,
+                           .during = attached_,
+                           .t = attached_ ? state_.t : 0.0,
+                           .edge_from_mm = event.point_mm,
+                           .edge_to_mm = event.edge_to_mm,
+                           .move_mm = event.move_mm,
+                           .elements = taken.elements});
+  say(said);
 }
 
 void PhysicsLoop::aim(const Vec3& point_mm) {

@@ -13,8 +13,8 @@
 /// Nothing here waits on another thread: the page's messages are taken with try_lock at the
 /// start of a tick (a busy inbox waits for the next tick), the state is copied for the display
 /// only when asked and only with try_lock, and the tick's durations and the hand's samples leave
-/// through lock-free rings. A pick's attach (3m solves) runs between two ticks and is reported
-/// apart from them.
+/// through lock-free rings. A pick's attach (3m solves) and a cut run between two ticks and are
+/// reported apart from them.
 #include <atomic>
 #include <cstdint>
 #include <deque>
@@ -43,6 +43,16 @@ struct HandSample {
   double t = 0;               ///< s, from the grab's start
   Vec3 g = Vec3::Zero();      ///< m: the tool's displacement
   Vec3 force = Vec3::Zero();  ///< N: on the tissue (the surgeon feels its opposite)
+};
+
+/// A scalpel's stroke the loop took on a cut model (LiveModel::cuts), between two ticks.
+struct LiveCut {
+  std::size_t model = 0;
+  std::uint32_t grab = 0;  ///< the loop's last grab when it was taken
+  bool during = false;     ///< during that grab (on this model), after its tick at t; else between grabs
+  double t = 0;            ///< s: the grab's state time when taken (0 between grabs)
+  Vec3 edge_from_mm = Vec3::Zero(), edge_to_mm = Vec3::Zero(), move_mm = Vec3::Zero();  ///< the stroke, as sent
+  std::vector<Index> elements;                                                          ///< the tetrahedra removed, ascending
 };
 
 /// The loop's state as the display last asked for it.
@@ -87,6 +97,8 @@ class PhysicsLoop {
   std::size_t drain_samples(std::vector<HandSample>& out) { return samples_.drain(out); }
   /// What the loop said since the last call (a refused pick, an attach's time), for log and page.
   std::vector<std::string> take_notices();
+  /// The cuts the loop took since the last call, in order.
+  std::vector<LiveCut> take_cuts();
   /// Times the loop fell more than 20 ticks behind and let its clock slip.
   long slips() const { return slips_.load(std::memory_order_relaxed); }
 
@@ -111,6 +123,7 @@ class PhysicsLoop {
   SpscRing<HandSample> samples_{1 << 16};
   std::mutex notice_mutex_;
   std::vector<std::string> notices_;
+  std::vector<LiveCut> cuts_;
   std::atomic<long> slips_{0};
 
   // The loop's own (its thread alone).
@@ -122,18 +135,26 @@ class PhysicsLoop {
   Vec3 g_ = Vec3::Zero(), target_g_ = Vec3::Zero(), force_ = Vec3::Zero();
   long ticks_ = 0;
   std::vector<std::string> pending_notices_;
+  std::vector<LiveCut> pending_cuts_;
 
   void run();
   /// Takes what the page sent (try_lock); one queued event per turn.
   void take_inbox();
   void handle(const HandMessage& event);
   void pick(const HandMessage& event);
+  /// A scalpel's stroke on the current model (a cut model): the tetrahedra it crosses that are
+  /// still there removed between two ticks (taken by the haptic loop's correction during a grab,
+  /// by a fresh factor at the next pick between grabs), or refused with the reason: a model that
+  /// is not cut, a tetrahedron at the static part or at the hand's nodes, nothing left to move.
+  void cut(const HandMessage& event);
   void aim(const Vec3& point_mm);
   /// The tool's next displacement: towards the target by at most hand_speed dt.
   Vec3 next_g() const;
   void publish();
   HandSample sample() const;
   void say(std::string notice);
+  /// Hands the notices and cuts waiting to the display (try_lock: the next turn when busy).
+  void deliver();
 };
 
 }  // namespace roifem::serve

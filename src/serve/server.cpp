@@ -19,6 +19,7 @@
 #include "serve/hand_message.hpp"
 #include "serve/hand_recording.hpp"
 #include "serve/page_messages.hpp"
+#include "serve/scalpel.hpp"
 
 namespace roifem::serve {
 
@@ -75,7 +76,7 @@ class Server::Impl {
     if (ec)
       throw InputError(
           io::format("serve: cannot listen on %s port %u: %s", options_.host.c_str(), options_.port, ec.message().c_str()));
-    mesh_ = std::make_shared<const Outgoing>(Outgoing{mesh_message(scene_), true});
+    mesh_for(0);
   }
 
   unsigned short port() const { return acceptor_.local_endpoint().port(); }
@@ -114,7 +115,9 @@ class Server::Impl {
   tcp::acceptor acceptor_;
   net::steady_timer frame_timer_, collect_timer_, second_timer_;
   std::list<std::shared_ptr<WsSession>> sessions_;  ///< in the order they joined: the first drives
-  std::shared_ptr<const Outgoing> mesh_;
+  std::shared_ptr<const Outgoing> mesh_;            ///< the surface the page draws, and which
+  std::shared_ptr<const SurfaceView> mesh_view_;    ///< (held: a new surface never takes its address)
+  std::vector<LiveCut> cuts_;                       ///< every cut the physics took, in order (replays)
   bool stopping_ = false;
   long next_client_ = 1;
   TickWindow ticks_;
@@ -137,6 +140,12 @@ class Server::Impl {
   const std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 
   void accept();
+  /// mesh_ for model k's surface; whether it changed.
+  bool mesh_for(std::size_t k);
+  /// A scalpel's stroke: the tetrahedra its blade crosses, to the physics.
+  void cut(HandMessage message);
+  /// Cuts the physics took: the display's surfaces follow.
+  void follow_cuts();
   void on_frame_timer();
   void collect_frame(int tries);
   /// What the physics left since the last frame: tick times, notices, the hand's samples (the grab
@@ -145,7 +154,8 @@ class Server::Impl {
   /// The snapshot's surface and state, to every client.
   void send_frame(double now);
   void on_second_timer();
-  void broadcast(const std::shared_ptr<const Outgoing>& message);
+  /// To every client; a binary frame is dropped for a client that is behind (a mesh never).
+  void broadcast(const std::shared_ptr<const Outgoing>& message, bool droppable = true);
   /// Logs what the client had refused since the last report, in one line, and starts counting afresh.
   void report_refusals(WsSession& session);
   void say(const std::string& text);
@@ -328,6 +338,7 @@ void Server::Impl::joined(const std::shared_ptr<WsSession>& session) {
   sessions_.push_back(session);
   log_ << "serve: client " << session->id() << " connected, " << (drives ? "drives" : "watches") << "\n" << std::flush;
   session->send(std::make_shared<const Outgoing>(Outgoing{hello_message(scene_, snapshot_.model, drives), false}), false);
+  mesh_for(snapshot_.model);
   session->send(mesh_, false);
 }
 
@@ -368,7 +379,32 @@ void Server::Impl::received(WsSession& session, const std::string& bytes, bool t
   const HandMessage& message = std::get<HandMessage>(decoded);
   if (message.kind == HandKind::save) return save_grab("the page asked");
   if (message.kind == HandKind::compare) return set_compare(message.model != 0);
+  if (message.kind == HandKind::cut) return cut(message);
   if (const std::string refused = physics_.post(message); !refused.empty()) ++r.queue;
+}
+
+bool Server::Impl::mesh_for(std::size_t k) {
+  std::shared_ptr<const SurfaceView> view = scene_.view_of(k);
+  if (view == mesh_view_) return false;
+  mesh_ = std::make_shared<const Outgoing>(Outgoing{mesh_message(scene_, *view), true});
+  mesh_view_ = std::move(view);
+  return true;
+}
+
+void Server::Impl::cut(HandMessage message) {
+  // The blade's geometry against the whole mesh here, not between two ticks (20 ms on the 100k
+  // brain); which of those tetrahedra are still there is the physics' to say.
+  const cutting::Blade blade = scalpel_blade("scalpel", message.point_mm, message.edge_to_mm, message.move_mm, 0, 1);
+  message.crossed = crossed_tetrahedra(blade, scene_.mesh());
+  if (const std::string refused = physics_.post(message); !refused.empty()) say("cut " + refused);
+}
+
+void Server::Impl::follow_cuts() {
+  for (LiveCut& c : physics_.take_cuts()) {
+    scene_.cut_surface(c.model, c.elements);
+    next_recovery_ = 0;  // the static part's values on the new surface's vertices
+    cuts_.push_back(std::move(c));
+  }
 }
 
 void Server::Impl::on_frame_timer() {
@@ -401,11 +437,13 @@ void Server::Impl::take_what_came(double now) {
   physics_.drain_tick_seconds(tick_seconds_);
   ticks_.add(tick_seconds_, now);
   for (const std::string& notice : physics_.take_notices()) say(notice);
+  follow_cuts();
   follow_grab();
   follow_comparison();
 }
 
 void Server::Impl::send_frame(double now) {
+  if (mesh_for(snapshot_.model)) broadcast(mesh_, false);  // a cut, or a model with another surface
   const auto built = std::chrono::steady_clock::now();
   if (snapshot_.u.size() > 0) {
     // The static part's surface is recovered (a solve with its factor) at most every 0.1 s and at
@@ -422,7 +460,7 @@ void Server::Impl::send_frame(double now) {
       recovery_ms_ = 1e3 * took;
     }
   } else {
-    displacement_.assign(3 * scene_.surface().nodes.size(), 0.0F);
+    displacement_.assign(3 * mesh_view_->nodes.size(), 0.0F);
   }
   frame_ms_ = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - built).count();
   broadcast(std::make_shared<const Outgoing>(Outgoing{frame_message(snapshot_, displacement_), true}));
@@ -467,8 +505,8 @@ void Server::Impl::report_refusals(WsSession& session) {
   session.messages_this_second() = 0;
 }
 
-void Server::Impl::broadcast(const std::shared_ptr<const Outgoing>& message) {
-  for (const auto& s : sessions_) s->send(message, message->binary);
+void Server::Impl::broadcast(const std::shared_ptr<const Outgoing>& message, bool droppable) {
+  for (const auto& s : sessions_) s->send(message, droppable && message->binary);
 }
 
 void Server::Impl::say(const std::string& text) {
@@ -487,7 +525,10 @@ void Server::Impl::follow_grab() {
       comparison_ = CompareFigures{.on = compare_ != nullptr};
       if (reference) comparison_.reference = scene_.models()[*reference].name;
       const LiveModel& live = scene_.models()[s.model];
-      if (compare_ && !reference && live.condensed())
+      if (compare_ && live.cuttable())
+        say(io::format("compare: the %s model is the scalpel's and the full model stays whole: nothing to compare",
+                       live.name.c_str()));
+      else if (compare_ && !reference && live.condensed())
         say(io::format("compare: no full model with the %s model's law is prepared (--models: full%s): nothing to compare",
                        live.name.c_str(), live.nonlinear() ? kNeoHookeanSuffix : ""));
     }
@@ -507,6 +548,11 @@ void Server::Impl::save_grab(const std::string& why) {
   if (options_.record.empty()) return say("not saved: start the server with --record DIR to keep grabs for replay");
   if (grab_.samples.size() < 2) return say("not saved: no grab yet");
   try {
+    // The cuts of the grab's model before it and during it, up to its last tick.
+    grab_.cuts.clear();
+    for (const LiveCut& c : cuts_)
+      if (c.model == grab_.model && (c.grab < grab_.grab || (c.grab == grab_.grab && c.during && c.t < grab_.samples.back().t)))
+        grab_.cuts.push_back(c);
     const auto file = write_replay(scene_, grab_, options_.record, io::format("grab-%03u-%d", grab_.grab, ++saved_));
     say(io::format("saved (%s): %s, %zu ticks; replay: roifem run %s --out DIR", why.c_str(), file.string().c_str(),
                    grab_.samples.size() - 1, file.string().c_str()));

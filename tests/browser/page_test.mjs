@@ -190,6 +190,34 @@ with h5py.File(sys.argv[1]) as f:
             `Compare on the hybrid ROI without the full neo-Hookean model prepared: "${nonlinear.compare}"`);
     }
   }
+
+  // ---- The scalpel: a cut model chosen, a stroke with the mouse beside where the hand pressed ----
+  const cutModel = hello.models.findIndex((m) => m.cut);
+  if (defaultModels) check(cutModel >= 0 && hello.models[cutModel].name === 'static-cut', 'a cut model (static-cut) is among the models');
+  if (cutModel >= 0) {
+    await page.click(`#models button:nth-child(${cutModel + 1})`);
+    await page.waitForFunction((k) => window.roifem.state && window.roifem.state.model === k, { timeout: 10000 }, cutModel);
+    const before = await page.evaluate(() => ({ meshes: window.roifem.meshes, triangles: window.roifem.triangles }));
+    await page.click('#scalpel');
+    await page.$eval('#cut-depth', (e) => { e.value = '6'; });
+    await page.mouse.move(target.x - 15, target.y);
+    await page.mouse.down();
+    for (let k = 1; k <= 10; ++k) {
+      await page.mouse.move(target.x - 15, target.y + 3 * k);
+      await sleep(20);
+    }
+    await page.mouse.up();
+    await page.waitForFunction(() => window.roifem.notices.some((n) => /^cut|^refused cut/.test(n)), { timeout: 10000 });
+    const said = await page.evaluate(() => window.roifem.notices.find((n) => /^cut|^refused cut/.test(n)));
+    const removed = /tetrahedra removed from the static-cut model/.test(said);
+    if (removed) await page.waitForFunction((m) => window.roifem.meshes > m, { timeout: 10000 }, before.meshes);
+    const after = await page.evaluate(() => ({ meshes: window.roifem.meshes, triangles: window.roifem.triangles }));
+    await sleep(200);
+    await page.screenshot({ path: path.join(out, 'page-cut.png') });
+    check(removed && after.triangles > before.triangles,
+          `a stroke of the scalpel on static-cut: "${said}"; the page draws ${after.triangles} triangles (${before.triangles} before)`);
+    await page.click('#scalpel');
+  }
   check(pageErrors.length === 0, `no error on the page${pageErrors.length ? ': ' + pageErrors.join('; ') : ''}`);
 } finally {
   await browser.close();

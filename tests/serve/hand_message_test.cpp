@@ -29,6 +29,23 @@ TEST(HandMessage, EveryKindReadsBackWhatWasWritten) {
       EXPECT_EQ(m.model, 3U);
     }
   }
+  // A scalpel's stroke: its edge and move, each of the nine numbers as sent.
+  const HandMessage stroke{.kind = HandKind::cut,
+                           .sequence = 7,
+                           .point_mm = Vec3(1.25, -3, 60),
+                           .model = 0,
+                           .edge_to_mm = Vec3(1.25, -3, 50.5),
+                           .move_mm = Vec3(0, 4.125, -1e-3)};
+  const std::string bytes = encode_hand_message(stroke);
+  EXPECT_EQ(bytes.size(), 80U);
+  const auto got = decode(bytes);
+  ASSERT_TRUE(std::holds_alternative<HandMessage>(got)) << std::get<std::string>(got);
+  const HandMessage& m = std::get<HandMessage>(got);
+  EXPECT_EQ(m.kind, HandKind::cut);
+  EXPECT_EQ(m.point_mm, stroke.point_mm);
+  EXPECT_EQ(m.edge_to_mm, stroke.edge_to_mm);
+  EXPECT_EQ(m.move_mm, stroke.move_mm);
+  EXPECT_TRUE(m.crossed.empty());  // the server's to find
 }
 
 TEST(HandMessage, MalformedFramesAreRefusedWithTheReason) {
@@ -44,7 +61,7 @@ TEST(HandMessage, MalformedFramesAreRefusedWithTheReason) {
   EXPECT_EQ(refused(target + "x"), "a target message of 33 bytes (it has 32)");
   std::string unknown = target;
   unknown[0] = 9;
-  EXPECT_EQ(refused(unknown), "an unknown kind 9 (1 pick, 2 target, 3 release, 4 model, 5 save, 6 compare)");
+  EXPECT_EQ(refused(unknown), "an unknown kind 9 (1 pick, 2 target, 3 release, 4 model, 5 save, 6 compare, 7 cut)");
   std::string padded = target;
   padded[2] = 1;
   EXPECT_EQ(refused(padded), "a header whose padding bytes 1-3 are not zero");
@@ -53,6 +70,15 @@ TEST(HandMessage, MalformedFramesAreRefusedWithTheReason) {
         encode_hand_message({.kind = HandKind::pick, .sequence = 2, .point_mm = Vec3(0, bad, 0), .model = 0});
     EXPECT_EQ(refused(pick), "a pick at a point that is not finite");
   }
+  // A stroke that is not finite, whose edge has no length, or that does not move.
+  const auto cut = [](const Vec3& from, const Vec3& to, const Vec3& move) {
+    return encode_hand_message(
+        {.kind = HandKind::cut, .sequence = 3, .point_mm = from, .model = 0, .edge_to_mm = to, .move_mm = move});
+  };
+  EXPECT_EQ(refused(cut(Vec3(0, 0, 1), Vec3(0, 0, 0), Vec3(0, std::nan(""), 0))), "a cut whose blade is not finite");
+  EXPECT_EQ(refused(cut(Vec3(0, 0, 1), Vec3(0, 0, 1), Vec3(1, 0, 0))), "a cut whose blade's edge has no length");
+  EXPECT_EQ(refused(cut(Vec3(0, 0, 1), Vec3(0, 0, 0), Vec3(0, 0, 0))), "a cut whose blade does not move (it sweeps nothing)");
+  EXPECT_EQ(refused(cut(Vec3(0, 0, 1), Vec3(0, 0, 0), Vec3(1, 0, 0)).substr(0, 32)), "a cut message of 32 bytes (it has 80)");
   EXPECT_EQ(
       refused(encode_hand_message({.kind = HandKind::release, .sequence = 1, .point_mm = Vec3::Zero(), .model = 0}) + "abcd"),
       "a release message of 12 bytes (it has 8)");

@@ -110,6 +110,7 @@ TEST(ServeReplay, AGrabReplayedByRoifemRunFeelsTheLiveForceOnEveryModel) {
   ASSERT_EQ(scene->models().back().name, "static-neo-hookean");
   const Vec3 point = test::pickable_point(*scene);
   for (std::size_t k = 0; k < scene->models().size(); ++k) {
+    if (scene->models()[k].cuttable()) continue;  // static uncut (cut_test.cpp cuts it)
     SCOPED_TRACE(scene->models()[k].name);
     const bool nonlinear = scene->models()[k].nonlinear();
     const GrabRecord grab = live_grab(*scene, k, point, nonlinear ? 6 : 12);  // roifem run's Newton: a shorter grab
@@ -214,11 +215,12 @@ TEST(ServeModels, TheDefaultsAndTheNamesStateEachModelsLaw) {
     for (const LiveModel& m : scene.models()) out.push_back(m.name + (m.nonlinear() ? " (nonlinear)" : ""));
     return out;
   };
-  EXPECT_EQ(names(*test::paper_scene()),
-            (std::vector<std::string>{"full", "static", "guyan", "craig-bampton-10", "static-neo-hookean (nonlinear)"}));
+  EXPECT_EQ(names(*test::paper_scene()), (std::vector<std::string>{"full", "static", "guyan", "craig-bampton-10", "static-cut",
+                                                                   "static-neo-hookean (nonlinear)"}));
   const LiveScene neo(scenario::read_scenario(ROIFEM_SCENARIO_DIR "/paper-spatulas-setup1-neo-hookean.toml"), 1000, 5.0, {}, log);
   EXPECT_EQ(names(neo), (std::vector<std::string>{"full-neo-hookean (nonlinear)", "static-neo-hookean (nonlinear)", "full",
-                                                  "static", "guyan", "craig-bampton-10"}));
+                                                  "static", "guyan", "craig-bampton-10", "static-cut"}));
+  EXPECT_EQ(neo.reference_of(6), std::nullopt);  // a cut model: the full model is whole
   EXPECT_EQ(neo.reference_of(1), std::optional<std::size_t>(0));
   EXPECT_EQ(neo.reference_of(3), std::optional<std::size_t>(2));
   EXPECT_EQ(neo.scenario_of(3).material.model, fem::MaterialModel::linear);
@@ -234,6 +236,12 @@ TEST(ServeModels, TheDefaultsAndTheNamesStateEachModelsLaw) {
   EXPECT_NE(refusal({"guyan-neo-hookean"}).find("guyan-neo-hookean: a reduction by modes"), std::string::npos);
   EXPECT_NE(refusal({"guyan-neo-hookean"}).find("static-neo-hookean"), std::string::npos);
   EXPECT_NE(refusal({"neo-hookean"}).find("'neo-hookean' is neither full nor a reduction"), std::string::npos);
+  for (const char* cut : {"guyan-cut", "craig-bampton-10-cut", "static-neo-hookean-cut"})
+    EXPECT_NE(refusal({cut}).find(std::string(cut) + ": the page's scalpel cuts the linear full model (full-cut) or static "
+                                                     "condensation (static-cut)"),
+              std::string::npos)
+        << cut;
+  EXPECT_EQ(refusal({"full-cut", "static-cut"}), "accepted");
   EXPECT_NE(refusal({"static-neo-hookean"}, {.iterations = 0, .tolerance = 0}).find("0 Newton iterations"), std::string::npos);
 }
 

@@ -1,13 +1,18 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-/// What the serve tests share: the paper's setup 1 as a live scene, and a point on its surface
-/// that every model's hand may pick.
+/// What the serve tests share: the paper's setup 1 as a live scene, a point on its surface that
+/// every model's hand may pick, and scalpel strokes beside it.
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <sstream>
+#include <stdexcept>
 #include <variant>
 
 #include "scenario/scenario.hpp"
+#include "serve/hand_message.hpp"
 #include "serve/live_scene.hpp"
+#include "serve/scalpel.hpp"
 
 namespace roifem::serve::test {
 
@@ -31,6 +36,34 @@ inline Vec3 pickable_point(const LiveScene& scene) {
     if (every) return point;
   }
   throw std::runtime_error("no surface point every model can pick");
+}
+
+/// A stroke as the page sends it, with the tetrahedra the server finds its blade crosses.
+inline HandMessage stroke(const LiveScene& scene, const Vec3& from_mm, const Vec3& to_mm, const Vec3& move_mm) {
+  HandMessage m{.kind = HandKind::cut, .sequence = 0, .point_mm = from_mm, .model = 0, .edge_to_mm = to_mm, .move_mm = move_mm};
+  m.crossed = crossed_tetrahedra(scalpel_blade("scalpel", from_mm, to_mm, move_mm, 0, 1), scene.mesh());
+  return m;
+}
+
+/// A vertical stroke (its edge along z from 3 mm above `point_mm`'s height to 6 mm below) beside
+/// `point_mm` within model k's ROI, its tetrahedra's nodes farther than `clear_mm` from it: the first
+/// of a ring of places 10 to 16 mm away.
+inline HandMessage stroke_beside(const LiveScene& scene, std::size_t k, const Vec3& point_mm, double clear_mm) {
+  const LiveModel& live = scene.models()[k];
+  const mesh::TetMesh& mesh = scene.mesh();
+  for (const double distance : {10.0, 13.0, 16.0})
+    for (int direction = 0; direction < 8; ++direction) {
+      const double angle = direction * std::numbers::pi / 4;
+      const Vec3 offset(distance * std::cos(angle), distance * std::sin(angle), 0);
+      const Vec3 top = point_mm + offset + Vec3(0, 0, 3);
+      HandMessage m = stroke(scene, top, top - Vec3(0, 0, 9), Vec3(-std::sin(angle), std::cos(angle), 0) * 3.0);
+      bool fits = m.crossed.size() >= 2;
+      for (const Index e : m.crossed)
+        for (const int n : mesh.tets[static_cast<std::size_t>(e)])
+          fits = fits && live.in_roi[static_cast<std::size_t>(n)] && (mesh.node(n) / mm - point_mm).norm() > clear_mm;
+      if (fits) return m;
+    }
+  throw std::runtime_error("no stroke fits beside the pick");
 }
 
 }  // namespace roifem::serve::test

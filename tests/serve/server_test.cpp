@@ -10,13 +10,18 @@
 #include <boost/beast.hpp>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <limits>
 #include <regex>
 #include <sstream>
 #include <thread>
 
+#include "h5_read.hpp"
 #include "serve/hand_message.hpp"
 #include "serve_test_support.hpp"
+#include "simulation/scenario_run.hpp"
 #include "test_support.hpp"
 
 namespace roifem::serve {
@@ -33,10 +38,10 @@ using namespace std::chrono_literals;
 /// log may be read once it stopped (log_text()).
 class RunningServer {
  public:
-  explicit RunningServer(LiveScene& scene, PhysicsSettings hand = {})
+  explicit RunningServer(LiveScene& scene, PhysicsSettings hand = {}, std::filesystem::path record = {})
       : physics_(scene, hand),
         server_(scene, physics_, AssetFiles({{"/", page_directory()}, {"/three/", three_directory()}}),
-                ServeOptions{.host = "127.0.0.1", .port = 0, .record = {}, .display_hz = 60}, log_) {
+                ServeOptions{.host = "127.0.0.1", .port = 0, .record = std::move(record), .display_hz = 60}, log_) {
     thread_ = std::thread([this] { signal_ = server_.run(); });
   }
   ~RunningServer() { stop(); }
@@ -78,6 +83,11 @@ class Client {
   }
   void send(HandKind kind, const Vec3& point_mm = Vec3::Zero(), std::uint32_t model = 0) {
     send(encode_hand_message({.kind = kind, .sequence = ++sequence_, .point_mm = point_mm, .model = model}));
+  }
+  void send_cut(const HandMessage& stroke) {
+    HandMessage m = stroke;
+    m.sequence = ++sequence_;
+    send(encode_hand_message(m));
   }
   /// The next text message whose "type" is `type` (binary frames and other types skipped).
   std::string next(const std::string& type) {
@@ -164,6 +174,74 @@ TEST(ServeServer, GreetsTheFirstClientAsDriverWithTheModelsAndTheSurface) {
   const std::string frame = client.next_binary();
   ASSERT_EQ(frame.substr(0, 4), "RFFR");
   EXPECT_EQ(frame.size(), 24 + 12 * std::size_t{V});
+}
+
+/// The next surface the server sends: its vertex and triangle counts.
+std::pair<std::uint32_t, std::uint32_t> next_mesh(Client& client) {
+  for (;;) {
+    const std::string bytes = client.next_binary();
+    if (bytes.substr(0, 4) != "RFMS") continue;
+    std::uint32_t V = 0, T = 0;
+    std::memcpy(&V, bytes.data() + 4, 4);
+    std::memcpy(&T, bytes.data() + 8, 4);
+    return {V, T};
+  }
+}
+
+TEST(ServeServer, AScalpelStrokeSendsTheCutSurfaceAndASavedGrabReplaysTheCut) {
+  const auto scene = test::paper_scene({"static", "static-cut"});
+  const Vec3 point = test::pickable_point(*scene);
+  const HandMessage stroke = test::stroke_beside(*scene, 1, point, 6.0);
+  roifem::test::TempDir dir;
+  RunningServer server(*scene, {.hand_speed_mm_s = 40, .reach_mm = 20}, dir.path());
+  Client client(server.port());
+  client.next("hello");
+  const auto [V0, T0] = next_mesh(client);
+  client.send(HandKind::model, Vec3::Zero(), 1);
+  state_when(client, [](const std::string& s) { return s.find("\"model_name\":\"static-cut\"") != std::string::npos; });
+  client.send_cut(stroke);
+  const std::string said = client.next("notice");
+  EXPECT_NE(said.find("tetrahedra removed from the static-cut model between grabs"), std::string::npos) << said;
+  const auto [V1, T1] = next_mesh(client);
+  EXPECT_GT(T1, T0);  // the cut's walls
+  EXPECT_GE(V1, V0);
+  // A grab beside it, saved and replayed: the replay's [[cut]] removes the same tetrahedra first.
+  client.send(HandKind::pick, point);
+  state_when(client, [](const std::string& s) { return number_after(s, "grip_nodes") > 0; });
+  client.send(HandKind::target, point + Vec3(1.5, -1, 0.5));
+  state_when(client, [](const std::string& s) { return number_after(s, "t") > 0.15; });
+  client.send(HandKind::save);
+  std::string saved;
+  do saved = client.next("notice");
+  while (saved.find("saved (") == std::string::npos && saved.find("not saved") == std::string::npos);
+  ASSERT_NE(saved.find("saved (the page asked)"), std::string::npos) << saved;
+  server.stop_and_read_log();
+  EXPECT_EQ(V1, scene->surface(1).nodes.size());  // the model's surface as the cut left it (cut_test.cpp)
+  EXPECT_EQ(T1, scene->surface(1).triangles.size());
+  std::filesystem::path toml;
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
+    if (entry.path().extension() == ".toml") toml = entry.path();
+  ASSERT_FALSE(toml.empty());
+  const scenario::Scenario replay = scenario::read_scenario(toml);
+  ASSERT_EQ(replay.cuts.size(), 1U);
+  EXPECT_EQ(replay.cuts[0].start, 0.0);
+  std::ostringstream log;
+  simulation::run_scenario(replay, dir / "replay", log);
+  const auto force = roifem::test::read_h5(dir / "replay/results.h5", "tools/hand/force_N");
+  std::ifstream live_csv(dir / (toml.stem().string() + "-force.csv"));
+  std::string line;
+  std::getline(live_csv, line);
+  double largest = 0, difference = 0;
+  for (std::size_t i = 0; std::getline(live_csv, line); ++i) {
+    Vec3 live;
+    double t = 0;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf", &t, &live.x(), &live.y(), &live.z()), 4);
+    ASSERT_LT(3 * i + 2, force.size());
+    largest = std::max(largest, live.norm());
+    difference = std::max(difference, (Vec3(force[3 * i], force[3 * i + 1], force[3 * i + 2]) - live).norm());
+  }
+  EXPECT_GT(largest, 1e-4);
+  EXPECT_LT(difference, 1e-9 * largest);
 }
 
 TEST(ServeServer, RefusesMalformedAndNonFiniteMessagesClampsFarTargetsAndKeepsTickingThroughAFlood) {
