@@ -4,7 +4,7 @@
 import * as THREE from '/three/build/three.module.js';
 import { OrbitControls } from '/three/examples/jsm/controls/OrbitControls.js';
 
-const HAND = { pick: 1, target: 2, release: 3, model: 4, save: 5, compare: 6, cut: 7 };
+const HAND = { pick: 1, target: 2, release: 3, model: 4, save: 5, compare: 6, cut: 7, whole: 8 };
 
 // What the tests (and a curious user's console) read: window.roifem.
 const live = {
@@ -324,6 +324,7 @@ function showRoi() {
 }
 document.getElementById('show-roi').onchange = showRoi;
 document.getElementById('save').onclick = () => send(HAND.save);
+document.getElementById('whole').onclick = () => send(HAND.whole);
 
 // ---- The hand ----
 const raycaster = new THREE.Raycaster();

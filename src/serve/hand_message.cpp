@@ -21,13 +21,14 @@ struct KindInfo {
 };
 
 /// Every kind once, in the order of their codes (1, 2, ...): decode, encode and the refusals read it.
-constexpr std::array<KindInfo, 7> kinds{{{HandKind::pick, "pick", Payload::point},
+constexpr std::array<KindInfo, 8> kinds{{{HandKind::pick, "pick", Payload::point},
                                          {HandKind::target, "target", Payload::point},
                                          {HandKind::release, "release", Payload::none},
                                          {HandKind::model, "model", Payload::index},
                                          {HandKind::save, "save", Payload::none},
                                          {HandKind::compare, "compare", Payload::index},
-                                         {HandKind::cut, "cut", Payload::stroke}}};
+                                         {HandKind::cut, "cut", Payload::stroke},
+                                         {HandKind::whole, "whole", Payload::none}}};
 
 constexpr bool in_code_order() {
   for (std::size_t k = 0; k < kinds.size(); ++k)

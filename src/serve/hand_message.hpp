@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// What the page sends the server (`roifem serve`): small binary WebSocket frames, little-endian.
-///   byte 0      kind: 1 pick, 2 target, 3 release, 4 model, 5 save the hand's path, 6 compare, 7 cut
+///   byte 0      kind: 1 pick, 2 target, 3 release, 4 model, 5 save the hand's path, 6 compare, 7 cut,
+///               8 make the cut model whole again
 ///   bytes 1-3   zero
 ///   bytes 4-7   uint32 sequence number (the page's; frames echo the last one applied)
 ///   then        pick, target: three float64, a point in mm (32 bytes in all)
 ///               model: uint32, the model's index; compare: uint32, 1 on, 0 off (12 bytes in all)
-///               release, save: nothing (8 bytes in all)
+///               release, save, whole: nothing (8 bytes in all)
 ///               cut: nine float64, a scalpel's stroke as a [[cut]] states it (mm): the blade's edge
 ///               from, its edge to, and the straight move it sweeps (80 bytes in all)
 /// Anything else (another size, kind or padding, a point that is not finite, a blade with no edge
@@ -22,7 +23,7 @@
 
 namespace roifem::serve {
 
-enum class HandKind : std::uint8_t { pick = 1, target = 2, release = 3, model = 4, save = 5, compare = 6, cut = 7 };
+enum class HandKind : std::uint8_t { pick = 1, target = 2, release = 3, model = 4, save = 5, compare = 6, cut = 7, whole = 8 };
 
 struct HandMessage {
   HandKind kind = HandKind::target;

@@ -74,6 +74,21 @@ scenario::Scenario replay_scenario(const LiveScene& scene, const GrabRecord& gra
 
 }  // namespace
 
+std::vector<LiveCut> cuts_of_grab(const std::vector<LiveCut>& record, const GrabRecord& grab) {
+  std::vector<LiveCut> cuts;
+  if (grab.samples.empty()) return cuts;
+  for (const LiveCut& c : record) {
+    if (c.model != grab.model) continue;
+    // Made whole (between grabs, ending the one in progress) before this grab began.
+    if (c.whole) {
+      if (c.grab < grab.grab) cuts.clear();
+      continue;
+    }
+    if (c.grab < grab.grab || (c.grab == grab.grab && c.during && c.t < grab.samples.back().t)) cuts.push_back(c);
+  }
+  return cuts;
+}
+
 fs::path write_replay(const LiveScene& scene, const GrabRecord& grab, const fs::path& directory, const std::string& name) {
   if (grab.samples.size() < 2 || grab.samples.front().t != 0)
     throw InputError(io::format("grab %u: nothing to replay (it has %zu ticks from t = 0)", grab.grab,

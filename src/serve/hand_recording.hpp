@@ -32,6 +32,11 @@ struct GrabRecord {
   std::vector<LiveCut> cuts;
 };
 
+/// The cuts of `grab`'s model that its replay takes, from the loop's record of every cut (in
+/// order): those taken before the grab since its model was last made whole, and those during it
+/// before its last tick.
+std::vector<LiveCut> cuts_of_grab(const std::vector<LiveCut>& record, const GrabRecord& grab);
+
 /// Writes DIR/NAME.csv (the path), DIR/NAME-force.csv (t_s,fx_N,fy_N,fz_N: the live force per
 /// tick) and DIR/NAME.toml (the replay), each atomically. Returns the scenario's path.
 std::filesystem::path write_replay(const LiveScene& scene, const GrabRecord& grab, const std::filesystem::path& directory,

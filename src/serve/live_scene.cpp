@@ -169,6 +169,9 @@ LiveScene::LiveScene(const scenario::Scenario& scenario, double rate_hz, double 
     live.name = name;
     live.law = law;
     live.model = simulation::build_scenario_model(variant);
+    live.shown_model = live.model;
+    live.unknowns = live.model->system().size();
+    live.roi_size = live.model->condensation ? live.model->roi_nodes.size() : 0;
     if (reduction) {
       live.reduction = *reduction;
       live.description = live.nonlinear()
@@ -178,6 +181,7 @@ LiveScene::LiveScene(const scenario::Scenario& scenario, double rate_hz, double 
       live.description = live.nonlinear() ? "the full dynamic model of the whole brain, neo-Hookean"
                                           : "the full dynamic model of the whole brain";
     }
+    live.built_from = variant;
     if (cut) {
       live.cuts = std::make_unique<simulation::ElementCuts>(variant, *live.model);
       live.on_cut.assign(static_cast<std::size_t>(live.model->mesh.num_nodes()), 0);
@@ -197,6 +201,7 @@ LiveScene::LiveScene(const scenario::Scenario& scenario, double rate_hz, double 
         << std::flush;
     models_.push_back(std::move(live));
   }
+  first_ = models_.front().model;
   const mesh::TetMesh& m = mesh();
   auto surface = std::make_shared<SurfaceView>(surface_of(m));
   flag_vertices(*surface);
@@ -211,13 +216,33 @@ LiveScene::LiveScene(const scenario::Scenario& scenario, double rate_hz, double 
 }
 
 void LiveScene::flag_vertices(SurfaceView& view) const {
-  const fem::DofMap& dofs = *models_.front().model->full.dofs;
+  const fem::DofMap& dofs = *first_->full.dofs;
   for (std::size_t v = 0; v < view.nodes.size(); ++v) {
     const int n = view.nodes[v];
     if (dofs.free_dof(n, 0) < 0 || dofs.free_dof(n, 1) < 0 || dofs.free_dof(n, 2) < 0) view.flags[v] |= 1;
     for (std::size_t k = 0; k < models_.size() && k < 7; ++k)
       if (models_[k].in_roi[static_cast<std::size_t>(n)]) view.flags[v] |= static_cast<std::uint8_t>(2u << k);
   }
+}
+
+std::shared_ptr<simulation::ScenarioModel> LiveScene::make_whole(std::size_t k) {
+  LiveModel& live = models_.at(k);
+  if (!live.cuttable()) throw Error("internal: serve: " + live.name + " is not a cut model");
+  std::shared_ptr<simulation::ScenarioModel> fresh = simulation::build_scenario_model(live.built_from);
+  live.cuts = std::make_unique<simulation::ElementCuts>(live.built_from, *fresh);
+  live.haptic = std::make_unique<integrators::HapticTrapezoid>(fresh->system(), dt_);
+  live.on_cut.assign(live.on_cut.size(), 0);
+  live.haptic_stale = false;
+  live.model = fresh;
+  return fresh;
+}
+
+void LiveScene::show_whole(std::size_t k, std::shared_ptr<simulation::ScenarioModel> fresh) {
+  LiveModel& live = models_.at(k);
+  live.shown_model = std::move(fresh);
+  live.shown_tets.assign(live.shown_tets.size(), true);
+  live.view = surface_;
+  map_surface(live);
 }
 
 void LiveScene::cut_surface(std::size_t k, const std::vector<Index>& removed) {
@@ -285,7 +310,7 @@ std::variant<Grip, std::string> LiveScene::grip(std::size_t k, const Vec3& cente
 void LiveScene::surface_displacement(std::size_t k, const Vector& u, double t, bool recover_static, std::vector<float>& out_mm) {
   LiveModel& live = models_.at(k);
   if (live.condensed() && recover_static) {
-    const Vector u_s = live.model->condensation->recover_static(u, t);
+    const Vector u_s = live.shown_model->condensation->recover_static(u, t);
     for (std::size_t i = 0; i < live.surface_static.size(); ++i)
       if (live.surface_static[i] >= 0) live.static_surface_mm[i] = static_cast<float>(u_s[live.surface_static[i]] / mm);
   }
@@ -295,10 +320,10 @@ void LiveScene::surface_displacement(std::size_t k, const Vector& u, double t, b
 }
 
 void LiveScene::map_surface(LiveModel& live) const {
-  const fem::DofMap& dofs = *live.model->full.dofs;
+  const fem::DofMap& dofs = *live.shown_model->full.dofs;
   std::vector<Index> unknown(static_cast<std::size_t>(dofs.num_free()), -1), in_static(unknown.size(), -1);
   if (live.condensed()) {
-    const roi::Partition& p = live.model->condensation->partition();
+    const roi::Partition& p = live.shown_model->condensation->partition();
     for (std::size_t a = 0; a < p.d.size(); ++a) unknown[static_cast<std::size_t>(p.d[a])] = static_cast<Index>(a);
     for (std::size_t a = 0; a < p.s.size(); ++a) in_static[static_cast<std::size_t>(p.s[a])] = static_cast<Index>(a);
   } else {

@@ -51,8 +51,14 @@ struct LiveModel {
   std::string description;
   fem::MaterialModel law = fem::MaterialModel::linear;
   condensation::Reduction reduction;  ///< with an ROI
-  std::unique_ptr<simulation::ScenarioModel> model;
+  scenario::Scenario built_from;      ///< the served scenario as this model is built from it
+  /// The physics thread's (a cut model's: cut in place, and made whole again by a fresh one), and
+  /// the display's (the same object until the model is made whole: then the display takes the
+  /// fresh one when it learns of it, the old one kept alive while it still draws from it).
+  std::shared_ptr<simulation::ScenarioModel> model, shown_model;
   std::unique_ptr<integrators::HapticTrapezoid> haptic;
+  Index unknowns = 0;
+  std::size_t roi_size = 0;  ///< the ROI's nodes (0: a full model)
   std::vector<char> in_roi;  ///< per mesh node: an unknown of this model's ROI (the full model: every free node)
   /// A cut model's (kCutSuffix): the mesh as the cuts left it and what a removal changes (the
   /// physics thread's, with the nodes of removed tetrahedra and whether the haptic loop's factor
@@ -67,7 +73,7 @@ struct LiveModel {
   std::vector<bool> shown_tets;
   std::vector<Index> surface_unknown, surface_static;
   std::vector<float> static_surface_mm;
-  bool condensed() const { return model->condensation != nullptr; }
+  bool condensed() const { return roi_size > 0; }
   bool nonlinear() const { return law != fem::MaterialModel::linear; }
   bool cuttable() const { return cuts != nullptr; }
 };
@@ -106,7 +112,7 @@ class LiveScene {
   const scenario::Scenario& scenario() const { return scenario_; }
   std::vector<LiveModel>& models() { return models_; }
   const std::vector<LiveModel>& models() const { return models_; }
-  const mesh::TetMesh& mesh() const { return models_.front().model->mesh; }
+  const mesh::TetMesh& mesh() const { return first_->mesh; }
   /// The uncut mesh's surface (where the hand may pick), and model k's as the display draws it
   /// (a cut model's as its cuts left it: the display's thread alone).
   const SurfaceView& surface() const { return *surface_; }
@@ -115,6 +121,11 @@ class LiveScene {
   /// The display's thread: model k's surface without the tetrahedra `removed` (ascending), as
   /// the physics thread cut them (its vertices' places follow).
   void cut_surface(std::size_t k, const std::vector<Index>& removed);
+  /// The physics thread: cut model k made whole again (a fresh model, its cuts' record and its haptic
+  /// loop's factor; the display's still draws from the old one). Returns the fresh model.
+  std::shared_ptr<simulation::ScenarioModel> make_whole(std::size_t k);
+  /// The display's thread: model k drawn whole again, from `fresh` (make_whole's).
+  void show_whole(std::size_t k, std::shared_ptr<simulation::ScenarioModel> fresh);
   double dt() const { return dt_; }
   double radius_mm() const { return radius_mm_; }
   /// The mesh's bounding box (m): targets are clamped to it, widened by the largest reach.
@@ -140,6 +151,9 @@ class LiveScene {
  private:
   scenario::Scenario scenario_;
   std::vector<LiveModel> models_;
+  /// The first model as built: the mesh and its dofs, the same for every model (kept while a cut
+  /// model is made whole again).
+  std::shared_ptr<const simulation::ScenarioModel> first_;
   std::shared_ptr<const SurfaceView> surface_;
   std::vector<std::vector<int>> neighbours_;  ///< per node, the nodes it shares a tetrahedron with
   Eigen::AlignedBox3d box_;

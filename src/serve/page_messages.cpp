@@ -83,9 +83,8 @@ std::string hello_message(const LiveScene& scene, std::size_t model, bool driver
   for (const LiveModel& m : scene.models()) {
     if (!models.empty()) models += ",";
     models += io::format("{\"name\":%s,\"description\":%s,\"unknowns\":%ld,\"roi_nodes\":%zu,\"nonlinear\":%s,\"cut\":%s}",
-                         json_string(m.name).c_str(), json_string(m.description).c_str(),
-                         static_cast<long>(m.model->system().size()), m.condensed() ? m.model->roi_nodes.size() : std::size_t{0},
-                         m.nonlinear() ? "true" : "false", m.cuttable() ? "true" : "false");
+                         json_string(m.name).c_str(), json_string(m.description).c_str(), static_cast<long>(m.unknowns),
+                         m.roi_size, m.nonlinear() ? "true" : "false", m.cuttable() ? "true" : "false");
   }
   const auto& box = scene.box();
   return io::format(

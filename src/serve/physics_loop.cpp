@@ -155,6 +155,9 @@ void PhysicsLoop::handle(const HandMessage& event) {
     case HandKind::cut:
       cut(event);
       break;
+    case HandKind::whole:
+      make_whole();
+      break;
     case HandKind::target:
     case HandKind::save:
     case HandKind::compare:
@@ -203,6 +206,26 @@ void PhysicsLoop::pick(const HandMessage& event) {
   say(io::format("grab %u: %zu nodes at (%.1f, %.1f, %.1f) mm on the %s model, attached in %.1f ms%s", grab_, grip_.nodes.size(),
                  grip_.center_mm.x(), grip_.center_mm.y(), grip_.center_mm.z(), scene_.models()[model_].name.c_str(),
                  1e3 * clock.seconds(), refactored.c_str()));
+}
+
+void PhysicsLoop::make_whole() {
+  LiveModel& live = scene_.models()[model_];
+  if (!live.cuttable()) {
+    say(io::format("refused: the %s model is not cut by the scalpel: it is whole", live.name.c_str()));
+    return;
+  }
+  const Stopwatch clock;
+  attached_ = holding_ = false;  // the grab ends: the next pick starts on the whole model
+  g_ = target_g_ = force_ = Vec3::Zero();
+  state_ = {};
+  try {
+    pending_cuts_.push_back({.model = model_, .whole = true, .fresh = scene_.make_whole(model_), .grab = grab_});
+  } catch (const Error& e) {
+    say(std::string("could not make the model whole again: ") + e.what());
+    return;
+  }
+  say(io::format("whole again: the %s model built afresh in %.2f s (the other models were never cut)", live.name.c_str(),
+                 clock.seconds()));
 }
 
 void PhysicsLoop::cut(const HandMessage& event) {

@@ -18,6 +18,7 @@
 #include <atomic>
 #include <cstdint>
 #include <deque>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -45,12 +46,15 @@ struct HandSample {
   Vec3 force = Vec3::Zero();  ///< N: on the tissue (the surgeon feels its opposite)
 };
 
-/// A scalpel's stroke the loop took on a cut model (LiveModel::cuts), between two ticks.
+/// A scalpel's stroke the loop took on a cut model (LiveModel::cuts), between two ticks; or the
+/// model made whole again (`whole`: between grabs, with the fresh model for the display).
 struct LiveCut {
   std::size_t model = 0;
-  std::uint32_t grab = 0;  ///< the loop's last grab when it was taken
-  bool during = false;     ///< during that grab (on this model), after its tick at t; else between grabs
-  double t = 0;            ///< s: the grab's state time when taken (0 between grabs)
+  bool whole = false;
+  std::shared_ptr<simulation::ScenarioModel> fresh;  ///< whole: the model as made again
+  std::uint32_t grab = 0;                            ///< the loop's last grab when it was taken
+  bool during = false;  ///< during that grab (on this model), after its tick at t; else between grabs
+  double t = 0;         ///< s: the grab's state time when taken (0 between grabs)
   Vec3 edge_from_mm = Vec3::Zero(), edge_to_mm = Vec3::Zero(), move_mm = Vec3::Zero();  ///< the stroke, as sent
   std::vector<Index> elements;                                                          ///< the tetrahedra removed, ascending
 };
@@ -147,6 +151,8 @@ class PhysicsLoop {
   /// by a fresh factor at the next pick between grabs), or refused with the reason: a model that
   /// is not cut, a tetrahedron at the static part or at the hand's nodes, nothing left to move.
   void cut(const HandMessage& event);
+  /// The current model made whole again (a cut model: built afresh, the grab ended), or refused.
+  void make_whole();
   void aim(const Vec3& point_mm);
   /// The tool's next displacement: towards the target by at most hand_speed dt.
   Vec3 next_g() const;

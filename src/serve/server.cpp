@@ -401,7 +401,10 @@ void Server::Impl::cut(HandMessage message) {
 
 void Server::Impl::follow_cuts() {
   for (LiveCut& c : physics_.take_cuts()) {
-    scene_.cut_surface(c.model, c.elements);
+    if (c.whole)
+      scene_.show_whole(c.model, std::move(c.fresh));
+    else
+      scene_.cut_surface(c.model, c.elements);
     next_recovery_ = 0;  // the static part's values on the new surface's vertices
     cuts_.push_back(std::move(c));
   }
@@ -548,11 +551,7 @@ void Server::Impl::save_grab(const std::string& why) {
   if (options_.record.empty()) return say("not saved: start the server with --record DIR to keep grabs for replay");
   if (grab_.samples.size() < 2) return say("not saved: no grab yet");
   try {
-    // The cuts of the grab's model before it and during it, up to its last tick.
-    grab_.cuts.clear();
-    for (const LiveCut& c : cuts_)
-      if (c.model == grab_.model && (c.grab < grab_.grab || (c.grab == grab_.grab && c.during && c.t < grab_.samples.back().t)))
-        grab_.cuts.push_back(c);
+    grab_.cuts = cuts_of_grab(cuts_, grab_);
     const auto file = write_replay(scene_, grab_, options_.record, io::format("grab-%03u-%d", grab_.grab, ++saved_));
     say(io::format("saved (%s): %s, %zu ticks; replay: roifem run %s --out DIR", why.c_str(), file.string().c_str(),
                    grab_.samples.size() - 1, file.string().c_str()));

@@ -217,6 +217,13 @@ with h5py.File(sys.argv[1]) as f:
     check(removed && after.triangles > before.triangles,
           `a stroke of the scalpel on static-cut: "${said}"; the page draws ${after.triangles} triangles (${before.triangles} before)`);
     await page.click('#scalpel');
+    // Whole again: the model built afresh, the page draws the uncut surface.
+    await page.click('#whole');
+    await page.waitForFunction((m) => window.roifem.meshes > m, { timeout: 10000 }, after.meshes);
+    const whole = await page.evaluate(() => ({ triangles: window.roifem.triangles,
+                                               said: window.roifem.notices.find((n) => n.startsWith('whole again')) }));
+    check(whole.triangles === before.triangles && whole.said,
+          `whole again: "${whole.said}"; the page draws ${whole.triangles} triangles`);
   }
   check(pageErrors.length === 0, `no error on the page${pageErrors.length ? ': ' + pageErrors.join('; ') : ''}`);
 } finally {

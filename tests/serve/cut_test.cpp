@@ -200,6 +200,91 @@ TEST(ServeCut, RefusesAModelNotCutTheStaticPartTheHandsNodesAndAPickOnTheCut) {
   loop.stop();
 }
 
+TEST(ServeCut, MadeWholeAgainTheCutModelFeelsAsTheModelNeverCut) {
+  const auto scene = test::paper_scene({"static", "static-cut"});
+  const Vec3 point = test::pickable_point(*scene);
+  const HandMessage beside = test::stroke_beside(*scene, 1, point, 6.0);
+  // A cut, then whole again, then a grab: roifem run's replay with no cut (cuts_of_grab leaves the
+  // cut out) and the static model's own grab on the same path feel the same force.
+  PhysicsLoop loop(*scene, {.hand_speed_mm_s = 40, .reach_mm = 20});
+  loop.start();
+  loop.post({.kind = HandKind::model, .sequence = 1, .point_mm = Vec3::Zero(), .model = 1});
+  loop.post(beside);
+  loop.post({.kind = HandKind::whole, .sequence = 2, .point_mm = Vec3::Zero(), .model = 0});
+  wait_turns(loop, 4);
+  loop.post({.kind = HandKind::pick, .sequence = 3, .point_mm = point, .model = 0});
+  for (int step = 1; step <= 6; ++step) {
+    loop.post({.kind = HandKind::target,
+               .sequence = 3U + static_cast<std::uint32_t>(step),
+               .point_mm = point + Vec3(0.2 * step, -0.1 * step, 0),
+               .model = 0});
+    wait_turns(loop, 20);
+  }
+  loop.stop();
+  const std::string said = joined(loop.take_notices());
+  EXPECT_NE(said.find("whole again: the static-cut model built afresh"), std::string::npos) << said;
+  const std::vector<LiveCut> record = loop.take_cuts();
+  ASSERT_EQ(record.size(), 2U);
+  EXPECT_TRUE(record[1].whole);
+  ASSERT_TRUE(record[1].fresh);
+  std::vector<HandSample> samples;
+  loop.drain_samples(samples);
+  GrabRecord grab{.grab = samples.back().grab,
+                  .model = 1,
+                  .center_mm = point,
+                  .grip_nodes = samples.back().grip_nodes,
+                  .samples = {},
+                  .cuts = {}};
+  for (const HandSample& s : samples)
+    if (s.grab == grab.grab) grab.samples.push_back(s);
+  ASSERT_GT(grab.samples.size(), 100U);
+  EXPECT_TRUE(cuts_of_grab(record, grab).empty());
+  const std::vector<Vec3> whole = replayed(*scene, grab, cuts_of_grab(record, grab));
+  const std::vector<Vec3> cut = replayed(*scene, grab, {record[0]});
+  double largest = 0, difference = 0, with_cut = 0;
+  for (std::size_t i = 1; i < grab.samples.size(); ++i) {
+    largest = std::max(largest, grab.samples[i].force.norm());
+    difference = std::max(difference, (whole[i] - grab.samples[i].force).norm());
+    with_cut = std::max(with_cut, (cut[i] - grab.samples[i].force).norm());
+  }
+  EXPECT_GT(largest, 1e-4);
+  EXPECT_LT(difference, 1e-9 * largest);
+  EXPECT_GT(with_cut, 1e-4 * largest);  // the cut, had it stayed, is felt
+  // The display draws it whole again.
+  scene->cut_surface(1, record[0].elements);
+  EXPECT_NE(&scene->surface(1), &scene->surface(0));
+  scene->show_whole(1, record[1].fresh);
+  EXPECT_EQ(&scene->surface(1), &scene->surface(0));
+}
+
+TEST(ServeCut, AReplayTakesTheCutsBeforeItsGrabSinceTheModelWasLastWholeAndThoseDuringIt) {
+  GrabRecord grab{.grab = 4, .model = 1, .center_mm = Vec3::Zero(), .grip_nodes = 1, .samples = {}, .cuts = {}};
+  HandSample last;
+  last.t = 0.5;
+  grab.samples = {HandSample{}, last};
+  const auto cut = [](std::size_t model, std::uint32_t g, bool during, double t, Index tag) {
+    LiveCut c;
+    c.model = model;
+    c.grab = g;
+    c.during = during;
+    c.t = t;
+    c.elements = {tag};
+    return c;
+  };
+  LiveCut whole;
+  whole.model = 1;
+  whole.whole = true;
+  whole.grab = 2;
+  const std::vector<LiveCut> record{
+      cut(1, 1, true, 0.2, 10), cut(1, 2, false, 0, 11),  whole,
+      cut(1, 2, false, 0, 12),  cut(0, 3, false, 0, 13),                             // another model's
+      cut(1, 3, true, 0.1, 14), cut(1, 4, true, 0.3, 15), cut(1, 4, true, 0.5, 16),  // at the grab's last tick: not replayed
+      cut(1, 4, false, 0, 17),  cut(1, 5, false, 0, 18)};
+  std::vector<Index> taken;
+  for (const LiveCut& c : cuts_of_grab(record, grab)) taken.push_back(c.elements.front());
+  EXPECT_EQ(taken, (std::vector<Index>{12, 14, 15}));
+}
+
 /// The faces of `tets` that no other of them shares, each as its sorted nodes.
 std::map<std::array<int, 3>, int> faces_once(const std::vector<mesh::Tet>& tets) {
   std::map<std::array<int, 3>, int> count;

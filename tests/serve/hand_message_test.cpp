@@ -14,8 +14,8 @@ std::variant<HandMessage, std::string> decode(const std::string& bytes) {
 }
 
 TEST(HandMessage, EveryKindReadsBackWhatWasWritten) {
-  for (const HandKind kind :
-       {HandKind::pick, HandKind::target, HandKind::release, HandKind::model, HandKind::save, HandKind::compare}) {
+  for (const HandKind kind : {HandKind::pick, HandKind::target, HandKind::release, HandKind::model, HandKind::save,
+                              HandKind::compare, HandKind::whole}) {
     const HandMessage sent{.kind = kind, .sequence = 4000000001U, .point_mm = Vec3(-12.5, 0.1, 1e3), .model = 3};
     const auto got = decode(encode_hand_message(sent));
     ASSERT_TRUE(std::holds_alternative<HandMessage>(got)) << std::get<std::string>(got);
@@ -61,7 +61,7 @@ TEST(HandMessage, MalformedFramesAreRefusedWithTheReason) {
   EXPECT_EQ(refused(target + "x"), "a target message of 33 bytes (it has 32)");
   std::string unknown = target;
   unknown[0] = 9;
-  EXPECT_EQ(refused(unknown), "an unknown kind 9 (1 pick, 2 target, 3 release, 4 model, 5 save, 6 compare, 7 cut)");
+  EXPECT_EQ(refused(unknown), "an unknown kind 9 (1 pick, 2 target, 3 release, 4 model, 5 save, 6 compare, 7 cut, 8 whole)");
   std::string padded = target;
   padded[2] = 1;
   EXPECT_EQ(refused(padded), "a header whose padding bytes 1-3 are not zero");
