@@ -327,7 +327,14 @@ bool Server::Impl::origin_allowed(const http::request<http::string_body>& reques
 void Server::Impl::accept() {
   acceptor_.async_accept([this](beast::error_code ec, tcp::socket socket) {
     if (stopping_) return;
-    if (!ec) std::make_shared<HttpSession>(std::move(socket), *this, next_client_++)->start();
+    if (!ec) {
+      // Each frame leaves at once: without this, Nagle's algorithm holds a frame's last segment until
+      // the page acknowledges the one before, and while the page sends the hand (its messages carry
+      // those acknowledgements) frames arrive in pairs, every other 60 Hz turn.
+      beast::error_code ignored;
+      socket.set_option(tcp::no_delay(true), ignored);
+      std::make_shared<HttpSession>(std::move(socket), *this, next_client_++)->start();
+    }
     accept();
   });
 }
