@@ -182,6 +182,7 @@ LiveScene::LiveScene(const scenario::Scenario& scenario, double rate_hz, double 
                                           : "the full dynamic model of the whole brain";
     }
     live.built_from = variant;
+    live.cut_model = cut;
     if (cut) {
       live.cuts = std::make_unique<simulation::ElementCuts>(variant, *live.model);
       live.on_cut.assign(static_cast<std::size_t>(live.model->mesh.num_nodes()), 0);

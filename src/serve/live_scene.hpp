@@ -65,6 +65,7 @@ struct LiveModel {
   /// predates a cut taken while no grab held the model).
   std::unique_ptr<simulation::ElementCuts> cuts;
   std::vector<char> on_cut;
+  bool cut_model = false;  ///< (set once built: every thread may ask)
   bool haptic_stale = false;
   /// The display's (its thread's alone): the surface drawn, the tetrahedra it bounds, and per
   /// vertex and component its place among the unknowns u (-1: none), for the static part its
@@ -75,7 +76,7 @@ struct LiveModel {
   std::vector<float> static_surface_mm;
   bool condensed() const { return roi_size > 0; }
   bool nonlinear() const { return law != fem::MaterialModel::linear; }
-  bool cuttable() const { return cuts != nullptr; }
+  bool cuttable() const { return cut_model; }
 };
 
 /// A footprint the hand may hold in a model: its mesh nodes and their dofs in the model's system.
