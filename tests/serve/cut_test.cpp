@@ -81,17 +81,10 @@ CutGrab cut_grab(LiveScene& scene, std::size_t k, const Vec3& point_mm, const Ha
   return out;
 }
 
-/// `roifem run`'s replay of the grab (with `cuts`): its force per tick (N).
+/// `roifem run`'s replay of the grab with `cuts`: its force per tick (N).
 std::vector<Vec3> replayed(const LiveScene& scene, GrabRecord grab, const std::vector<LiveCut>& cuts) {
   grab.cuts = cuts;
-  roifem::test::TempDir dir;
-  const auto toml = write_replay(scene, grab, dir.path(), "grab");
-  std::ostringstream log;
-  simulation::run_scenario(scenario::read_scenario(toml), dir / "replay", log);
-  const auto force = roifem::test::read_h5(dir / "replay/results.h5", "tools/hand/force_N");
-  std::vector<Vec3> out;
-  for (std::size_t i = 0; i + 2 < force.size(); i += 3) out.emplace_back(force[i], force[i + 1], force[i + 2]);
-  return out;
+  return test::replayed_force(scene, grab);
 }
 
 std::string joined(const std::vector<std::string>& lines) {

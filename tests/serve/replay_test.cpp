@@ -70,14 +70,7 @@ GrabRecord live_grab(LiveScene& scene, std::size_t k, const Vec3& point_mm, int 
 /// The force of `roifem run`'s replay of `grab` written as model `k`'s, per tick (N).
 std::vector<Vec3> replayed_force(const LiveScene& scene, GrabRecord grab, std::size_t k) {
   grab.model = k;
-  roifem::test::TempDir dir;
-  const auto toml = write_replay(scene, grab, dir.path(), "grab");
-  std::ostringstream log;
-  simulation::run_scenario(scenario::read_scenario(toml), dir / "replay", log);
-  const auto force = roifem::test::read_h5(dir / "replay/results.h5", "tools/hand/force_N");
-  std::vector<Vec3> out;
-  for (std::size_t i = 0; i + 2 < force.size(); i += 3) out.emplace_back(force[i], force[i + 1], force[i + 2]);
-  return out;
+  return test::replayed_force(scene, grab);
 }
 
 double largest_norm(const std::vector<Vec3>& forces) {

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// What the serve tests share: the paper's setup 1 as a live scene, a point on its surface that
-/// every model's hand may pick, and scalpel strokes beside it.
+/// every model's hand may pick, scalpel strokes beside it, and `roifem run`'s replay of a grab.
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -9,10 +9,14 @@
 #include <stdexcept>
 #include <variant>
 
+#include "h5_read.hpp"
 #include "scenario/scenario.hpp"
 #include "serve/hand_message.hpp"
+#include "serve/hand_recording.hpp"
 #include "serve/live_scene.hpp"
 #include "serve/scalpel.hpp"
+#include "simulation/scenario_run.hpp"
+#include "test_support.hpp"
 
 namespace roifem::serve::test {
 
@@ -21,6 +25,18 @@ inline std::unique_ptr<LiveScene> paper_scene(const std::vector<std::string>& mo
   std::ostringstream log;
   return std::make_unique<LiveScene>(scenario::read_scenario(ROIFEM_SCENARIO_DIR "/paper-setup1.toml"), 1000, 5.0, models, log,
                                      newton);
+}
+
+/// The force of `roifem run`'s replay of `grab` (its model, its cuts), per tick (N).
+inline std::vector<Vec3> replayed_force(const LiveScene& scene, const GrabRecord& grab) {
+  roifem::test::TempDir dir;
+  const auto toml = write_replay(scene, grab, dir.path(), "grab");
+  std::ostringstream log;
+  simulation::run_scenario(scenario::read_scenario(toml), dir / "replay", log);
+  const auto force = roifem::test::read_h5(dir / "replay/results.h5", "tools/hand/force_N");
+  std::vector<Vec3> out;
+  for (std::size_t i = 0; i + 2 < force.size(); i += 3) out.emplace_back(force[i], force[i + 1], force[i + 2]);
+  return out;
 }
 
 /// The surface node nearest the ROI's target whose footprint every model can hold (mm).
