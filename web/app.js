@@ -377,7 +377,6 @@ function sendCut(edgeFrom, edgeTo, move) {
   [...edgeFrom, ...edgeTo, ...move].forEach((x, k) => view.setFloat64(8 + 8 * k, x, true));
   socket.send(buffer);
 }
-live.sendCut = sendCut;  // the browser test's stroke, stated in mm
 renderer.domElement.addEventListener('pointerdown', (event) => {
   if (!brain || event.button !== 0) return;
   rayAt(event);
