@@ -197,8 +197,8 @@ TEST(ServeCut, MadeWholeAgainTheCutModelFeelsAsTheModelNeverCut) {
   const auto scene = test::paper_scene({"static", "static-cut"});
   const Vec3 point = test::pickable_point(*scene);
   const HandMessage beside = test::stroke_beside(*scene, 1, point, 6.0);
-  // A cut, then whole again, then a grab: roifem run's replay with no cut (cuts_of_grab leaves the
-  // cut out) and the static model's own grab on the same path feel the same force.
+  // A cut, then whole again, then a grab: the live force is roifem run's replay with no cut
+  // (cuts_of_grab leaves the cut out), and not its replay with the cut.
   PhysicsLoop loop(*scene, {.hand_speed_mm_s = 40, .reach_mm = 20});
   loop.start();
   loop.post({.kind = HandKind::model, .sequence = 1, .point_mm = Vec3::Zero(), .model = 1});
