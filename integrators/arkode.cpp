@@ -58,8 +58,8 @@ int Arkode::rhs(double t, N_Vector y, N_Vector ydot, void* self) {
   const auto evaluate = [&] { me->form_->evaluate(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot)); };
   // An implicit method's Newton iterate may be inadmissible (an element inverted) where the step's
   // answer is not: ARKODE may retry it smaller.
-  return me->method_.implicit ? guarded_recoverable_callback(me->pending_, me->inadmissible_, -1, evaluate)
-                              : guarded_callback(me->pending_, -1, evaluate);
+  return me->method_.implicit ? guarded_recoverable_callback(me->pending_, me->inadmissible_, -1, evaluate, t)
+                              : guarded_callback(me->pending_, -1, evaluate, t);
 }
 
 int Arkode::unit_weights(N_Vector, N_Vector ewt, void*) {
@@ -69,13 +69,16 @@ int Arkode::unit_weights(N_Vector, N_Vector ewt, void*) {
 
 int Arkode::jacobian(double t, N_Vector y, N_Vector, SUNMatrix J, void* self, N_Vector, N_Vector, N_Vector) {
   auto* me = static_cast<Arkode*>(self);
-  return guarded_callback(me->pending_, -1, [&] {
-    // A linear problem's Jacobian is constant; a nonlinear one's holds the tangent at y's u, on
-    // the first Jacobian's pattern, so that KLU refactors on its one symbolic analysis.
-    if (me->system_->is_nonlinear())
-      me->jacobian_ = me->newton_jacobian(me->form_->stiffness(t, N_VGetArrayPointer(y)), &me->jacobian_pattern_);
-    sundials::copy_into(me->jacobian_, J);
-  });
+  return guarded_callback(
+      me->pending_, -1,
+      [&] {
+        // A linear problem's Jacobian is constant; a nonlinear one's holds the tangent at y's u, on
+        // the first Jacobian's pattern, so that KLU refactors on its one symbolic analysis.
+        if (me->system_->is_nonlinear())
+          me->jacobian_ = me->newton_jacobian(me->form_->stiffness(t, N_VGetArrayPointer(y)), &me->jacobian_pattern_);
+        sundials::copy_into(me->jacobian_, J);
+      },
+      t);
 }
 
 SparseMatrix Arkode::newton_jacobian(const SparseMatrix& K, const SparseMatrix* pattern_of) const {
@@ -132,7 +135,11 @@ void Arkode::create_memory(const model::State& initial) {
 void Arkode::set_steps() {
   if (control_.adaptive) {
     check(ARKStepSStolerances(memory_.get(), control_.rtol, control_.atol), "ARKStepSStolerances");
-    check(ARKStepSetInitStep(memory_.get(), control_.dt), "ARKStepSetInitStep");
+    // An explicit method's first trial step of dt can take a nonlinear model's stages far past
+    // the stability limit, where an element inverts before the error test can shrink it (ARKODE
+    // 6.4 cannot retry an explicit stage): there ARKODE estimates its own first step (0).
+    const bool own_first_step = !method_.implicit && system_->is_nonlinear();
+    check(ARKStepSetInitStep(memory_.get(), own_first_step ? 0.0 : control_.dt), "ARKStepSetInitStep");
   } else {
     check(ARKStepSetFixedStep(memory_.get(), control_.dt), "ARKStepSetFixedStep");
     if (method_.implicit && system_->is_nonlinear()) {

@@ -7,6 +7,7 @@
 #include "common/errors.hpp"
 #include "common/number_text.hpp"
 #include "common/timer.hpp"
+#include "integrators/callback_guard.hpp"
 #include "model/internal_force.hpp"
 #include "solvers/sparse_positions.hpp"
 
@@ -130,7 +131,10 @@ void EnergyMomentum::step(model::State& s) {
 
 void EnergyMomentum::advance(double t_out, model::State& state) {
   const long target = grid_.index_of(t_out, k_);
-  while (k_ < target) step(state);
+  while (k_ < target) {
+    stop_if_asked(state.t);
+    step(state);
+  }
 }
 
 std::vector<IntegratorInfo> energy_momentum_rows() {

@@ -30,25 +30,41 @@ bool GslOdeiv2::takes_nonlinear() const { return true; }
 
 int GslOdeiv2::rhs(double t, const double y[], double dydt[], void* self) {
   auto* me = static_cast<GslOdeiv2*>(self);
-  const int status = guarded_callback(me->pending_, GSL_EBADFUNC, [&] { me->form_->evaluate(t, y, dydt); });
+  // A state the model refuses (an element inverted by a trial step) is GSL_FAILURE, which GSL's
+  // adaptive driver retries at half the step; any other error stops it. A solution that presses
+  // on an inversion would be retried without end: the max_refused_per_output-th refusal in one
+  // output interval stops it, naming the element, the step and the time.
+  const int status = guarded_recoverable_callback(
+      me->pending_, me->inadmissible_, GSL_EBADFUNC, [&] { me->form_->evaluate(t, y, dydt); }, t);
   if (status == GSL_SUCCESS) ++me->stats_.rhs_evals;
-  return status;
+  if (status != 1) return status;
+  if (++me->refused_ < max_refused_per_output) return GSL_FAILURE;
+  me->pending_ = std::make_exception_ptr(SolverError(
+      me->name_ + ": step " + std::to_string(static_cast<long>(me->driver_->e->count) + 1) + ", t = " + number_text(t) +
+      " s: " + std::to_string(max_refused_per_output) +
+      " states in this output interval inverted an element, each retried at a smaller step (the solution presses on an "
+      "inversion; a smaller load or motion, or a finer mesh there); the last: " +
+      me->inadmissible_));
+  return GSL_EBADFUNC;
 }
 
 int GslOdeiv2::jacobian(double t, const double* y, double* dfdy, double dfdt[], void* self) {
   auto* me = static_cast<GslOdeiv2*>(self);
-  const int status = guarded_callback(me->pending_, GSL_EBADFUNC, [&] {
-    // A nonlinear system's Jacobian moves with u: -M^-1 K_t(t, u) in its lower left block, at
-    // the state the stepper asks for (its implicit steppers' Newton iterations: modified Newton
-    // on this matrix until they ask again).
-    if (me->system_->is_nonlinear()) {
-      const Index n = me->system_->size();
-      me->jacobian_.bottomLeftCorner(n, n) = DenseMatrix(me->form_->lower_left(me->form_->stiffness(t, y)));
-    }
-    const Index m = me->jacobian_.rows();
-    std::memcpy(dfdy, me->jacobian_.data(), sizeof(double) * static_cast<std::size_t>(m * m));
-    std::fill(dfdt, dfdt + m, 0.0);  // the load's time derivative: ignored by the Newton matrix it feeds
-  });
+  const int status = guarded_callback(
+      me->pending_, GSL_EBADFUNC,
+      [&] {
+        // A nonlinear system's Jacobian moves with u: -M^-1 K_t(t, u) in its lower left block, at
+        // the state the stepper asks for (its implicit steppers' Newton iterations: modified Newton
+        // on this matrix until they ask again).
+        if (me->system_->is_nonlinear()) {
+          const Index n = me->system_->size();
+          me->jacobian_.bottomLeftCorner(n, n) = DenseMatrix(me->form_->lower_left(me->form_->stiffness(t, y)));
+        }
+        const Index m = me->jacobian_.rows();
+        std::memcpy(dfdy, me->jacobian_.data(), sizeof(double) * static_cast<std::size_t>(m * m));
+        std::fill(dfdt, dfdt + m, 0.0);  // the load's time derivative: ignored by the Newton matrix it feeds
+      },
+      t);
   if (status == GSL_SUCCESS) ++me->stats_.jac_evals;
   return status;
 }
@@ -67,6 +83,7 @@ void GslOdeiv2::prepare(const model::SecondOrderSystem& system, const model::Sta
   t_ = initial.t;
   stats_ = {};
   pending_ = nullptr;
+  inadmissible_.clear();
   system_gsl_ = {rhs, jacobian, static_cast<std::size_t>(2 * n), this};
   // At a fixed step GSL still consults its error control and returns GSL_FAILURE when the estimate
   // would shrink the step: give the control tolerances it can never exceed.
@@ -79,6 +96,7 @@ void GslOdeiv2::prepare(const model::SecondOrderSystem& system, const model::Sta
 
 void GslOdeiv2::advance(double t_out, model::State& state) {
   int status = GSL_SUCCESS;
+  refused_ = 0;
   if (control_.adaptive) {
     status = gsl_odeiv2_driver_apply(driver_.get(), &t_, t_out, y_.data());
   } else {
@@ -88,8 +106,17 @@ void GslOdeiv2::advance(double t_out, model::State& state) {
       throw InputError(name_ + ": t_out = " + number_text(t_out) + " s is not on the grid of dt");
     if (n > 0) status = gsl_odeiv2_driver_apply_fixed_step(driver_.get(), &t_, control_.dt, n, y_.data());
   }
-  if (pending_) std::rethrow_exception(std::exchange(pending_, nullptr));
-  if (status != GSL_SUCCESS) throw SolverError(name_ + ": failed at t = " + number_text(t_) + " s: " + gsl_strerror(status));
+  const long step = static_cast<long>(driver_->e->count) + 1;
+  if (pending_) {
+    try {
+      std::rethrow_exception(std::exchange(pending_, nullptr));
+    } catch (const ModelError& e) {  // a stage or Newton iterate that inverts an element: GSL cannot retry it smaller
+      throw ModelError(name_ + ": step " + std::to_string(step) + ", after t = " + number_text(t_) + " s: " + e.what());
+    }
+  }
+  if (status != GSL_SUCCESS)
+    throw SolverError(name_ + ": failed at step " + std::to_string(step) + ", t = " + number_text(t_) + " s: " +
+                      gsl_strerror(status) + (inadmissible_.empty() ? "" : "; the last state refused: " + inadmissible_));
   stats_.steps = static_cast<long>(driver_->e->count);  // cumulative; the driver's n is per call
   stats_.failed_steps = static_cast<long>(driver_->e->failed_steps);
   const Index n = system_->size();

@@ -9,6 +9,7 @@
 
 #include <exception>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "integrators/first_order_form.hpp"
@@ -32,6 +33,8 @@ struct GslDriverDeleter {
 class GslOdeiv2 final : public Integrator {
  public:
   GslOdeiv2(std::string name, const gsl_odeiv2_step_type* stepper, StepControl control);
+  /// Refused states (an element inverted) in one output interval before the run stops (see rhs).
+  static constexpr int max_refused_per_output = 25;
   std::string_view name() const override { return name_; }
   Stats stats() const override { return stats_; }
   /// The steppers that use no Jacobian (GSL's explicit ones) take a nonlinear model.
@@ -55,6 +58,8 @@ class GslOdeiv2 final : public Integrator {
   double t_ = 0;
   Stats stats_;
   std::exception_ptr pending_;
+  std::string inadmissible_;  ///< the last state the model refused (guarded_recoverable_callback)
+  int refused_ = 0;           ///< refused states in this advance
 };
 
 }  // namespace roifem::integrators

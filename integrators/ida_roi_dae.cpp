@@ -115,9 +115,9 @@ void IdaRoiDae::advance_to(double t_out, Vector& u_d, Vector& u_s) {
   u_s = y.tail(ns);
 }
 
-Vector IdaRoiDae::velocity_d() const {
+Eigen::Map<const Vector> IdaRoiDae::velocity_d() const {
   const Index nd = K_dd_.rows();
-  return ida_->y().segment(nd, nd);
+  return {ida_->y().data() + nd, nd};
 }
 
 Stats IdaRoiDae::stats() const {

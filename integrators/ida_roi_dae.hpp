@@ -32,8 +32,10 @@ class IdaRoiDae {
   void reset(double t0);
   /// Advances to t_out; u_d (ROI) and u_s (static part) on return.
   void advance_to(double t_out, Vector& u_d, Vector& u_s);
-  /// v_d (ROI) at the last advance_to.
-  Vector velocity_d() const;
+  /// v_d (ROI) at the last advance_to: a view of IDA's own vector, copied by the caller into its
+  /// storage (returning a Vector by value let `state.v = ...` move-assign, swapping the caller's
+  /// buffer away: issue 54).
+  Eigen::Map<const Vector> velocity_d() const;
   double t() const { return t_; }
   Stats stats() const;
 

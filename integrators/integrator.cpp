@@ -6,6 +6,7 @@
 
 #include "common/errors.hpp"
 #include "common/number_text.hpp"
+#include "integrators/callback_guard.hpp"
 #include "integrators/stability_watch.hpp"
 #include "io/csv.hpp"
 #include "model/internal_force.hpp"
@@ -34,7 +35,15 @@ void Integrator::reset(const model::SecondOrderSystem& system, const model::Stat
 
 void Integrator::advance_to(double t_out, model::State& state) {
   if (!bound_) throw Error("internal: " + std::string(name()) + ": advance_to before reset");
-  advance(t_out, state);
+  const double* u_storage = state.u.data();
+  const double* v_storage = state.v.data();
+  {
+    const TimeLimitScope limit(deadline_, std::string(name()));
+    advance(t_out, state);
+  }
+  if (state.u.data() != u_storage || state.v.data() != v_storage)
+    throw SolverError(std::string(name()) + ": the state's storage moved during the step to t = " + number_text(t_out) +
+                      " s, step " + std::to_string(stats().steps) + " (a bug in the integrator: it must write into u and v)");
   check_bounded(state);
   if (watch_) watch_->check(name(), *system_, state, stats().steps);
 }
@@ -66,6 +75,12 @@ Stats& Stats::operator+=(const Stats& o) {
   factorization_s += o.factorization_s;
   system_changes += o.system_changes;
   return *this;
+}
+
+void Integrator::set_time_limit(double seconds) {
+  if (!(seconds >= 0)) throw InputError(std::string(name()) + ": a time limit must be 0 or more, not " + number_text(seconds));
+  deadline_ = std::chrono::steady_clock::now() +
+              std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(seconds));
 }
 
 double Integrator::smallest_stability_limit() const {

@@ -12,6 +12,7 @@
 /// few steps, long before its numbers overflow; no family checks this on its own. On a nonlinear
 /// model an explicit method at a fixed step is also held to the stability limit of the tangent
 /// at each output (integrators/stability_watch.hpp).
+#include <chrono>
 #include <memory>
 #include <optional>
 #include <string_view>
@@ -77,6 +78,11 @@ class Integrator {
   void watch_stability(const IntegratorInfo& method, double dt);
   /// The smallest stability limit the watch has found (s; infinity without a watch or a check).
   double smallest_stability_limit() const;
+  /// A wall-clock limit on the run from now (compare's and energy's --max-run-seconds): past it,
+  /// advance_to throws OverTime (common/errors.hpp) from within the library's call, heard in every
+  /// callback and between a stepper's own steps (callback_guard.hpp: TimeLimitScope), with the
+  /// model time reached. None by default.
+  void set_time_limit(double seconds);
 
  private:
   /// What each method implements: reset() and advance_to() without the divergence check.
@@ -90,6 +96,7 @@ class Integrator {
 
   std::optional<model::EnergyBound> bound_;
   std::unique_ptr<StabilityWatch> watch_;
+  std::optional<std::chrono::steady_clock::time_point> deadline_;
   const model::SecondOrderSystem* system_ = nullptr;
 };
 

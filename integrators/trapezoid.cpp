@@ -6,6 +6,7 @@
 #include "common/errors.hpp"
 #include "common/number_text.hpp"
 #include "common/timer.hpp"
+#include "integrators/callback_guard.hpp"
 #include "integrators/integrator_info.hpp"
 #include "integrators/modal_elimination.hpp"
 #include "solvers/newton.hpp"
@@ -121,7 +122,10 @@ void Trapezoid::step(model::State& s) {
 
 void Trapezoid::advance(double t_out, model::State& state) {
   const long target = grid_.index_of(t_out, k_);
-  while (k_ < target) step(state);
+  while (k_ < target) {
+    stop_if_asked(state.t);
+    step(state);
+  }
 }
 
 bool Trapezoid::absorb_change(const model::SecondOrderSystem& system, const model::SystemChange& change,

@@ -37,20 +37,34 @@ int IdaSolver::residual_callback(double t, N_Vector y, N_Vector yp, N_Vector r, 
   auto* me = static_cast<IdaSolver*>(self);
   // A Newton iterate may be inadmissible (an element inverted) where the step's answer is not: IDA
   // may retry it smaller.
-  return guarded_recoverable_callback(me->pending_, me->inadmissible_, -1, [&] { me->residual_(t, view(y), view(yp), view(r)); });
+  const int flag = guarded_recoverable_callback(
+      me->pending_, me->inadmissible_, -1, [&] { me->residual_(t, view(y), view(yp), view(r)); }, t);
+  if (flag != 1 || ++me->refused_ < max_refused_per_output) return flag;
+  long steps = 0;
+  IDAGetNumSteps(me->memory_.get(), &steps);
+  me->pending_ = std::make_exception_ptr(SolverError(
+      me->settings_.name + ": step " + std::to_string(me->before_.steps + steps + 1) + ", t = " + number_text(t) +
+      " s: " + std::to_string(max_refused_per_output) +
+      " Newton iterates in this output interval inverted an element, each retried at a smaller step (the solution presses "
+      "on an inversion; a smaller load or motion, or a finer mesh there); the last: " +
+      me->inadmissible_));
+  return -1;
 }
 
 int IdaSolver::jacobian_callback(double t, double c_j, N_Vector y, N_Vector, N_Vector, SUNMatrix J, void* self, N_Vector,
                                  N_Vector, N_Vector) {
   auto* me = static_cast<IdaSolver*>(self);
-  return guarded_callback(me->pending_, -1, [&] {
-    if (me->settings_.update_dF_dy) {
-      me->settings_.update_dF_dy(t, view(y));
-      if (me->dF_dy_.nonZeros() != me->dF_dyp_.nonZeros())
-        throw Error("internal: " + me->settings_.name + ": the updated dF/dy left the Newton matrix's pattern");
-    }
-    write_newton_matrix(me->dF_dy_, me->dF_dyp_, c_j, J);
-  });
+  return guarded_callback(
+      me->pending_, -1,
+      [&] {
+        if (me->settings_.update_dF_dy) {
+          me->settings_.update_dF_dy(t, view(y));
+          if (me->dF_dy_.nonZeros() != me->dF_dyp_.nonZeros())
+            throw Error("internal: " + me->settings_.name + ": the updated dF/dy left the Newton matrix's pattern");
+        }
+        write_newton_matrix(me->dF_dy_, me->dF_dyp_, c_j, J);
+      },
+      t);
 }
 
 void IdaSolver::start(double t0) {
@@ -83,6 +97,7 @@ void IdaSolver::start(double t0) {
 }
 
 void IdaSolver::make_consistent(double t_first) {
+  refused_ = 0;
   const int flag = IDACalcIC(memory_.get(), IDA_YA_YDP_INIT, t_first);
   if (pending_) std::rethrow_exception(std::exchange(pending_, nullptr));
   check(flag, "IDACalcIC");
@@ -92,6 +107,7 @@ void IdaSolver::make_consistent(double t_first) {
 double IdaSolver::advance_to(double t_out) {
   if (!memory_) throw Error("internal: " + settings_.name + ": advance_to before start");
   IDASetStopTime(memory_.get(), t_out);
+  refused_ = 0;
   double t_reached = t_out;
   const int flag = IDASolve(memory_.get(), t_out, &t_reached, y_.get(), yp_.get(), IDA_NORMAL);
   if (pending_) std::rethrow_exception(std::exchange(pending_, nullptr));

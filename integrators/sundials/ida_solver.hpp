@@ -55,8 +55,13 @@ class IdaSolver {
   /// IDA_YA_YDP_INIT, towards t_first.
   void make_consistent(double t_first);
   /// Advances to t_out (a stop time: never past it); returns the t reached. SolverError naming the
-  /// method, t and the step when IDA fails; the callbacks' exceptions rethrown.
+  /// method, t and the step when IDA fails; the callbacks' exceptions rethrown. A Newton iterate the
+  /// model refuses (an element inverted) is recoverable: IDA retries the step smaller. A solution
+  /// that presses on an inversion would have it retry without end (a step limit of a million runs
+  /// for minutes), so the refusals are bounded: the max_refused_per_output-th within one call stops
+  /// it with a SolverError naming the element, the step and the time.
   double advance_to(double t_out);
+  static constexpr int max_refused_per_output = 25;
   /// IDA's counters summed over every start, and the linear solver's setup time.
   Stats stats() const;
 
@@ -79,6 +84,7 @@ class IdaSolver {
   Stats before_;  ///< the counters of the starts before the last
   std::exception_ptr pending_;
   std::string inadmissible_;  ///< the last Newton iterate the model refused (guarded_recoverable_callback)
+  int refused_ = 0;           ///< refused iterates in this advance_to
   LastError last_error_;
 };
 

@@ -26,6 +26,13 @@ class SolverError : public Error {
  public:
   using Error::Error;
 };
+/// A run stopped at the wall-clock limit its caller set (Integrator::set_time_limit: compare's and
+/// energy's --max-run-seconds), at the model time `t` it had reached.
+class OverTime : public Error {
+ public:
+  OverTime(double model_time, const std::string& what) : Error(what), t(model_time) {}
+  double t;
+};
 /// A run stopped on SIGINT or SIGTERM between two steps (see simulation/interrupt.hpp).
 class Interrupted : public Error {
  public:

@@ -10,6 +10,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "common/interrupt.hpp"
 #include "common/number_text.hpp"
 #include "common/timer.hpp"
 #include "experiments/roi_error.hpp"
@@ -20,6 +21,7 @@
 #include "model/internal_force.hpp"
 #include "model/modal_reference.hpp"
 #include "model/spectrum.hpp"
+#include "simulation/progress.hpp"
 #include "simulation/scenario_model.hpp"
 
 namespace roifem::experiments {
@@ -52,16 +54,21 @@ struct OverBudget {
 };
 
 /// Runs one integrator over the output grid; throws SolverError on divergence, OverBudget past
-/// `budget_s` of wall time (checked at each output).
+/// `budget_s` of wall time (heard inside a step: Integrator::set_time_limit).
 RunError measure(integrators::Integrator& integrator, const model::SecondOrderSystem& system, const Reference& ref,
                  double budget_s) {
   const Stopwatch clock;
   model::State state = model::State::at_rest(system.size());
+  integrator.set_time_limit(budget_s);
   integrator.reset(system, state);
   RunError e;
   double mean_square = 0, force_error = 0;
   for (std::size_t k = 0; k < ref.u.size(); ++k) {
-    integrator.advance_to(static_cast<double>(k + 1) * ref.interval, state);
+    try {
+      integrator.advance_to(static_cast<double>(k + 1) * ref.interval, state);
+    } catch (const OverTime& stop) {
+      throw OverBudget{stop.t};
+    }
     if (clock.seconds() > budget_s) throw OverBudget{state.t};
     const RoiError at_k = roi_error(ref.nodes, state.u, ref.u[k]);
     e.max_mm = std::max(e.max_mm, at_k.max / mm);
@@ -173,7 +180,7 @@ Reference exact_reference(const model::SecondOrderSystem& system, const model::M
 
 /// `name` error-controlled at rtol (atol rtol x 1 mm) over the output grid: its states there, and the last.
 std::vector<Vector> tight_run(const std::string& name, const model::SecondOrderSystem& system, double rtol, double interval,
-                              long outputs, model::State& end) {
+                              long outputs, model::State& end, std::ostream& log) {
   const integrators::IntegratorInfo& info = integrators::integrator_info(name);
   if (!info.adaptive)
     throw InputError("compare: the reference method " + name + " has no error control: name an adaptive one (--reference)");
@@ -181,9 +188,11 @@ std::vector<Vector> tight_run(const std::string& name, const model::SecondOrderS
   end = model::State::at_rest(system.size());
   integrator->reset(system, end);
   std::vector<Vector> u;
+  simulation::ProgressReporter progress(format("reference %s at rtol %g", name.c_str(), rtol), outputs, 2.0, "outputs", &log);
   for (long k = 1; k <= outputs; ++k) {
     integrator->advance_to(static_cast<double>(k) * interval, end);
     u.push_back(end.u);
+    progress.update(k);
   }
   return u;
 }
@@ -194,12 +203,12 @@ Reference tight_reference(const CompareOptions& o, const model::SecondOrderSyste
                           double interval, long outputs, double& peak, double& agreement_mm, std::ostream& log) {
   const Stopwatch clock;
   model::State end;
-  const std::vector<Vector> u = tight_run(o.reference, system, o.reference_rtol, interval, outputs, end);
+  const std::vector<Vector> u = tight_run(o.reference, system, o.reference_rtol, interval, outputs, end, log);
   const double reference_s = clock.seconds();
   Reference ref = reference_of(format("%s at rtol %g, atol %g mm", o.reference.c_str(), o.reference_rtol, o.reference_rtol), u,
                                end, system, built, interval, peak);
   model::State check_end;
-  const std::vector<Vector> check = tight_run(o.reference_check, system, o.reference_rtol, interval, outputs, check_end);
+  const std::vector<Vector> check = tight_run(o.reference_check, system, o.reference_rtol, interval, outputs, check_end, log);
   agreement_mm = 0;
   for (std::size_t k = 0; k < u.size(); ++k) agreement_mm = std::max(agreement_mm, roi_error(ref.nodes, check[k], u[k]).max / mm);
   log << format(
@@ -409,6 +418,7 @@ void print_summary(const CompareResults& results, double dt, std::ostream& log) 
 }  // namespace
 
 CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o, std::ostream& log) {
+  scenario::refuse_cuts(sc, "roifem compare");
   check_output_directory(o.out);
   const auto built = simulation::build_scenario_model(sc);
   const model::SecondOrderSystem& system = built->system();
@@ -442,6 +452,7 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
   }
   for (const auto& name : {o.reference, o.reference_check}) integrators::integrator_info(name);  // named before any work
 
+  const InterruptGuard interrupts;
   const Stopwatch clock;
   std::string no_modal;
   const std::optional<model::ModalReference> modal = modal_reference_of(system, no_modal);
@@ -484,23 +495,35 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
       "  %zu integrators, up to %zu runs, each stopped after --max-run-seconds %g s (at most %.0f min in all); "
       "compare.csv grows as each run ends\n",
       names.size(), runs, o.max_run_s, static_cast<double>(runs) * o.max_run_s / 60);
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    const Stopwatch integrator_clock;
-    const integrators::IntegratorInfo& info = row_of(o, names[i]);
-    const double limit = integrators::predicted_stability_limit(info, frequencies, alpha);
-    if (info.fixed_step) sweep_fixed_steps(w, info, limit);
-    if (info.adaptive) sweep_tolerances(w, info, limit);
-    if (std::isfinite(limit)) search_stability_limit(w, info, limit);
-    report_pace(w, info.name, i + 1, integrator_clock.seconds());
+  // Ctrl-C (SIGINT / SIGTERM) stops the sweep inside a run: the runs that ended are kept, the
+  // tables written and the plots drawn, then the command exits as interrupted.
+  std::optional<Interrupted> interrupted;
+  try {
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      const Stopwatch integrator_clock;
+      const integrators::IntegratorInfo& info = row_of(o, names[i]);
+      const double limit = integrators::predicted_stability_limit(info, frequencies, alpha);
+      if (info.fixed_step) sweep_fixed_steps(w, info, limit);
+      if (info.adaptive) sweep_tolerances(w, info, limit);
+      if (std::isfinite(limit)) search_stability_limit(w, info, limit);
+      report_pace(w, info.name, i + 1, integrator_clock.seconds());
+      if (const int signal = InterruptGuard::signal_received())
+        throw Interrupted(signal, "interrupted by signal " + std::to_string(signal) + " after " + info.name);
+    }
+  } catch (const Interrupted& e) {
+    interrupted = e;
+    log << "\nstopped: " << e.what() << "; the " << w.results.rows.size()
+        << " runs that ended are kept, their tables written and plotted\n";
   }
 
   write_compare_files(o, w.results);
   if (!built->tools.empty()) write_tool_figures(o, w.results);
   print_summary(w.results, sc.dt, log);
-  if (o.plots && io::run_plot_script("plot_compare.py", o.out, log))
+  if (o.plots && io::run_plot_script("plot_compare.py", o.out, log, {"--reference", w.ref.description}))
     log << "plots: " << (o.out / "work_precision.png").string() << ", " << (o.out / "error_vs_dt.png").string() << '\n';
   log << "results: " << (o.out / "compare.csv").string() << ", " << (o.out / "stability.csv").string()
       << (built->tools.empty() ? "" : ", " + (o.out / "tools.csv").string()) << '\n';
+  if (interrupted) throw *interrupted;
   return w.results;
 }
 

@@ -126,6 +126,7 @@ Run run_one(const integrators::IntegratorInfo& info, const model::SecondOrderSys
   try {
     method = integrators::make_integrator(info, control);
     model::State s = model::State::at_rest(sys.size());
+    method->set_time_limit(o.max_run_s);
     method->reset(sys, s);
     model::EnergyLedger ledger(sys, s, tools.empty() ? nullptr : &tools);
     for (long k = 1; k <= outputs; ++k) {
@@ -148,6 +149,8 @@ Run run_one(const integrators::IntegratorInfo& info, const model::SecondOrderSys
     }
   } catch (const Interrupted&) {
     throw;
+  } catch (const OverTime& stop) {
+    row.status = format("stopped at t = %s s: over --max-run-seconds %g", number_text(stop.t).c_str(), o.max_run_s);
   } catch (const Error& e) {
     row.status = e.what();
   }
@@ -189,6 +192,7 @@ std::span<const Column<EnergyRow>> energy_summary_columns() { return summary; }
 std::span<const Column<EnergySample>> energy_sample_columns() { return samples; }
 
 EnergyStudy run_energy_study(const scenario::Scenario& sc, const EnergyStudyOptions& o, std::ostream& log) {
+  scenario::refuse_cuts(sc, "roifem energy");
   if (!(o.rtol > 0) || !(o.rtol < 1)) throw InputError("energy: --rtol must lie in (0, 1), not " + number_text(o.rtol));
   if (!(o.max_run_s > 0)) throw InputError("energy: --max-run-seconds must be positive, not " + number_text(o.max_run_s));
   if (!(o.t_end >= 0) || !std::isfinite(o.t_end))

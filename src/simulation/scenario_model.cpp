@@ -142,10 +142,15 @@ std::unique_ptr<ScenarioModel> build_scenario_model(const scenario::Scenario& sc
 }
 
 std::unique_ptr<integrators::Integrator> scenario_integrator(const scenario::Scenario& sc) {
+  // Without rtol the step is fixed and the tolerances are StepControl's defaults: an implicit
+  // method's Newton test on a nonlinear model still weighs by them (atol 0 made ARKODE refuse).
+  integrators::StepControl control{.dt = sc.dt, .adaptive = sc.rtol.has_value()};
+  if (sc.rtol) {
+    control.rtol = *sc.rtol;
+    control.atol = sc.absolute_tolerance();
+  }
   try {
-    return integrators::make_integrator(
-        sc.integrator,
-        {.dt = sc.dt, .adaptive = sc.rtol.has_value(), .rtol = sc.rtol.value_or(1e-6), .atol = sc.absolute_tolerance()});
+    return integrators::make_integrator(sc.integrator, control);
   } catch (const InputError& e) {  // an unknown name, tolerances for a fixed step: where the scenario says it
     throw InputError((sc.integrator_where.empty() ? sc.file.string() : sc.integrator_where) + ": " + e.what());
   }

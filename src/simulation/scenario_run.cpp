@@ -140,8 +140,9 @@ void check_results_fit(const scenario::Scenario& sc, const ScenarioModel& built,
              static_cast<double>(space.available) / 1e9));
 }
 
-/// The run loop with the recorder as its observer. A divergence, a solver failure or a signal
-/// keeps every completed step, marked incomplete, beside (never in place of) a good results.h5.
+/// The run loop with the recorder as its observer. A divergence, a solver failure, an element that
+/// inverts or a signal keeps every completed step, marked incomplete, beside (never in place of) a
+/// good results.h5.
 RunSummary integrate(const scenario::Scenario& sc, ScenarioStepper& stepper, ResultsRecorder& recorder, PeakDisplacement& peak,
                      const std::filesystem::path& out, std::ostream& log) {
   const integrators::Integrator& integrator = stepper.integrator();
@@ -157,7 +158,8 @@ RunSummary integrate(const scenario::Scenario& sc, ScenarioStepper& stepper, Res
                 [&](long k, const model::State& s, double) { peak.observe(k, s); }},
                "run " + sc.file.filename().string());
   } catch (const Error& e) {
-    if (!dynamic_cast<const SolverError*>(&e) && !dynamic_cast<const Interrupted*>(&e)) throw;
+    if (!dynamic_cast<const SolverError*>(&e) && !dynamic_cast<const ModelError*>(&e) && !dynamic_cast<const Interrupted*>(&e))
+      throw;
     recorder.abandon(e.what());
     log << "\nstopped: " << e.what() << "\nkept every completed step in " << (out / "results.incomplete.h5").string()
         << " (status: incomplete)\n";

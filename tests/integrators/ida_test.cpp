@@ -69,3 +69,49 @@ TEST(IdaRoiDae, TrajectoryEqualsTheCondensedModelToTheTolerance) {
 
 }  // namespace
 }  // namespace roifem::integrators
+
+namespace roifem::integrators {
+namespace {
+
+// A solution that presses on an inversion: y' = 1, with every other residual beyond y = 0.5
+// refused as a model refuses an inverted element (recoverable: IDA retries smaller). IDA alone
+// would crawl on; the solver stops at its stated bound and names the element, the step and t.
+TEST(IdaSolver, StopsAfterTheStatedNumberOfRefusedIteratesNamingTheElementStepAndTime) {
+  SparseMatrix dF_dy(1, 1), dF_dyp(1, 1);
+  dF_dy.insert(0, 0) = 0.0;
+  dF_dyp.insert(0, 0) = 1.0;
+  dF_dy.makeCompressed();
+  dF_dyp.makeCompressed();
+  long calls = 0, refused = 0;
+  sundials::IdaSolver ida(
+      {.name = "test-ida", .rtol = 1e-8, .atol = 1e-10},
+      [&](double, const auto& y, const auto& yp, auto r) {
+        if (y[0] > 0.5 && ++calls % 2 == 0) {
+          ++refused;
+          throw ModelError("tetrahedron 7 (nodes 1 2 3 4) has inverted: det F = -0.1 <= 0");
+        }
+        r[0] = yp[0] - 1.0;
+      },
+      dF_dy, dF_dyp);
+  ida.y()[0] = 0;
+  ida.yp()[0] = 1;
+  ida.start(0);
+  EXPECT_NO_THROW(ida.advance_to(0.5));
+  try {
+    ida.advance_to(1.0);
+    FAIL() << "IDA went on past " << sundials::IdaSolver::max_refused_per_output << " refused iterates";
+  } catch (const SolverError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("test-ida: step "), std::string::npos) << what;
+    const std::size_t at = what.find(", t = ");
+    ASSERT_NE(at, std::string::npos) << what;
+    const double t = std::stod(what.substr(at + 6));
+    EXPECT_GT(t, 0.5) << what;  // where the refusals began
+    EXPECT_LT(t, 1.0) << what;
+    EXPECT_NE(what.find("tetrahedron 7 (nodes 1 2 3 4) has inverted"), std::string::npos) << what;
+  }
+  EXPECT_EQ(refused, sundials::IdaSolver::max_refused_per_output);
+}
+
+}  // namespace
+}  // namespace roifem::integrators

@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# Every row of the integrator table, run as a user runs it: `roifem run` on the paper's setup 1
+# (forces) and on its spatulas (tools), linear and, for the rows marked [nonlinear], neo-Hookean,
+# a few steps each. A run either completes (exit 0, results.h5 written) or is refused with exit 1 by
+# a message that names the method; every row must complete on at least one linear scenario, and
+# every [nonlinear] row on at least one neo-Hookean one. Explicit rows run error-controlled (their
+# fixed step would be far past the stability limit at the paper's dt); the others at a fixed step,
+# as a scenario without rtol gives.
+# usage: every_integrator_runs.sh ROIFEM SCENARIO_DIR MESH_DIR WORK [LAW]
+#   LAW: linear or neo-hookean (default: both)
+set -uo pipefail
+roifem=$1 scenarios=$2 meshes=$3 work=$4 laws=${5:-"linear neo-hookean"}
+fail() { echo "FAIL: $*"; exit 1; }
+rm -rf "$work"
+mkdir -p "$work"
+
+# The rows, from the table as `roifem run --help` prints it: name, order, explicit/implicit, ...
+"$roifem" run --help > "$work/help.txt" || fail "roifem run --help failed"
+mapfile -t rows < <(grep -E '^  [a-z0-9-]+ +order [0-9]+ +(explicit|implicit) ' "$work/help.txt")
+[ "${#rows[@]}" -ge 30 ] || fail "only ${#rows[@]} integrator rows found in roifem run --help"
+
+# scenario NAME SOURCE LAW: the shipped scenario shortened to 3 steps of 10 ms.
+scenario() {
+  local name=$1 source=$2 law=$3
+  sed -e "s#\.\./meshes/#$meshes/#" -e 's/^dt_s = .*/dt_s = 0.01/' -e 's/^steps = .*/steps = 3/' \
+      -e 's/^field_every = .*/field_every = 1/' "$scenarios/$source" > "$work/$name.toml"
+  if [ "$law" = neo-hookean ] && ! grep -q '^model = "neo-hookean"' "$work/$name.toml"; then
+    sed -i 's/^preset = "paper".*/preset = "paper"\nmodel = "neo-hookean"/' "$work/$name.toml"
+  fi
+}
+cases=()
+for law in $laws; do
+  if [ "$law" = linear ]; then
+    scenario forces-linear paper-setup1.toml linear
+    scenario spatulas-linear paper-spatulas-setup1.toml linear
+  else
+    scenario forces-neo-hookean paper-setup1.toml neo-hookean
+    scenario spatulas-neo-hookean paper-spatulas-setup1-neo-hookean.toml neo-hookean
+  fi
+  cases+=("forces-$law" "spatulas-$law")
+done
+
+ran=0 refused=0
+for row in "${rows[@]}"; do
+  read -r name _ _ kind _ <<<"$row"
+  nonlinear=no
+  [[ $row == *"[nonlinear]"* ]] && nonlinear=yes
+  completed_linear=no completed_nonlinear=no
+  for case in "${cases[@]}"; do
+    dir="$work/runs/$name-$case"
+    mkdir -p "$dir"
+    sed -e "s/^integrator = .*/integrator = \"$name\"/" "$work/$case.toml" > "$dir/case.toml"
+    [ "$kind" = explicit ] && sed -i 's/^steps = 3$/steps = 3\nrtol = 1e-5/' "$dir/case.toml"
+    status=0
+    "$roifem" run "$dir/case.toml" --out "$dir/out" > "$dir/stdout.txt" 2> "$dir/stderr.txt" || status=$?
+    if [ "$status" -eq 0 ]; then
+      [ -f "$dir/out/results.h5" ] || fail "$name on $case: exit 0 without results.h5"
+      ran=$((ran + 1))
+      [[ $case == *-linear ]] && completed_linear=yes
+      [[ $case == *-neo-hookean ]] && completed_nonlinear=yes
+      echo "ran      $name on $case"
+    elif [ "$status" -eq 1 ] && grep -q -- "$name" "$dir/stderr.txt"; then
+      refused=$((refused + 1))
+      echo "refused  $name on $case: $(tail -1 "$dir/stderr.txt" | cut -c1-160)"
+    else
+      fail "$name on $case: exit $status, and no refusal naming it: $(cat "$dir/stderr.txt")"
+    fi
+  done
+  [[ " $laws " == *" linear "* && $completed_linear == no ]] && fail "$name completed no linear scenario"
+  [[ " $laws " == *" neo-hookean "* && $nonlinear == yes && $completed_nonlinear == no ]] &&
+    fail "$name is marked [nonlinear] and completed no neo-Hookean scenario"
+done
+echo "ok: ${#rows[@]} rows, $ran runs completed, $refused refused by name"
