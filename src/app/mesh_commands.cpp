@@ -175,6 +175,7 @@ void add_info_command(CLI::App& app, Action& action) {
     action = [file] {
       const mesh::TetMesh m = mesh::read_mesh(*file);
       mesh::check_mesh(m);
+      for (const auto& w : m.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
       const auto s = mesh::mesh_statistics(m);
       const double to_mm = 1.0 / mm;
       std::printf("mesh          %s\n", file->c_str());

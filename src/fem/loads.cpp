@@ -1,15 +1,24 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "fem/loads.hpp"
 
+#include <algorithm>
+
 #include "common/errors.hpp"
 #include "fem/assembly.hpp"
 #include "fem/tet10.hpp"
+#include "io/csv.hpp"
 
 namespace roifem::fem {
 
 mesh::Triangle facet_load_nodes(const mesh::TetMesh& mesh, const mesh::Triangle& t) {
   if (!mesh.is_quadratic()) return t;
-  return {mesh.midside.at(t[0], t[1]), mesh.midside.at(t[1], t[2]), mesh.midside.at(t[2], t[0])};
+  const mesh::Triangle mid{mesh.midside.at(t[0], t[1]), mesh.midside.at(t[1], t[2]), mesh.midside.at(t[2], t[0])};
+  if (std::find(mid.begin(), mid.end(), -1) != mid.end())
+    throw InputError(
+        io::format("%s: the triangle with corners %d, %d, %d (0-based) is not a face of the tetrahedra: an edge "
+                   "of it is no tetrahedron's",
+                   mesh.source.c_str(), t[0], t[1], t[2]));
+  return mid;
 }
 
 Vector set_force(const mesh::TetMesh& mesh, const std::string& set_name, const Vec3& total_force) {

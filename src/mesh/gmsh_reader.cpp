@@ -97,6 +97,9 @@ TetMesh extract_tet_mesh(const std::string& source, double length_unit) {
       set.dim = dim;
       std::vector<int> entities;
       gmsh::model::getEntitiesForPhysicalGroup(dim, tag, entities);
+      struct {
+        std::size_t count = 0, triangle = 0, node = 0;  // the first one's Gmsh tags
+      } dropped;
       for (int entity : entities) {
         std::vector<std::size_t> etags, enodes;
         if (dim == 3) {
@@ -104,13 +107,31 @@ TetMesh extract_tet_mesh(const std::string& source, double length_unit) {
           for (std::size_t t : etags) set.tets.push_back(tet_index.at(t));
         } else if (dim == 2) {
           gmsh::model::mesh::getElementsByType(gmsh_triangle, etags, enodes, entity);
-          for (std::size_t k = 0; k + 2 < enodes.size(); k += 3)
-            set.triangles.push_back({index_of(enodes[k]), index_of(enodes[k + 1]), index_of(enodes[k + 2])});
+          for (std::size_t k = 0; k + 2 < enodes.size(); k += 3) {
+            const Triangle t{index_of(enodes[k]), index_of(enodes[k + 1]), index_of(enodes[k + 2])};
+            const auto orphan = std::find(t.begin(), t.end(), -1);
+            if (orphan == t.end()) {
+              set.triangles.push_back(t);
+            } else if (dropped.count++ == 0) {
+              dropped.triangle = etags[k / 3];
+              dropped.node = enodes[k + static_cast<std::size_t>(orphan - t.begin())];
+            }
+          }
         }
       }
+      // A face over no tissue (what deleting a cut's tetrahedra leaves) carries no load and holds
+      // nothing: it is dropped, and said.
+      if (dropped.count > 0)
+        mesh.warnings.push_back(source + ": set '" + group_name(dim, tag) + "': dropped " + std::to_string(dropped.count) +
+                                " triangle(s) over nodes that no tetrahedron uses (the first: triangle " +
+                                std::to_string(dropped.triangle) + ", node " + std::to_string(dropped.node) +
+                                ", Gmsh's tags); no tissue lies under them" +
+                                (set.triangles.empty() ? "; the set is left empty" : ""));
       std::vector<std::size_t> group_nodes;
       std::vector<double> group_coords;
-      gmsh::model::mesh::getNodesForPhysicalGroup(dim, tag, group_nodes, group_coords);
+      // A surface set that lost every triangle holds nothing: it is not kept as a cloud of loose nodes.
+      if (!(dropped.count > 0 && set.triangles.empty()))
+        gmsh::model::mesh::getNodesForPhysicalGroup(dim, tag, group_nodes, group_coords);
       for (std::size_t t : group_nodes) {
         const int i = new_index[static_cast<std::size_t>(numbering(t))];
         if (i >= 0) set.nodes.push_back(i);  // a node no tetrahedron uses carries no stiffness

@@ -25,6 +25,7 @@ TetMesh with_midside_nodes(const TetMesh& linear) {
   if (linear.is_quadratic()) throw Error("internal: " + linear.source + " already has midside nodes");
   TetMesh q;
   q.source = linear.source;
+  q.warnings = linear.warnings;
   q.tets = linear.tets;
   q.midside.first = linear.num_nodes();
   q.midside.edges = unique_edges(linear);

@@ -46,6 +46,9 @@ struct TetMesh {
   std::map<std::string, NamedSet> sets;  ///< by physical name
   std::string source = "<memory>";       ///< file it came from, for messages
   MidsideNodes midside;                  ///< quadratic meshes only
+  /// What reading the file dropped (a set's triangle over a node that no tetrahedron uses), each
+  /// naming the file, the set and the node: the commands print them.
+  std::vector<std::string> warnings;
 
   bool is_quadratic() const { return !midside.edges.empty(); }
   /// The tetrahedra's corners: all nodes of a linear mesh, the first ones of a quadratic mesh.

@@ -154,6 +154,7 @@ FemModel unassembled_model(const mesh::TetMesh& mesh, const fem::MaterialMap& ma
   model.material = materials.base();
   model.materials = materials;
   model.element = element;
+  model.warnings = mesh.warnings;  // what reading the mesh dropped, said where the model's warnings are
   return model;
 }
 

@@ -50,14 +50,16 @@ def box(offset=(0.0, 0.0, 0.0), first_tag=1):
     return nodes, tets, face(0), face(N - 1)
 
 
-def write_msh(path, nodes, tets, base, top):
+def write_msh(path, nodes, tets, base, top, ghost=()):
+    """ghost: triangles of a fourth surface group 'ghost' (written only when given)."""
+    names = ['2 1 "base"', '2 2 "top"', '3 3 "brain"'] + (['2 4 "ghost"'] if ghost else [])
     lines = ["$MeshFormat", "2.2 0 8", "$EndMeshFormat",
-             "$PhysicalNames", "3", '2 1 "base"', '2 2 "top"', '3 3 "brain"', "$EndPhysicalNames",
+             "$PhysicalNames", str(len(names)), *names, "$EndPhysicalNames",
              "$Nodes", str(len(nodes))]
     lines += [f"{t} {x!r} {y!r} {z!r}" for t, (x, y, z) in sorted(nodes.items())]
-    lines += ["$EndNodes", "$Elements", str(len(base) + len(top) + len(tets))]
+    lines += ["$EndNodes", "$Elements", str(len(base) + len(top) + len(tets) + len(ghost))]
     e = 0
-    for group, kind, elements in ((1, 2, base), (2, 2, top), (3, 4, tets)):
+    for group, kind, elements in ((1, 2, base), (2, 2, top), (3, 4, tets), (4, 2, ghost)):
         for element in elements:
             e += 1
             lines.append(f"{e} {kind} 2 {group} {group} " + " ".join(map(str, element)))
@@ -90,6 +92,10 @@ def main():
     # The second tetrahedron with two nodes swapped: negative volume.
     write_msh(out / "inverted.msh", nodes, [tets[0], [tets[1][1], tets[1][0]] + tets[1][2:]] + tets[2:], base, top)
     write_msh(out / "nan-coordinate.msh", {**nodes, 14: (10.0, float("nan"), 10.0)}, tets, base, top)
+    # What deleting tetrahedra leaves: triangles of 'top' and 'base' over a node no tetrahedron
+    # uses (28 and 29 lie beside the cube), and a group 'ghost' of such a triangle alone.
+    loose = {**nodes, 28: (30.0, 10.0, 20.0), 29: (30.0, 10.0, 0.0)}
+    write_msh(out / "orphan-triangles.msh", loose, tets, base + [[3, 6, 29]], top + [[21, 24, 28]], ghost=[[21, 28, 24]])
     (out / "malformed.msh").write_text("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0 0\n2 zero 0 0\n")
 
 
