@@ -49,6 +49,10 @@ struct Scenario {
   std::string resolved_toml() const;
 };
 
+/// InputError naming the scenario's first [[cut]] when it has any: `command` (e.g. "roifem energy")
+/// measures the uncut model, and a cut left out without a word would be a silent wrong answer.
+void refuse_cuts(const Scenario& scenario, std::string_view command);
+
 /// Reads and checks a scenario. Throws InputError naming the file, line, table and key for syntax
 /// errors, unknown keys, wrong types, missing required keys and non-finite or out-of-range values.
 Scenario read_scenario(const std::filesystem::path& file);

@@ -574,6 +574,15 @@ Scenario scenario_from_table(const toml::table& root, const std::string& source,
   return s;
 }
 
+void refuse_cuts(const Scenario& scenario, std::string_view command) {
+  if (scenario.cuts.empty()) return;
+  const cutting::Blade& first = scenario.cuts.front();
+  throw InputError((first.where.empty() ? scenario.file.string() : first.where) + ": [[cut]] '" + first.name + "' (" +
+                   std::to_string(scenario.cuts.size()) + " cut(s) in all): " + std::string(command) +
+                   " does not take cuts and would measure the uncut model; `roifem run` takes them (remove the [[cut]] "
+                   "tables to study the uncut model)");
+}
+
 Scenario read_scenario(const std::filesystem::path& file) {
   return parse_scenario(read_scenario_text(file), file.string(), file.parent_path());
 }
