@@ -69,7 +69,7 @@ Trajectory run_trapezoid(const model::SecondOrderSystem& system, const model::To
                       t.step_s.push_back(seconds);
                       if (!tools.empty()) t.forces.push_back(tools.forces(s.u, s.t));
                     }},
-                    label);
+                    label, &log);
   } catch (const SolverError& e) {
     t.stopped = label + ": " + e.what();
   } catch (const ModelError& e) {
@@ -296,13 +296,13 @@ void LargeDeformationPaper::report(const LargeDeformationDrive& d) const {
       "\nFindings (Hansen & Larsen 1998, Section 5) at large deformation, driven by %s: the hybrid ROI against "
       "the full neo-Hookean model\n",
       drive_name(d.drive).c_str());
-  print_findings(paper_curves(d, LargeDeformationModel::hybrid), n_ramps, step_costs(d, "hybrid"), log_);
+  print_findings(paper_curves(d, LargeDeformationModel::hybrid), n_ramps, o_.steps, step_costs(d, "hybrid"), log_);
   for (const auto& c : d.curves)
     if (static_cast<long>(c.max_mm.size()) < o_.steps)
-      log_ << format("  [--] %s %s, ramp %.1f s, stopped at step %zu (below): the findings above count only the steps it took\n",
+      log_ << format("  [--] %s %s, ramp %.1f s, stopped at step %zu (below): a finding that needs it is not measured\n",
                      c.setup.c_str(), std::string(model_name(c.model)).c_str(), c.ramp_s, c.max_mm.size() + 1);
   log_ << "The paper's own model (linear, condensed) against the full neo-Hookean model:\n";
-  print_findings(paper_curves(d, LargeDeformationModel::linear_condensed), n_ramps, step_costs(d, "linear"), log_);
+  print_findings(paper_curves(d, LargeDeformationModel::linear_condensed), n_ramps, o_.steps, step_costs(d, "linear"), log_);
 
   log_ << format(
       "\nThe three models against the full neo-Hookean one, on each setup's ROI nodes (mm: peak over the run of the "
@@ -314,7 +314,8 @@ void LargeDeformationPaper::report(const LargeDeformationDrive& d) const {
       std::string line = format("  %-7s %4.1fs", d.curves[k].setup.c_str(), d.curves[k + r].ramp_s);
       for (std::size_t m = 0; m < 3; ++m) {
         const PaperCurve c = d.curves[k + m * n_ramps + r].as_paper_curve();
-        line += format("  %7.3f / %7.4f", peak_of(c.max_mm), steady_mean(c));
+        line += c.mean_mm.size() > 100 ? format("  %7.3f / %7.4f", peak_of(c.max_mm), steady_mean(c))
+                                       : format("  %7.3f / %7s", peak_of(c.max_mm), "-");
       }
       log_ << line << '\n';
     }

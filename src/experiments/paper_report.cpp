@@ -39,7 +39,10 @@ void print_findings(const PaperResults& r, std::ostream& log) {
       << (r.drive == PaperDrive::spatulas ? ", driven by spatulas:\n" : ":\n");
   std::vector<double> step_s;
   for (const auto& t : r.timing) step_s.push_back(t.step_s_median);
-  print_findings(r.curves, r.ramps_s.size(), step_s, log);
+  // The linear runs take every step or throw: each curve is complete.
+  long steps = 0;
+  for (const auto& c : r.curves) steps = std::max(steps, static_cast<long>(c.max_mm.size()));
+  print_findings(r.curves, r.ramps_s.size(), steps, step_s, log);
   // The model is linear: every error scales with the force. Say at which scale this run is.
   if (!r.curves.empty() && r.opening_mm > 0) {
     const double scale = paper_peak_max_error_mm / peak(r.curves.front().max_mm);
@@ -90,28 +93,62 @@ void print_table2(const PaperResults& r, std::ostream& log) {
 
 }  // namespace
 
-PaperFindings check_findings(const std::vector<PaperCurve>& curves, std::size_t n_ramps, const std::vector<double>& step_s) {
+namespace {
+
+/// Folds one check into a finding: a check on something not measured makes the finding not
+/// measured, whatever else holds; otherwise one failure fails it.
+void fold(Finding& finding, bool measured, bool holds) {
+  if (finding == Finding::not_measured) return;
+  if (!measured)
+    finding = Finding::not_measured;
+  else if (!holds)
+    finding = Finding::fails;
+}
+
+}  // namespace
+
+bool PaperFindings::all_measured() const {
+  for (const Finding f : {steady_below_0_2_mm, faster_ramp_peaks_higher, smaller_roi_peaks_higher, condensed_step_faster})
+    if (f == Finding::not_measured) return false;
+  return true;
+}
+
+PaperFindings check_findings(const std::vector<PaperCurve>& curves, std::size_t n_ramps, long steps,
+                             const std::vector<double>& step_s) {
   PaperFindings f;
-  for (const auto& c : curves) f.steady_below_0_2_mm = f.steady_below_0_2_mm && steady_mean(c) < 0.2;
+  auto complete = [steps](const PaperCurve& c) { return static_cast<long>(c.max_mm.size()) >= steps && !c.max_mm.empty(); };
+  for (const auto& c : curves) fold(f.steady_below_0_2_mm, complete(c) && c.mean_mm.size() > 100, steady_mean(c) < 0.2);
   const std::size_t n_setups = n_ramps ? curves.size() / n_ramps : 0;
+  // A comparison with nothing to compare (one ramp, one setup, no condensed model) is not measured.
+  if (curves.empty()) f.steady_below_0_2_mm = Finding::not_measured;
+  if (n_ramps < 2 || n_setups == 0) f.faster_ramp_peaks_higher = Finding::not_measured;
+  if (n_setups < 2) f.smaller_roi_peaks_higher = Finding::not_measured;
+  if (step_s.size() < 2) f.condensed_step_faster = Finding::not_measured;
   for (std::size_t s = 0; s < n_setups; ++s)
-    for (std::size_t k = 0; k + 1 < n_ramps; ++k)
-      f.faster_ramp_peaks_higher =
-          f.faster_ramp_peaks_higher && peak(curves[s * n_ramps + k].max_mm) > peak(curves[s * n_ramps + k + 1].max_mm);
+    for (std::size_t k = 0; k + 1 < n_ramps; ++k) {
+      const PaperCurve &faster = curves[s * n_ramps + k], &slower = curves[s * n_ramps + k + 1];
+      fold(f.faster_ramp_peaks_higher, complete(faster) && complete(slower), peak(faster.max_mm) > peak(slower.max_mm));
+    }
   for (std::size_t k = 0; k < n_ramps && n_setups > 1; ++k)
-    f.smaller_roi_peaks_higher = f.smaller_roi_peaks_higher && peak(curves[n_ramps + k].max_mm) > peak(curves[k].max_mm);
-  for (std::size_t k = 1; k < step_s.size(); ++k) f.condensed_step_faster = f.condensed_step_faster && step_s[k] < step_s[0];
+    fold(f.smaller_roi_peaks_higher, complete(curves[k]) && complete(curves[n_ramps + k]),
+         peak(curves[n_ramps + k].max_mm) > peak(curves[k].max_mm));
+  for (std::size_t k = 1; k < step_s.size(); ++k)
+    fold(f.condensed_step_faster, step_s[0] > 0 && step_s[k] > 0, step_s[k] < step_s[0]);
   return f;
 }
 
-void print_findings(const std::vector<PaperCurve>& curves, std::size_t n_ramps, const std::vector<double>& step_s,
+void print_findings(const std::vector<PaperCurve>& curves, std::size_t n_ramps, long steps, const std::vector<double>& step_s,
                     std::ostream& log) {
-  for (const auto& c : curves)
-    log << format(
-        "  %-8s ramp %.1f s: peak max error %6.3f mm, peak mean error %6.3f mm, steady mean error (steps > 100) %.4f mm\n",
-        c.setup.c_str(), c.ramp_s, peak(c.max_mm), peak(c.mean_mm), steady_mean(c));
-  const PaperFindings f = check_findings(curves, n_ramps, step_s);
-  auto mark = [](bool holds) { return holds ? "yes" : "NO"; };
+  for (const auto& c : curves) {
+    const std::string steady = c.mean_mm.size() > 100 ? format("%.4f mm", steady_mean(c)) : std::string("- (not measured)");
+    const std::string stopped = static_cast<long>(c.max_mm.size()) < steps
+                                    ? format(" (stopped after %zu of %ld steps)", c.max_mm.size(), steps)
+                                    : std::string();
+    log << format("  %-8s ramp %.1f s: peak max error %6.3f mm, peak mean error %6.3f mm, steady mean error (steps > 100) %s%s\n",
+                  c.setup.c_str(), c.ramp_s, peak(c.max_mm), peak(c.mean_mm), steady.c_str(), stopped.c_str());
+  }
+  const PaperFindings f = check_findings(curves, n_ramps, steps, step_s);
+  auto mark = [](Finding finding) { return finding == Finding::holds ? "yes" : finding == Finding::fails ? "NO" : "--"; };
   log << format("  [%s] steady-state mean error below 0.2 mm for every ramp and setup\n", mark(f.steady_below_0_2_mm));
   log << format("  [%s] the faster the ramp, the higher the max-error peak (0.5 s highest, 2 s lowest)\n",
                 mark(f.faster_ramp_peaks_higher));
