@@ -188,6 +188,7 @@ function onJson(m) {
     live.hello = m;
     live.role = m.role;
     document.getElementById('scenario').textContent = `${m.scenario}: ${m.vertices} surface nodes, ${m.rate_hz} Hz`;
+    document.getElementById('loads').textContent = `loads beside the hand: ${m.loads}`;
     const models = document.getElementById('models');
     m.models.forEach((model, k) => {
       const b = document.createElement('button');
@@ -245,17 +246,22 @@ function onState(m) {
   lastReadout = now;
   live.shown = m;  // the state the readouts show
   plotDirty = true;
-  document.getElementById('force').textContent = magnitude.toFixed(2);
-  document.getElementById('force-parts').textContent = `(${f.map((x) => x.toFixed(2)).join(', ')})`;
+  // A failed tick ends the grab: say so where the force was, not a frozen force that looks live.
+  document.getElementById('force').textContent = m.failure ? 'failed' : magnitude.toFixed(2);
+  document.getElementById('force-parts').textContent = m.failure ? m.failure : `(${f.map((x) => x.toFixed(2)).join(', ')})`;
+  document.getElementById('force-parts').classList.toggle('failure', !!m.failure);
   const t = m.ticks;
   showComparison(m);
-  document.getElementById('physics').textContent =
-    `${t.rate_hz.toFixed(0)} ticks/s, median ${t.median_ms.toFixed(3)} ms, p99 ${t.p99_ms.toFixed(3)} ms, ` +
-    `late ${t.late_per_10k.toFixed(1)} per 10,000 (of ${t.count})`;
+  document.getElementById('physics').textContent = m.grip_nodes > 0 || t.rate_hz > 0
+    ? `${t.rate_hz.toFixed(0)} ticks/s, median ${t.median_ms.toFixed(3)} ms, p99 ${t.p99_ms.toFixed(3)} ms, ` +
+      `late ${t.late_per_10k.toFixed(1)} per 10,000 (of ${t.count})`
+    : `idle between grabs (the loop ticks while the hand holds); last grab: median ${t.median_ms.toFixed(3)} ms, ` +
+      `p99 ${t.p99_ms.toFixed(3)} ms (of ${t.count})`;
   // A neo-Hookean model: what its fixed budget of Newton iterations left of the law's correction.
-  document.getElementById('newton').textContent = m.newton
-    ? `neo-Hookean: ${m.newton.iterations} Newton iterations a tick, residual ${m.newton.residual.toExponential(1)} of the law's correction`
-    : '';
+  document.getElementById('newton').textContent = !m.newton ? ''
+    : m.failure ? 'neo-Hookean: no tick (the grab ended at a failed tick)'
+    : m.grip_nodes === 0 ? 'neo-Hookean: no grab'
+    : `neo-Hookean: ${m.newton.iterations} Newton iterations a tick, residual ${m.newton.residual.toExponential(1)} of the law's correction`;
 }
 
 function drawForcePlot() {

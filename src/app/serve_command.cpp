@@ -10,14 +10,13 @@
 #include "serve/asset_files.hpp"
 #include "serve/live_scene.hpp"
 #include "serve/physics_loop.hpp"
+#include "serve/request_guard.hpp"
 #include "serve/server.hpp"
 #include "solvers/blas_threads.hpp"
 
 namespace roifem::app {
 
 namespace {
-
-bool is_loopback(const std::string& host) { return host == "127.0.0.1" || host == "::1" || host.rfind("127.", 0) == 0; }
 
 /// What the command line gives, over the scenario's [haptic] table, over the defaults.
 struct HapticChoice {
@@ -27,8 +26,9 @@ struct HapticChoice {
 };
 
 void serve(const std::string& scenario_file, const serve::ServeOptions& options, const HapticChoice& haptic, double radius_mm,
-           const std::vector<std::string>& models, const serve::PhysicsSettings& hand) {
-  if (!is_loopback(options.host))
+           const std::vector<std::string>& models, const serve::PhysicsSettings& hand, serve::SceneLoads loads) {
+  serve::check_listen_address(options.host);  // before the models' minutes of preparation
+  if (!serve::is_loopback_address(options.host))
     std::cerr << "roifem serve: warning: listening on " << options.host
               << ", not the loopback address: anyone who reaches this machine can open the page and steer the model\n";
   const scenario::Scenario scenario = scenario::read_scenario(scenario_file);
@@ -39,7 +39,7 @@ void serve(const std::string& scenario_file, const serve::ServeOptions& options,
   const solvers::BlasThreadsScope blas(1);
   if (!options.record.empty()) check_output_directory(options.record);
   std::cout << "roifem serve: preparing the models of " << scenario_file << "\n" << std::flush;
-  serve::LiveScene scene(scenario, settings.rate_hz, radius_mm, models, std::cout, settings.newton);
+  serve::LiveScene scene(scenario, settings.rate_hz, radius_mm, models, std::cout, settings.newton, loads);
   serve::PhysicsLoop physics(scene, hand);
   serve::Server server(scene, physics, serve::AssetFiles({{"/", serve::page_directory()}, {"/three/", serve::three_directory()}}),
                        options, std::cout);
@@ -62,6 +62,7 @@ void add_serve_command(CLI::App& app, Action& action) {
     double radius_mm = 5;
     std::vector<std::string> models;
     serve::PhysicsSettings hand;
+    bool loads = false;
   };
   auto o = std::make_shared<Options>();
   auto* cmd = app.add_subcommand(
@@ -69,8 +70,8 @@ void add_serve_command(CLI::App& app, Action& action) {
       "Serve a page on which you steer the scenario's brain live: drag a tool on its surface, see it deform and read the "
       "force, at the haptic rate, and switch between the full model and the condensed ROI (static, Guyan, Craig-Bampton), "
       "linear or at large deformation (neo-Hookean: the whole brain, or the hybrid ROI). "
-      "The scenario's own tools and cuts are left out; every grab starts from rest and can be saved for `roifem run` to "
-      "replay (--record). Nothing is fetched from outside: three.js is Debian's libjs-three");
+      "The scenario's own tools and cuts are left out, and its loads unless --loads; every grab starts from rest and can "
+      "be saved for `roifem run` to replay (--record). Nothing is fetched from outside: three.js is Debian's libjs-three");
   cmd->add_option("SCENARIO", o->scenario, "Scenario file (.toml): mesh, material, supports, loads, ROI")->required();
   cmd->add_option("--port", o->serve.port, "TCP port (0: any free one; the line 'open http://...' says which)")
       ->capture_default_str();
@@ -102,13 +103,17 @@ void add_serve_command(CLI::App& app, Action& action) {
                   "Stop a tick's iterations earlier, once the residual is within this share of the law's correction (0: "
                   "never; e.g. 1e-12 with --newton-iterations 200 converges every tick, as roifem run's replay does)")
       ->capture_default_str();
+  cmd->add_flag("--loads", o->loads,
+                "Keep the scenario's [[load]]s, ramping from each grab's start as in `roifem run` (default: left out, the "
+                "hand alone on the unloaded brain; the page says which)");
   cmd->add_option("--record", o->record,
                   "Write every grab to DIR (grab-NNN-K.csv, its path; -force.csv, the live force; .toml, the scenario "
                   "`roifem run` replays it with)");
   cmd->callback([&action, o] {
     action = [o] {
       o->serve.record = o->record;
-      serve(o->scenario, o->serve, o->haptic, o->radius_mm, o->models, o->hand);
+      serve(o->scenario, o->serve, o->haptic, o->radius_mm, o->models, o->hand,
+            o->loads ? serve::SceneLoads::kept : serve::SceneLoads::left_out);
     };
   });
 }

@@ -146,7 +146,7 @@ scenario::Scenario with_law(scenario::Scenario scenario, fem::MaterialModel law)
 }  // namespace
 
 LiveScene::LiveScene(const scenario::Scenario& scenario, double rate_hz, double radius_mm, const std::vector<std::string>& models,
-                     std::ostream& log, integrators::HapticNewton newton)
+                     std::ostream& log, integrators::HapticNewton newton, SceneLoads loads)
     : scenario_(scenario), dt_(1.0 / rate_hz), radius_mm_(radius_mm), newton_(newton) {
   if (!(rate_hz > 0) || !(rate_hz <= 100000))
     throw InputError(io::format("serve: a haptic rate of %g Hz (0 < rate <= 100 kHz)", rate_hz));
@@ -160,6 +160,13 @@ LiveScene::LiveScene(const scenario::Scenario& scenario, double rate_hz, double 
         << " [[cut]](s) are left out: the page's hand is the tool\n";
   scenario_.tools.clear();
   scenario_.cuts.clear();
+  const std::size_t given = scenario_.loads.size();
+  if (loads == SceneLoads::left_out) scenario_.loads.clear();
+  loads_said_ = given == 0 ? "none (the scenario has no [[load]])"
+                : loads == SceneLoads::kept
+                    ? io::format("the scenario's %zu [[load]](s), ramping from each grab's start (--loads)", given)
+                    : io::format("none: the scenario's %zu [[load]](s) left out, the hand alone (--loads keeps them)", given);
+  log << "serve: loads: " << loads_said_ << "\n";
   for (const auto& [name, reduction, law, cut] : model_plan(scenario_, models)) {
     const Stopwatch clock;
     scenario::Scenario variant = with_law(scenario_, law);
@@ -275,6 +282,12 @@ std::optional<std::size_t> LiveScene::reference_of(std::size_t k) const {
   for (std::size_t j = 0; j < models_.size(); ++j)
     if (!models_[j].condensed() && !models_[j].cuttable() && models_[j].law == live.law) return j;
   return std::nullopt;
+}
+
+std::size_t LiveScene::default_model() const {
+  for (std::size_t k = 0; k < models_.size(); ++k)
+    if (models_[k].condensed()) return k;
+  return 0;
 }
 
 scenario::Scenario LiveScene::scenario_of(std::size_t k) const { return with_law(scenario_, models_.at(k).law); }

@@ -95,6 +95,12 @@ struct HapticSettings {
 HapticSettings haptic_settings(const scenario::Scenario& scenario, std::optional<double> rate_hz,
                                std::optional<int> newton_iterations, double newton_tolerance);
 
+/// What a grab on the page feels beside the hand: by default the unloaded brain (the scenario's
+/// [[load]]s, ramping during every grab, turned the paper's 16 mN wall forces on under the hand and
+/// inverted the hybrid ROI within seconds); `kept`: the scenario's loads, ramping from each grab's
+/// start as in `roifem run` (serve --loads). The page and the replay say which.
+enum class SceneLoads { left_out, kept };
+
 class LiveScene {
  public:
   /// Reads the mesh, builds and condenses each model and factors its haptic loop at `rate_hz`.
@@ -104,9 +110,10 @@ class LiveScene {
   /// and static-neo-hookean first; without an [roi], full and full-cut). InputError for an unknown
   /// name, POD, a reduction without an [roi], the neo-Hookean law with a reduction by modes, or a
   /// cut model other than full-cut and static-cut.
-  /// `newton`: the neo-Hookean models' iterations per tick. Progress lines go to `log`.
+  /// `newton`: the neo-Hookean models' iterations per tick; `loads`: the scenario's [[load]]s left
+  /// out or kept (SceneLoads). Progress lines go to `log`.
   LiveScene(const scenario::Scenario& scenario, double rate_hz, double radius_mm, const std::vector<std::string>& models,
-            std::ostream& log, integrators::HapticNewton newton = {});
+            std::ostream& log, integrators::HapticNewton newton = {}, SceneLoads loads = SceneLoads::left_out);
   LiveScene(const LiveScene&) = delete;
   LiveScene& operator=(const LiveScene&) = delete;
 
@@ -128,10 +135,15 @@ class LiveScene {
   /// The display's thread: model k drawn whole again, from `fresh` (make_whole's).
   void show_whole(std::size_t k, std::shared_ptr<simulation::ScenarioModel> fresh);
   double dt() const { return dt_; }
+  /// The loads a grab feels beside the hand, in words for the page ("none: ...", or the kept ones).
+  const std::string& loads_said() const { return loads_said_; }
   double radius_mm() const { return radius_mm_; }
   /// The mesh's bounding box (m): targets are clamped to it, widened by the largest reach.
   const Eigen::AlignedBox3d& box() const { return box_; }
   const integrators::HapticNewton& newton() const { return newton_; }
+  /// The model a page starts on: the first ROI model where the scenario has an [roi] (what it was
+  /// written for), else the first.
+  std::size_t default_model() const;
   /// The model Compare holds model k's force against: the full model with k's law, uncut (none
   /// for a full model, a cut model, or when that one is not prepared).
   std::optional<std::size_t> reference_of(std::size_t k) const;
@@ -160,6 +172,7 @@ class LiveScene {
   Eigen::AlignedBox3d box_;
   double dt_, radius_mm_;
   integrators::HapticNewton newton_;
+  std::string loads_said_;
   /// live's surface_unknown and surface_static, for live.view.
   void map_surface(LiveModel& live) const;
   /// The vertices' flags (fixed, each model's ROI).

@@ -89,10 +89,10 @@ std::string hello_message(const LiveScene& scene, std::size_t model, bool driver
   const auto& box = scene.box();
   return io::format(
       "{\"type\":\"hello\",\"scenario\":%s,\"models\":[%s],\"model\":%zu,\"role\":\"%s\",\"rate_hz\":%.6g,\"radius_mm\":%.6g,"
-      "\"box_mm\":[%s,%s],\"vertices\":%zu}",
+      "\"box_mm\":[%s,%s],\"vertices\":%zu,\"loads\":%s}",
       json_string(scene.scenario().file.filename().string()).c_str(), models.c_str(), model, driver ? "driver" : "watcher",
       1.0 / scene.dt(), scene.radius_mm(), vec3(box.min() / mm).c_str(), vec3(box.max() / mm).c_str(),
-      scene.surface().nodes.size());
+      scene.surface().nodes.size(), json_string(scene.loads_said()).c_str());
 }
 
 std::string state_message(const LiveScene& scene, const PhysicsSnapshot& s, const TickFigures& ticks, const FrameFigures& frame,
@@ -112,11 +112,12 @@ std::string state_message(const LiveScene& scene, const PhysicsSnapshot& s, cons
       "{\"type\":\"state\",\"t\":%.6f,\"model\":%zu,\"model_name\":%s,\"grab\":%u,\"holding\":%s,\"grip_nodes\":%zu,"
       "\"force_mN\":%s,\"tool_mm\":%s,\"g_mm\":%s,\"seq\":%u,\"recording\":%s,"
       "\"ticks\":{\"median_ms\":%.4f,\"p99_ms\":%.4f,\"late_per_10k\":%.2f,\"rate_hz\":%.1f,\"count\":%ld,\"slips\":%ld},"
-      "\"frame\":{\"build_ms\":%.3f,\"recovery_ms\":%.3f}%s%s}",
+      "\"frame\":{\"build_ms\":%.3f,\"recovery_ms\":%.3f},\"failure\":%s%s%s}",
       s.t, s.model, json_string(scene.models()[s.model].name).c_str(), s.grab, s.holding ? "true" : "false", s.grip_nodes,
       vec3(1e3 * s.force).c_str(), vec3(s.grip_center_mm + s.g / mm).c_str(), vec3(s.g / mm).c_str(), s.hand_sequence,
       recording ? "true" : "false", ticks.median_ms, ticks.p99_ms, ticks.late_per_10k, ticks.rate_hz, ticks.count, ticks.slips,
-      frame.build_ms, frame.recovery_ms, comparison.c_str(), newton.c_str());
+      frame.build_ms, frame.recovery_ms, s.failure.empty() ? "null" : json_string(s.failure).c_str(), comparison.c_str(),
+      newton.c_str());
 }
 
 std::string notice_message(const std::string& text) { return "{\"type\":\"notice\",\"text\":" + json_string(text) + "}"; }

@@ -39,7 +39,8 @@ double seconds_between(const timespec& a, const timespec& b) {
 
 }  // namespace
 
-PhysicsLoop::PhysicsLoop(LiveScene& scene, PhysicsSettings settings) : scene_(scene), settings_(settings) {
+PhysicsLoop::PhysicsLoop(LiveScene& scene, PhysicsSettings settings)
+    : scene_(scene), settings_(settings), model_(scene.default_model()) {
   if (!(settings.hand_speed_mm_s > 0))
     throw InputError(io::format("serve: a hand speed of %g mm/s (it must be positive)", settings.hand_speed_mm_s));
   if (!(settings.reach_mm > 0)) throw InputError(io::format("serve: a reach of %g mm (it must be positive)", settings.reach_mm));
@@ -148,6 +149,7 @@ void PhysicsLoop::handle(const HandMessage& event) {
       }
       model_ = event.model;
       attached_ = holding_ = false;
+      failure_.clear();
       g_ = target_g_ = force_ = Vec3::Zero();
       state_ = {};
       say("model: " + scene_.models()[model_].name);
@@ -200,12 +202,13 @@ void PhysicsLoop::pick(const HandMessage& event) {
   state_ = model::State::at_rest(scene_.models()[model_].model->system().size());
   haptic.reset(state_);
   attached_ = holding_ = true;
+  failure_.clear();
   g_ = target_g_ = force_ = Vec3::Zero();
   ++grab_;
   samples_.push(sample());
-  say(io::format("grab %u: %zu nodes at (%.1f, %.1f, %.1f) mm on the %s model, attached in %.1f ms%s", grab_, grip_.nodes.size(),
-                 grip_.center_mm.x(), grip_.center_mm.y(), grip_.center_mm.z(), scene_.models()[model_].name.c_str(),
-                 1e3 * clock.seconds(), refactored.c_str()));
+  say(io::format("grab %u: %zu node(s) at (%.1f, %.1f, %.1f) mm on the %s model, attached in %.1f ms%s", grab_,
+                 grip_.nodes.size(), grip_.center_mm.x(), grip_.center_mm.y(), grip_.center_mm.z(),
+                 scene_.models()[model_].name.c_str(), 1e3 * clock.seconds(), refactored.c_str()));
 }
 
 void PhysicsLoop::make_whole() {
@@ -284,11 +287,13 @@ void PhysicsLoop::cut(const HandMessage& event) {
     say(std::string("refused cut: ") + e.what());
     return;
   }
-  live.haptic_stale = !attached_;
+  // Between grabs the next pick factors the cut model afresh; during one the grab goes on with the
+  // corrected factor, and the next pick after it factors afresh too (a factor with a correction
+  // takes no new hand: HapticTrapezoid::attach).
+  live.haptic_stale = true;
   if (attached_) try {
       live.haptic->take_change(taken.change, state_);
     } catch (const Error& e) {  // the model is cut: the next pick factors it afresh
-      live.haptic_stale = true;
       attached_ = holding_ = false;
       say(std::string("the cut's correction failed, the grab ends: ") + e.what());
     }
@@ -359,6 +364,7 @@ void PhysicsLoop::publish() {
   const LiveModel& live = scene_.models()[model_];
   snapshot_.newton_iterations = live.nonlinear() && attached_ ? live.haptic->last_iterations() : 0;
   snapshot_.newton_residual = live.nonlinear() && attached_ ? live.haptic->last_residual() : 0;
+  snapshot_.failure = failure_;
   snapshot_fresh_ = true;
   snapshot_wanted_.store(false, std::memory_order_release);
 }
@@ -393,8 +399,10 @@ void PhysicsLoop::run() {
       force_ = scene_.models()[model_].haptic->tick(g_, state_);
       tick_seconds_.push(static_cast<float>(clock.seconds()));
     } catch (const Error& e) {
-      say(std::string("the tick failed, the grab ends: ") + e.what());
+      failure_ = io::format("the tick at t = %.4f s failed, the grab ended: %s", state_.t + dt, e.what());
+      say(failure_);
       attached_ = holding_ = false;
+      force_ = Vec3::Zero();
       continue;
     }
     ++ticks_;

@@ -75,6 +75,9 @@ struct PhysicsSnapshot {
   /// to the law's correction; integrators/haptic_trapezoid.hpp). 0 on a linear model.
   int newton_iterations = 0;
   double newton_residual = 0;
+  /// Why this grab's last tick failed (empty: none): the page shows it where the force was, not a
+  /// frozen force beside "0 Newton iterations". Cleared by the next pick or model.
+  std::string failure;
 };
 
 class PhysicsLoop {
@@ -134,6 +137,7 @@ class PhysicsLoop {
   std::size_t model_ = 0;
   std::uint32_t grab_ = 0, hand_sequence_ = 0;
   bool attached_ = false, holding_ = false;
+  std::string failure_;  ///< PhysicsSnapshot::failure
   Grip grip_;
   model::State state_;
   Vec3 g_ = Vec3::Zero(), target_g_ = Vec3::Zero(), force_ = Vec3::Zero();

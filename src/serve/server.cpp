@@ -19,6 +19,7 @@
 #include "serve/hand_message.hpp"
 #include "serve/hand_recording.hpp"
 #include "serve/page_messages.hpp"
+#include "serve/request_guard.hpp"
 #include "serve/scalpel.hpp"
 
 namespace roifem::serve {
@@ -65,9 +66,9 @@ class Server::Impl {
         collect_timer_(io_),
         second_timer_(io_),
         ticks_(scene.dt()) {
+    check_listen_address(options_.host);
     beast::error_code ec;
     const auto address = net::ip::make_address(options_.host, ec);
-    if (ec) throw InputError("serve: --host '" + options_.host + "' is not an IP address (" + ec.message() + ")");
     const tcp::endpoint endpoint(address, options_.port);
     acceptor_.open(endpoint.protocol(), ec);
     if (!ec) acceptor_.set_option(net::socket_base::reuse_address(true), ec);
@@ -76,7 +77,8 @@ class Server::Impl {
     if (ec)
       throw InputError(
           io::format("serve: cannot listen on %s port %u: %s", options_.host.c_str(), options_.port, ec.message().c_str()));
-    mesh_for(0);
+    snapshot_.model = scene_.default_model();  // the physics' first, until it publishes
+    mesh_for(snapshot_.model);
   }
 
   unsigned short port() const { return acceptor_.local_endpoint().port(); }
@@ -101,6 +103,7 @@ class Server::Impl {
   const AssetFiles& assets() const { return assets_; }
   std::ostream& log() { return log_; }
   bool origin_allowed(const http::request<http::string_body>& request) const;
+  bool host_allowed(const http::request<http::string_body>& request) const;
   void joined(const std::shared_ptr<WsSession>& session);
   void left(WsSession& session);
   void received(WsSession& session, const std::string& bytes, bool text);
@@ -273,6 +276,12 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   }
 
   void on_request(const http::request<http::string_body>& request) {
+    if (!server_.host_allowed(request)) {
+      server_.log() << "serve: refused a request for host '" << request[http::field::host]
+                    << "' (not this machine's loopback or listening address: a rebound name?)\n"
+                    << std::flush;
+      return respond(request, http::status::forbidden, "not a host this server answers for\n");
+    }
     if (websocket::is_upgrade(request)) {
       if (request.target() != "/ws") return respond(request, http::status::not_found, "no WebSocket here: it is /ws\n");
       if (!server_.origin_allowed(request)) {
@@ -317,11 +326,22 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   }
 };
 
+namespace {
+
+std::optional<std::string_view> header(const http::request<http::string_body>& request, http::field field) {
+  const auto it = request.find(field);
+  if (it == request.end()) return std::nullopt;
+  return std::string_view(it->value().data(), it->value().size());
+}
+
+}  // namespace
+
 bool Server::Impl::origin_allowed(const http::request<http::string_body>& request) const {
-  const auto origin = request.find(http::field::origin);
-  if (origin == request.end()) return true;  // not a browser: no other page behind it
-  const auto host = request.find(http::field::host);
-  return host != request.end() && origin->value() == "http://" + std::string(host->value());
+  return serve::origin_allowed(header(request, http::field::origin), header(request, http::field::host));
+}
+
+bool Server::Impl::host_allowed(const http::request<http::string_body>& request) const {
+  return serve::host_allowed(header(request, http::field::host), options_.host);
 }
 
 void Server::Impl::accept() {
@@ -402,7 +422,12 @@ void Server::Impl::cut(HandMessage message) {
   // The blade's geometry against the whole mesh here, not between two ticks (20 ms on the 100k
   // brain); which of those tetrahedra are still there is the physics' to say.
   const cutting::Blade blade = scalpel_blade("scalpel", message.point_mm, message.edge_to_mm, message.move_mm, 0, 1);
-  message.crossed = crossed_tetrahedra(blade, scene_.mesh());
+  try {
+    message.crossed = crossed_tetrahedra(blade, scene_.mesh());
+  } catch (const InputError& e) {  // a degenerate stroke: refused by the same rule as a [[cut]]'s
+    say(std::string("refused cut: ") + e.what());
+    return;
+  }
   if (const std::string refused = physics_.post(message); !refused.empty()) say("cut " + refused);
 }
 

@@ -69,6 +69,9 @@ try {
 
   // Compare: the full model follows the same hand in a thread of its own (where one is served).
   const defaultModels = !serveOptions.includes('--models');
+  const start = await page.evaluate(() => document.querySelector('#models button.current')?.textContent);
+  if (defaultModels) check(hello.models[hello.model].name === 'static' && start === 'static',
+                           `an ROI scenario's page starts on its ROI model: ${hello.models[hello.model].name} (marked: ${start})`);
   await page.click('#compare');
   await page.waitForFunction(() => window.roifem.notices.some((n) => n.startsWith('compare: ')), { timeout: 10000 });
   const comparing = await page.evaluate(() => window.roifem.notices.some((n) => n.startsWith('compare: on')));
@@ -175,7 +178,16 @@ with h5py.File(sys.argv[1]) as f:
       await page.mouse.move(target.x + 0.5 * k, target.y - 0.3 * k);
       await sleep(20);
     }
-    await sleep(300);
+    // Held for 4 s, longer than the 0.5-3 s after which every grab of the hybrid ROI ended with an
+    // inverted tetrahedron while the scenario's loads ramped up under the hand (issue 54).
+    const heldFrom = await page.evaluate(() => window.roifem.shown.t);
+    await sleep(4000);
+    const still = await page.evaluate(() => ({ state: window.roifem.shown, loads: document.getElementById('loads').textContent }));
+    check(still.state.failure === null && still.state.grip_nodes > 0 && still.state.t > heldFrom + 3,
+          `the hybrid ROI held ${(still.state.t - heldFrom).toFixed(1)} s of physics after the drag, no tick failed` +
+          (still.state.failure ? `: ${still.state.failure}` : ''));
+    if (defaultModels) check(/^loads beside the hand: none: the scenario's 2 \[\[load\]\]\(s\) left out/.test(still.loads),
+                             `the page says what loads a grab feels: "${still.loads}"`);
     const nonlinear = await page.evaluate(() => ({ state: window.roifem.shown, text: document.getElementById('newton').textContent,
                                                    compare: document.getElementById('compare-text').textContent,
                                                    largest: window.roifem.largestDisplacementMm }));

@@ -148,6 +148,30 @@ TEST(ServeCut, StrokesBetweenGrabsAndDuringOneAreReplayedByRoifemRunWithTheLiveF
     if (n.starts_with("cut: ")) std::printf("[ figures ] %s\n", n.c_str());
 }
 
+// A cut during a grab left the haptic loop's factor corrected, and every later pick on the cut
+// model was refused ("attach it before the model is cut") until Whole again: the next pick after
+// such a grab takes the cut model with a fresh factor.
+TEST(ServeCut, APickAfterAGrabThatWasCutTakesTheCutModelWithAFreshFactor) {
+  const auto scene = test::paper_scene({"static-cut"});
+  const Vec3 point = test::pickable_point(*scene);
+  const HandMessage before = test::stroke_beside(*scene, 0, point, 6.0);
+  const HandMessage during =
+      test::stroke(*scene, before.point_mm - Vec3(0, 0, 2), before.edge_to_mm - Vec3(0, 0, 2), before.move_mm * 1.5);
+  const CutGrab live = cut_grab(*scene, 0, point, before, during);
+  ASSERT_EQ(live.cuts.size(), 2U) << joined(live.notices);
+  ASSERT_TRUE(live.cuts[1].during);
+  PhysicsLoop loop(*scene, {.hand_speed_mm_s = 40, .reach_mm = 20});
+  loop.start();
+  loop.post({.kind = HandKind::pick, .sequence = 1, .point_mm = point, .model = 0});
+  loop.post({.kind = HandKind::target, .sequence = 2, .point_mm = point + Vec3(0.5, 0, 0), .model = 0});
+  const PhysicsSnapshot s = wait_turns(loop, 30);
+  loop.stop();
+  const std::string said = joined(loop.take_notices());
+  EXPECT_EQ(said.find("refused pick"), std::string::npos) << said;
+  EXPECT_NE(said.find("its factor made afresh after the cuts"), std::string::npos) << said;
+  EXPECT_GT(s.t, 0.0) << "the second grab ticks";
+}
+
 TEST(ServeCut, RefusesAModelNotCutTheStaticPartTheHandsNodesAndAPickOnTheCut) {
   const auto scene = test::paper_scene({"static", "static-cut"});
   const Vec3 point = test::pickable_point(*scene);

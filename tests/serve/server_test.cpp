@@ -67,7 +67,8 @@ class RunningServer {
 /// A WebSocket client with blocking reads that give up after 10 s.
 class Client {
  public:
-  explicit Client(unsigned short port, const std::string& origin = "") : ws_(io_) {
+  /// `host`: the Host header's name ("127.0.0.1:PORT" when empty).
+  explicit Client(unsigned short port, const std::string& origin = "", const std::string& host = "") : ws_(io_) {
     tcp::resolver resolver(io_);
     net::connect(ws_.next_layer(), resolver.resolve("127.0.0.1", std::to_string(port)));
     timeval timeout{.tv_sec = 10, .tv_usec = 0};
@@ -75,7 +76,7 @@ class Client {
     if (!origin.empty())
       ws_.set_option(
           websocket::stream_base::decorator([origin](websocket::request_type& r) { r.set(http::field::origin, origin); }));
-    ws_.handshake("127.0.0.1:" + std::to_string(port), "/ws");
+    ws_.handshake(host.empty() ? "127.0.0.1:" + std::to_string(port) : host, "/ws");
   }
   void send(const std::string& bytes, bool binary = true) {
     ws_.binary(binary);
@@ -141,12 +142,13 @@ std::string state_when(Client& client, Condition condition) {
   return state;
 }
 
-int http_status(unsigned short port, const std::string& target, http::verb verb = http::verb::get) {
+int http_status(unsigned short port, const std::string& target, http::verb verb = http::verb::get,
+                const std::string& host = "127.0.0.1") {
   net::io_context io;
   beast::tcp_stream stream(io);
   stream.connect(tcp::resolver(io).resolve("127.0.0.1", std::to_string(port)));
   http::request<http::string_body> request{verb, target, 11};
-  request.set(http::field::host, "127.0.0.1");
+  request.set(http::field::host, host);
   http::write(stream, request);
   beast::flat_buffer buffer;
   http::response_parser<http::string_body> parser;
@@ -360,6 +362,26 @@ TEST(ServeServer, ServesThePageAndAnswersEveryOtherPathWith404) {
   EXPECT_THROW(Client(server.port(), "http://evil.example"), beast::system_error);
   Client same(server.port(), "http://127.0.0.1:" + std::to_string(server.port()));
   EXPECT_NE(same.next("hello").find("hello"), std::string::npos);
+}
+
+// DNS rebinding: a page on another site that points its own name at 127.0.0.1 reaches the server
+// with that name in Host (and, for a WebSocket, as its own Origin). Only the loopback's names and
+// addresses (and the listening address) are answered, over plain HTTP as over the WebSocket.
+TEST(ServeServer, AnswersOnlyForTheLoopbackAgainstDnsRebinding) {
+  const auto scene = test::paper_scene({"static"});
+  RunningServer server(*scene);
+  const std::string port = std::to_string(server.port());
+  for (const std::string& rebound : std::vector<std::string>{"evil.example", "evil.example:" + port, "127.0.0.1.evil.example",
+                                                             "localhost.evil.example:" + port})
+    EXPECT_EQ(http_status(server.port(), "/", http::verb::get, rebound), 403) << rebound;
+  EXPECT_EQ(http_status(server.port(), "/app.js", http::verb::get, "evil.example"), 403);
+  for (const std::string& own :
+       std::vector<std::string>{"127.0.0.1:" + port, "localhost:" + port, "LOCALHOST", "127.0.0.2:" + port, "[::1]:" + port})
+    EXPECT_EQ(http_status(server.port(), "/", http::verb::get, own), 200) << own;
+  EXPECT_THROW(Client(server.port(), "http://evil.example", "evil.example"), beast::system_error);
+  EXPECT_THROW(Client(server.port(), "http://evil.example:" + port, "evil.example:" + port), beast::system_error);
+  Client own(server.port(), "http://localhost:" + port, "localhost:" + port);
+  EXPECT_NE(own.next("hello").find("hello"), std::string::npos);
 }
 
 }  // namespace
