@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "common/errors.hpp"
+#include "io/csv.hpp"
 
 namespace roifem::cutting {
 
@@ -108,9 +109,28 @@ double Blade::end() const { return start + knots().back(); }
 
 std::string Blade::describe() const { return "cut '" + name + "'" + (where.empty() ? "" : " (" + where + ")"); }
 
+// A degenerate sweep's "crossings" would be round-off's, not a cut's.
+void refuse_a_degenerate_sweep(const Blade& blade, const mesh::TetMesh& mesh) {
+  double area = 0;
+  for (const SweptStrip& p : blade.strips()) area += p.edge.cross(p.move).norm();
+  double edges = 0;
+  for (const mesh::Tet& t : mesh.tets)
+    for (std::size_t a = 0; a < 4; ++a)
+      for (std::size_t b = a + 1; b < 4; ++b) edges += (mesh.node(t[a]) - mesh.node(t[b])).norm();
+  const double mean_edge = edges / (6.0 * static_cast<double>(std::max<std::size_t>(mesh.tets.size(), 1)));
+  const double floor = smallest_swept_area * mean_edge * mean_edge;
+  if (area >= floor) return;
+  throw InputError(
+      io::format("%s: the blade's edge sweeps %.3g mm^2, below %g of the mesh's mean edge squared (%.3g mm^2): "
+                 "an edge of no length or one moving along itself cuts nothing cleanly; give the edge a "
+                 "length across its motion",
+                 blade.describe().c_str(), area / (mm * mm), smallest_swept_area, mean_edge * mean_edge / (mm * mm)));
+}
+
 std::vector<Crossing> swept_elements(const Blade& blade, const mesh::TetMesh& mesh) {
   if (mesh.is_quadratic())
     throw InputError(mesh.source + ": " + blade.describe() + ": cuts are built for 4-node tetrahedra only");
+  refuse_a_degenerate_sweep(blade, mesh);
   std::vector<double> reached(static_cast<std::size_t>(mesh.num_tets()), std::numeric_limits<double>::infinity());
   for (const SweptStrip& p : blade.strips()) {
     const Eigen::AlignedBox3d box = box_of(p);

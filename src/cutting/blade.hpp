@@ -56,7 +56,13 @@ struct Crossing {
 /// The tetrahedra whose interior the swept surface passes through, each with the time the blade
 /// first reaches it, ascending by time (then by element). A surface that only grazes a tetrahedron
 /// (through a vertex or an edge, or lying in a face's plane: the part inside it thinner than 1e-9
-/// of its barycentric range) does not cut it. Throws InputError for a quadratic mesh.
+/// of its barycentric range) does not cut it. Throws InputError for a quadratic mesh, and for a
+/// degenerate sweep: one whose area is below smallest_swept_area times the square of the mesh's
+/// mean edge (an edge 1e-13 mm long, or one moving along itself, still removed tetrahedra).
 std::vector<Crossing> swept_elements(const Blade& blade, const mesh::TetMesh& mesh);
+inline constexpr double smallest_swept_area = 1e-6;
+/// InputError naming the blade when its sweep's area is below smallest_swept_area times the mesh's
+/// mean edge squared: both modes (swept_elements, separated_faces) refuse such a blade alike.
+void refuse_a_degenerate_sweep(const Blade& blade, const mesh::TetMesh& mesh);
 
 }  // namespace roifem::cutting

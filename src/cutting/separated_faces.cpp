@@ -67,6 +67,7 @@ std::vector<SeparatedFace> separated_faces(const Blade& blade, const mesh::TetMe
                                            const std::vector<std::array<Index, 4>>& neighbours) {
   if (mesh.is_quadratic())
     throw InputError(mesh.source + ": " + blade.describe() + ": cuts are built for 4-node tetrahedra only");
+  refuse_a_degenerate_sweep(blade, mesh);
   // The crossing lies in a or in b, so it is within the strip's box and that tetrahedron's: only
   // the faces of tetrahedra whose boxes meet the strip's are tried (a face in the blade's plane included).
   std::map<std::pair<Index, Index>, double> reached;
