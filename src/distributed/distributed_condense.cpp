@@ -80,7 +80,7 @@ void condense_distributed(const scenario::Scenario& sc, const std::filesystem::p
     h5.write("roi/nodes", roi_nodes, {roi_nodes.size()});
     std::vector<int> dofs(d.begin(), d.end());
     h5.write("roi/free_dofs", dofs, {dofs.size()});
-    h5.attribute("scenario", sc.resolved_toml());
+    h5.text("scenario", sc.resolved_toml());
     h5.close();
     file.commit();
   }

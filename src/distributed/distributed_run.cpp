@@ -155,7 +155,7 @@ class RootRecorder {
  private:
   io::Hdf5Writer& header() {
     io::write_mesh(h5_, *frame_.mesh);
-    h5_.attribute("scenario", sc_.resolved_toml());
+    h5_.text("scenario", sc_.resolved_toml());
     return h5_;
   }
   const scenario::Scenario& sc_;

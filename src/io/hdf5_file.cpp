@@ -66,6 +66,17 @@ void Hdf5Writer::attribute(const std::string& name, const std::string& value) {
     throw InputError(path_ + ": cannot write attribute " + name);
 }
 
+void Hdf5Writer::text(const std::string& name, const std::string& value) {
+  if (value.size() <= largest_attribute_text) return attribute(name, value);
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(type.get(), value.size());
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+  Handle set(H5Dcreate2(file_.get(), name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
+  if (set.get() < 0 || H5Dwrite(set.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, value.c_str()) < 0)
+    throw InputError(path_ + ": cannot write dataset /" + name);
+  attribute(name, "(" + std::to_string(value.size()) + " bytes, beyond an attribute's 64 KiB: in the dataset /" + name + ")");
+}
+
 AppendableDataset::AppendableDataset(hid_t file, const std::string& name, const std::vector<hsize_t>& record_shape,
                                      hsize_t records_per_chunk, const std::string& file_name)
     : record_shape_(record_shape), where_(file_name + ": dataset /" + name) {

@@ -76,6 +76,11 @@ class Hdf5Writer {
   void flush();
   /// A string attribute on the root group.
   void attribute(const std::string& name, const std::string& value);
+  /// A text of any length: the attribute `name` where it fits HDF5's attribute header (64 KiB);
+  /// beyond, the scalar string dataset /name, the attribute saying so (a scenario with some 400
+  /// [[cut]] tables).
+  void text(const std::string& name, const std::string& value);
+  static constexpr std::size_t largest_attribute_text = 60000;
   /// Flushes and closes (also done by the destructor, which cannot report errors).
   void close();
 

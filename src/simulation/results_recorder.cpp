@@ -15,7 +15,7 @@ constexpr long flush_every = 50;
 io::Hdf5Writer& with_header(io::Hdf5Writer& h5, const scenario::Scenario& sc, const ScenarioModel& model) {
   io::write_mesh(h5, model.mesh);
   if (!model.roi_nodes.empty()) h5.write("roi/nodes", model.roi_nodes, {model.roi_nodes.size()});
-  h5.attribute("scenario", sc.resolved_toml());
+  h5.text("scenario", sc.resolved_toml());
   h5.attribute("integrator", sc.integrator);
   return h5;
 }
