@@ -3,6 +3,7 @@
 // state as NumPy views and everything `roifem run` records readable between steps.
 #include <climits>
 #include <filesystem>
+#include <map>
 #include <optional>
 
 #include "bindings.hpp"
@@ -102,14 +103,23 @@ void bind_simulation(py::module_& m) {
       "u and v are read-only views of the state (valid as long as they live, even after close()).")
       .def(py::init([](const py::object& scenario, bool energy, const py::kwargs& kwargs) {
              py::dict overrides, time;
-             for (const auto& [key, value] : kwargs) {
-               const std::string name = py::str(key);
-               if (name == "dt" || name == "dt_s")  // the [time] table's dt_s; dt for short
-                 time["dt_s"] = value;
-               else if (name == "integrator" || name == "steps" || name == "rtol" || name == "atol")
-                 time[name.c_str()] = value;
-               else
-                 overrides[key] = value;
+             for (const auto& [key, value] : kwargs)
+               if (std::string(py::str(key)) != "time") overrides[key] = value;
+             // The [time] keys, given as time={...} or one by one (dt for short): each once.
+             std::map<std::string, std::string> given;  // [time] key -> how it was given
+             if (kwargs.contains("time")) {
+               time = py::dict(kwargs["time"]);
+               for (const auto& [key, value] : time) given[py::str(key)] = "time={'" + std::string(py::str(key)) + "': ...}";
+             }
+             for (const char* name : {"dt", "dt_s", "integrator", "steps", "rtol", "atol"}) {
+               if (!kwargs.contains(name)) continue;
+               const std::string key = std::string_view(name) == "dt" ? "dt_s" : name;
+               if (given.count(key))
+                 throw InputError("Simulation: [time] " + key + " is given twice, as " + given[key] + " and as " + name +
+                                  "=: give it once");
+               given[key] = std::string(name) + "=";
+               time[key.c_str()] = kwargs[name];
+               overrides.attr("pop")(name);
              }
              if (!time.empty()) overrides["time"] = time;
              ScenarioHandle sc = scenario_handle_of(scenario);

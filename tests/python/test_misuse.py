@@ -76,6 +76,19 @@ def test_the_time_keywords_take_the_scenario_files_names(scenarios):
     assert a.t == pytest.approx(0.03) and a.t == b.t
 
 
+@pytest.mark.parametrize("given", [dict(dt_s=0.05, dt=0.01), dict(time={"dt_s": 0.05}, dt=0.01),
+                                   dict(time={"steps": 4}, steps=3)])
+def test_a_time_key_given_twice_is_refused(scenarios, given):
+    # Simulation(sc, dt_s=0.05, dt=0.01) ran at 0.01 without a word.
+    with pytest.raises(roifem.InputError, match=r"Simulation: \[time\] (dt_s|steps) is given twice, as .* give it once"):
+        roifem.Simulation(scenarios / "paper-setup2.toml", **given)
+
+
+def test_the_time_table_and_a_time_keyword_combine(scenarios):
+    sim = roifem.Simulation(scenarios / "paper-setup2.toml", time={"steps": 3}, dt=0.01)
+    assert sim.run() == 3 and sim.t == pytest.approx(0.03)
+
+
 @pytest.mark.parametrize("cls", [roifem.Simulation, roifem.Mesh, roifem.Scenario])
 def test_help_explains_every_public_attribute(cls):
     # help(roifem.Simulation) listed closed, integrator, scenario and others without a word.
