@@ -4,7 +4,9 @@
 
 Three panels: the displacement over time (the ROI nodes' largest and mean displacement for a
 condensed run, the whole mesh's from the stored fields for a full one), the energy ledger
-(kinetic, strain, dissipated, external work and the balance E + D - W), and each step's wall time.
+(kinetic, strain, dissipated, the loads' work, the tools' and the cuts' where the run has them,
+and the balance E + D + E_cut - W - W_tools, which closes to round-off for the trapezoidal rule),
+and each step's wall time.
 Run with Debian's /usr/bin/python3 (python3-h5py, python3-matplotlib).
 """
 import sys
@@ -21,7 +23,8 @@ import numpy as np
 def main(directory: Path) -> Path:
     with h5py.File(directory / "results.h5", "r") as h5:
         t = h5["time_s"][()]
-        energy = {name: h5["energy/" + name][()] for name in ("kinetic_J", "strain_J", "dissipated_J", "external_work_J")}
+        energy = {name: h5["energy/" + name][()] for name in ("kinetic_J", "strain_J", "dissipated_J", "external_work_J",
+                                                                "tool_work_J", "cut_J") if "energy/" + name in h5}
         wall = h5["step_wall_time_s"][()]
         status = h5.attrs.get("status", "")
         status = status.decode() if isinstance(status, bytes) else str(status)
@@ -42,8 +45,11 @@ def main(directory: Path) -> Path:
     a.legend()
     for name, values in energy.items():
         b.plot(t, values, label=name.replace("_J", "").replace("_", " "))
-    balance = energy["kinetic_J"] + energy["strain_J"] + energy["dissipated_J"] - energy["external_work_J"]
-    b.plot(t, balance, "k:", label="E + D - W")
+    zero = np.zeros_like(t)
+    balance = (energy["kinetic_J"] + energy["strain_J"] + energy["dissipated_J"] + energy.get("cut_J", zero)
+               - energy["external_work_J"] - energy.get("tool_work_J", zero))
+    terms = "E + D" + (" + E_cut" if "cut_J" in energy else "") + " - W" + (" - W_tools" if "tool_work_J" in energy else "")
+    b.plot(t, balance, "k:", label=f"{terms} (the balance)")
     b.set_ylabel("energy (J)")
     b.legend()
     c.plot(t[1:], 1e3 * wall[1:], ".", markersize=2)

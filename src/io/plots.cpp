@@ -17,7 +17,8 @@ std::string quoted(const std::string& s) {
 }
 }  // namespace
 
-bool run_plot_script(const std::string& script, const fs::path& directory, std::ostream& log) {
+bool run_plot_script(const std::string& script, const fs::path& directory, std::ostream& log,
+                     const std::vector<std::string>& arguments) {
   std::vector<fs::path> candidates;
   if (const char* dir = std::getenv("ROIFEM_PLOT_DIR")) candidates.emplace_back(dir);
   candidates.emplace_back(ROIFEM_SOURCE_PLOT_DIR);
@@ -33,7 +34,8 @@ bool run_plot_script(const std::string& script, const fs::path& directory, std::
     return false;
   }
   const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-  const std::string command = python + " " + quoted(found.string()) + " " + quoted(directory.string());
+  std::string command = python + " " + quoted(found.string()) + " " + quoted(directory.string());
+  for (const std::string& a : arguments) command += " " + quoted(a);
   if (std::system(command.c_str()) != 0) {
     log << "warning: '" << command << "' failed (python3-matplotlib and python3-h5py installed?); plots not drawn\n";
     return false;

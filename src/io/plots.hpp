@@ -6,12 +6,14 @@
 #include <filesystem>
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 namespace roifem::io {
 
 /// Runs scripts/plots/<script> with `directory` as its argument; returns true on success and
 /// otherwise writes a warning to `log`. Looks in $ROIFEM_PLOT_DIR, the source tree, then the
 /// installed share/roifem/plots.
-bool run_plot_script(const std::string& script, const std::filesystem::path& directory, std::ostream& log);
+bool run_plot_script(const std::string& script, const std::filesystem::path& directory, std::ostream& log,
+                     const std::vector<std::string>& arguments = {});
 
 }  // namespace roifem::io
