@@ -4,14 +4,26 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <ostream>
 
 namespace roifem::simulation {
 
-ProgressReporter::ProgressReporter(std::string label, long total, double delay_s, std::string unit)
+namespace {
+
+std::string io_seconds(double s) {
+  char text[32];
+  std::snprintf(text, sizeof text, s < 100 ? "%.1f s" : "%.0f s", s);
+  return text;
+}
+
+}  // namespace
+
+ProgressReporter::ProgressReporter(std::string label, long total, double delay_s, std::string unit, std::ostream* log)
     : label_(std::move(label)),
       unit_(std::move(unit)),
       total_(total),
       delay_s_(delay_s),
+      log_(log),
       enabled_(::isatty(STDERR_FILENO) != 0) {}
 
 ProgressReporter::~ProgressReporter() {
@@ -19,8 +31,16 @@ ProgressReporter::~ProgressReporter() {
 }
 
 void ProgressReporter::update(long done, const std::string& detail) {
+  const double t = (enabled_ || log_) ? clock_.seconds() : 0.0;
+  if (log_ && done < total_ && done > 0 && t >= logged_after_s && (last_logged_ < 0 || t - last_logged_ >= logged_every_s)) {
+    last_logged_ = t;
+    const double left = t / static_cast<double>(done) * static_cast<double>(total_ - done);
+    if (drawn_) std::fprintf(stderr, "\r\033[K");
+    *log_ << "  " << label_ << ": " << done << " of " << total_ << " " << unit_ << " in " << io_seconds(t) << "; about "
+          << io_seconds(left) << " to go" << (detail.empty() ? "" : " (" + detail + ")") << "\n"
+          << std::flush;
+  }
   if (!enabled_) return;
-  const double t = clock_.seconds();
   if (t < delay_s_ || (t - last_draw_ < 0.2 && done < total_)) return;
   last_draw_ = t;
   drawn_ = true;

@@ -13,13 +13,14 @@
 
 namespace roifem::simulation {
 
-RunSummary run(Stepper& stepper, long steps, const std::vector<StepObserver>& observers, const std::string& progress_label) {
+RunSummary run(Stepper& stepper, long steps, const std::vector<StepObserver>& observers, const std::string& progress_label,
+               std::ostream* progress_log) {
   if (steps <= 0) throw InputError("number of steps " + std::to_string(steps) + " must be positive");
   RunSummary summary;
   // Grows as it goes beyond a million steps: a run stopped early never holds a huge reservation.
   summary.step_seconds.reserve(static_cast<std::size_t>(std::min(steps, 1L << 20)));
   std::unique_ptr<ProgressReporter> progress;
-  if (!progress_label.empty()) progress = std::make_unique<ProgressReporter>(progress_label, steps);
+  if (!progress_label.empty()) progress = std::make_unique<ProgressReporter>(progress_label, steps, 2.0, "steps", progress_log);
   for (long k = 1; k <= steps; ++k) {
     Stopwatch clock;
     const double from = stepper.state().t;
@@ -45,9 +46,9 @@ RunSummary run(Stepper& stepper, long steps, const std::vector<StepObserver>& ob
 }
 
 RunSummary run(integrators::Integrator& integrator, model::State& state, double dt, long steps,
-               const std::vector<StepObserver>& observers, const std::string& progress_label) {
+               const std::vector<StepObserver>& observers, const std::string& progress_label, std::ostream* progress_log) {
   GridStepper stepper(integrator, state, dt);
-  return run(stepper, steps, observers, progress_label);
+  return run(stepper, steps, observers, progress_label, progress_log);
 }
 
 double median(std::vector<double> values) { return percentile(std::move(values), 0.5); }

@@ -8,6 +8,7 @@
 /// One path: `roifem run` steps a ScenarioStepper through run(), as the Python module steps the same
 /// stepper one step at a time; the paper experiment steps an integrator on a grid (GridStepper).
 #include <functional>
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -57,10 +58,14 @@ struct RunSummary {
   integrators::Stats stats;
 };
 
-RunSummary run(Stepper& stepper, long steps, const std::vector<StepObserver>& observers, const std::string& progress_label = "");
+/// `progress_label`: a terminal's progress line (progress.hpp); `progress_log`: where its
+/// logged lines go, terminal or not (none: only the terminal's).
+RunSummary run(Stepper& stepper, long steps, const std::vector<StepObserver>& observers, const std::string& progress_label = "",
+               std::ostream* progress_log = nullptr);
 /// An integrator (reset to `state` already) on the grid from state.t with step dt.
 RunSummary run(integrators::Integrator& integrator, model::State& state, double dt, long steps,
-               const std::vector<StepObserver>& observers, const std::string& progress_label = "");
+               const std::vector<StepObserver>& observers, const std::string& progress_label = "",
+               std::ostream* progress_log = nullptr);
 
 /// Median and 99th percentile of step times (s).
 double median(std::vector<double> values);
