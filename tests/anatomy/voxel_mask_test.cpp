@@ -11,6 +11,7 @@
 #include "anatomy/nifti_fixture.hpp"
 #include "anatomy/voxel_mask.hpp"
 #include "common/errors.hpp"
+#include "test_support.hpp"
 
 namespace roifem::anatomy {
 namespace {
@@ -31,9 +32,9 @@ std::string input_error_of(F f) {
     EXPECT_TRUE(std::regex_search(message, std::regex(pattern))) << message; \
   } while (false)
 
+/// A file in this process's own scratch directory (two test runs at once share no path).
 std::filesystem::path scratch(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / "roifem-anatomy-test";
-  std::filesystem::create_directories(dir);
+  static const test::TempDir dir;
   return dir / name;
 }
 

@@ -16,6 +16,7 @@
 #include "fem/loads.hpp"
 #include "integrators/neo_hookean_cantilever.hpp"
 #include "integrators/trapezoid.hpp"
+#include "test_support.hpp"
 
 namespace roifem::experiments {
 namespace {
@@ -70,7 +71,8 @@ TEST(NeoHookeanDynamicsAgainstCalculix, TheDampedCantileverByTheTrapezoidalRuleI
                                  .steps = steps};
   problem.lumped_mass = Vector::Zero(beam.mesh.num_nodes());
   for (Index i = 0; i < dofs.num_free(); i += 3) problem.lumped_mass[dofs.full_dof(i) / 3] = beam.sys().M.coeff(i, i);
-  const auto dir = std::filesystem::path(::testing::TempDir()) / "roifem_calculix_dynamic";
+  const test::TempDir scratch;  // each run its own CalculiX files
+  const auto dir = scratch.path();
   const Difference lumped = difference(ours, solve_dynamics_with_calculix(problem, dir / "lumped"));
   problem.mass = CalculixMass::consistent;
   const Difference consistent = difference(ours, solve_dynamics_with_calculix(problem, dir / "consistent"));

@@ -12,6 +12,7 @@
 #include "integrators/trapezoid.hpp"
 #include "mesh/brain_mesh.hpp"
 #include "roi/roi.hpp"
+#include "test_support.hpp"
 
 namespace roifem::experiments {
 namespace {
@@ -57,7 +58,8 @@ std::vector<Vector> trapezoid_run(const model::FemModel& full, double dt, long s
 TEST(ErrorBudget, SpaceErrorVanishesAgainstTheSameMeshAndTimeErrorIsTheTrapezoidalRulesOwn) {
   const Brain brain;
   std::ostringstream log;
-  const auto dir = std::filesystem::path(::testing::TempDir()) / "roifem_budget";
+  const test::TempDir scratch;  // each run its own
+  const auto dir = scratch / "budget";
   const double dt = 0.05;
   const long steps = 20;
   const BudgetInput input = brain.input(dt, steps);

@@ -20,6 +20,7 @@
 #include "fem/static_solve.hpp"
 #include "mesh/gmsh_reader.hpp"
 #include "mesh/quadratic_mesh.hpp"
+#include "test_support.hpp"
 
 namespace roifem::experiments {
 namespace {
@@ -43,7 +44,10 @@ void compare_with_calculix(const mesh::TetMesh& mesh, const char* name, const st
                           .newton_tolerance = 1e-9,
                           .step_per_fraction = true};
   std::ostringstream log;
-  const auto dir = std::filesystem::path(::testing::TempDir()) / (std::string("roifem_neo_hooke_") + name);
+  // Each run its own directory: two test runs at once (Release and sanitized) shared
+  // /tmp/roifem_neo_hooke_C3D10 and overwrote each other's CalculiX files.
+  const test::TempDir scratch;
+  const auto dir = scratch / (std::string("neo_hooke_") + name);
   const auto ccx = solve_with_calculix(problem, fractions, true, dir, log);
   ASSERT_EQ(ccx.size(), fractions.size()) << log.str();
 
