@@ -18,12 +18,14 @@ std::string io_seconds(double s) {
 
 }  // namespace
 
-ProgressReporter::ProgressReporter(std::string label, long total, double delay_s, std::string unit, std::ostream* log)
+ProgressReporter::ProgressReporter(std::string label, long total, double delay_s, std::string unit, std::ostream* log,
+                                   ProgressLogged logged)
     : label_(std::move(label)),
       unit_(std::move(unit)),
       total_(total),
       delay_s_(delay_s),
       log_(log),
+      logged_(logged),
       enabled_(::isatty(STDERR_FILENO) != 0) {}
 
 ProgressReporter::~ProgressReporter() {
@@ -32,7 +34,7 @@ ProgressReporter::~ProgressReporter() {
 
 void ProgressReporter::update(long done, const std::string& detail) {
   const double t = (enabled_ || log_) ? clock_.seconds() : 0.0;
-  if (log_ && done < total_ && done > 0 && t >= logged_after_s && (last_logged_ < 0 || t - last_logged_ >= logged_every_s)) {
+  if (log_ && done < total_ && done > 0 && t >= logged_.after_s && (last_logged_ < 0 || t - last_logged_ >= logged_.every_s)) {
     last_logged_ = t;
     const double left = t / static_cast<double>(done) * static_cast<double>(total_ - done);
     if (drawn_) std::fprintf(stderr, "\r\033[K");
