@@ -137,6 +137,24 @@ void EnergyMomentum::advance(double t_out, model::State& state) {
   }
 }
 
+std::optional<IntegratorCheckpoint> EnergyMomentum::checkpoint() const {
+  IntegratorCheckpoint saved{.vectors = {f_now_}, .numbers = {grid_.t0(), static_cast<double>(k_)}};
+  const std::vector<double> counters = stats_.counters();
+  saved.numbers.insert(saved.numbers.end(), counters.begin(), counters.end());
+  return saved;
+}
+
+void EnergyMomentum::restore(const model::State& state, const IntegratorCheckpoint& saved) {
+  if (saved.vectors.size() != 1 || saved.vectors[0].size() != state.u.size() || saved.numbers.size() != 2 + Stats::counter_count)
+    throw InputError(std::string(name()) + ": the checkpoint does not fit this model");
+  f_now_ = saved.vectors[0];
+  grid_ = model::TimeGrid(saved.numbers[0], dt_, name());
+  k_ = static_cast<long>(saved.numbers[1]);
+  const double factorization_s = stats_.factorization_s;
+  stats_ = Stats::from_counters(saved.numbers, 2);
+  stats_.factorization_s = factorization_s;
+}
+
 std::vector<IntegratorInfo> energy_momentum_rows() {
   return {{.name = "energy-momentum",
            .order = 2,

@@ -45,8 +45,12 @@ class EnergyMomentum final : public Integrator {
   std::string_view name() const override { return "energy-momentum"; }
   bool takes_nonlinear() const override { return true; }
   Stats stats() const override { return stats_; }
+  /// The load at t_n it carries, its grid (origin and index) and counters.
+  std::optional<IntegratorCheckpoint> checkpoint() const override;
+  bool restarts_exactly() const override { return true; }
 
  private:
+  void restore(const model::State& state, const IntegratorCheckpoint& saved) override;
   void prepare(const model::SecondOrderSystem& system, const model::State& initial) override;
   void advance(double t_out, model::State& state) override;
   void step(model::State& state);

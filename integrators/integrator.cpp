@@ -57,6 +57,18 @@ bool Integrator::take_change(const model::SecondOrderSystem& system, const model
   return restarted;
 }
 
+void Integrator::resume(const model::SecondOrderSystem& system, const model::State& state,
+                        const std::optional<IntegratorCheckpoint>& saved) {
+  if (!saved || !restarts_exactly()) return reset(system, state);
+  if (!bound_ || system_ != &system) throw Error("internal: " + std::string(name()) + ": resume before reset");
+  restore(state, *saved);
+  bound_.emplace(system, state);
+}
+
+void Integrator::restore(const model::State&, const IntegratorCheckpoint&) {
+  throw Error("internal: " + std::string(name()) + " keeps no checkpoint to restore");
+}
+
 bool Integrator::absorb_change(const model::SecondOrderSystem& system, const model::SystemChange&, const model::State& state) {
   prepare(system, state);
   return true;
@@ -81,6 +93,38 @@ void Integrator::set_time_limit(double seconds) {
   if (!(seconds >= 0)) throw InputError(std::string(name()) + ": a time limit must be 0 or more, not " + number_text(seconds));
   deadline_ = std::chrono::steady_clock::now() +
               std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(seconds));
+}
+
+std::vector<double> Stats::counters() const {
+  const long values[counter_count] = {steps,
+                                      rhs_evals,
+                                      jac_evals,
+                                      lin_setups,
+                                      lin_solves,
+                                      failed_steps,
+                                      lin_iterations,
+                                      nonlinear_iterations,
+                                      indefinite_steps,
+                                      system_changes};
+  return std::vector<double>(std::begin(values), std::end(values));
+}
+
+Stats Stats::from_counters(const std::vector<double>& numbers, std::size_t first) {
+  if (numbers.size() < first + counter_count) throw InputError("a checkpoint's counters are missing (a damaged file?)");
+  long values[counter_count];
+  for (std::size_t i = 0; i < counter_count; ++i) values[i] = static_cast<long>(numbers[first + i]);
+  Stats s;
+  s.steps = values[0];
+  s.rhs_evals = values[1];
+  s.jac_evals = values[2];
+  s.lin_setups = values[3];
+  s.lin_solves = values[4];
+  s.failed_steps = values[5];
+  s.lin_iterations = values[6];
+  s.nonlinear_iterations = values[7];
+  s.indefinite_steps = values[8];
+  s.system_changes = values[9];
+  return s;
 }
 
 double Integrator::smallest_stability_limit() const {

@@ -16,6 +16,7 @@
 #include <memory>
 #include <optional>
 #include <string_view>
+#include <vector>
 
 #include "model/energy_bound.hpp"
 #include "model/second_order_system.hpp"
@@ -35,6 +36,18 @@ struct Stats {
   double factorization_s = 0;     ///< seconds in linear-solver setups: orderings, analyses, factorizations
   long system_changes = 0;        ///< changes of the system taken in place (cuts), without a restart
   Stats& operator+=(const Stats& o);
+  /// The counters as numbers (a checkpoint's), and back (factorization_s is a time: not kept).
+  std::vector<double> counters() const;
+  static Stats from_counters(const std::vector<double>& numbers, std::size_t first = 0);
+  static constexpr std::size_t counter_count = 10;
+};
+
+/// What a method carries from one step to the next beyond the state (u, v, t): its own vectors
+/// (the trapezoidal rule's acceleration) and numbers (its grid's origin and step index, its
+/// counters). A restart that restores it goes on bit for bit as the run that never stopped.
+struct IntegratorCheckpoint {
+  std::vector<Vector> vectors;
+  std::vector<double> numbers;
 };
 
 /// What a method that holds the tools' constraints itself (the DAE forms) says of them now.
@@ -78,6 +91,18 @@ class Integrator {
   void watch_stability(const IntegratorInfo& method, double dt);
   /// The smallest stability limit the watch has found (s; infinity without a watch or a check).
   double smallest_stability_limit() const;
+  /// A checkpoint of the method after the last advance_to, for a restart that continues exactly;
+  /// none for a method that restarts afresh from the state alone (ARKODE, IDA, GSL: their step
+  /// sizes and histories are the libraries' own). The table's `restarts_exactly` says the same.
+  virtual std::optional<IntegratorCheckpoint> checkpoint() const { return std::nullopt; }
+  /// Whether checkpoint() gives one (and restore() takes it).
+  virtual bool restarts_exactly() const { return false; }
+  /// Goes on from `state` on `system`, as the run that took `saved` there would: the method must
+  /// be reset() on the same system and have taken the same changes since (a restart replays the
+  /// cuts before it). Without `saved` (or for a method without checkpoints): reset(system, state),
+  /// a fresh start from the state alone.
+  void resume(const model::SecondOrderSystem& system, const model::State& state,
+              const std::optional<IntegratorCheckpoint>& saved);
   /// A wall-clock limit on the run from now (compare's and energy's --max-run-seconds): past it,
   /// advance_to throws OverTime (common/errors.hpp) from within the library's call, heard in every
   /// callback and between a stepper's own steps (callback_guard.hpp: TimeLimitScope), with the
@@ -88,6 +113,8 @@ class Integrator {
   /// What each method implements: reset() and advance_to() without the divergence check.
   virtual void prepare(const model::SecondOrderSystem& system, const model::State& initial) = 0;
   virtual void advance(double t_out, model::State& state) = 0;
+  /// resume() with a checkpoint this method took (checkpoint() returned one): its own state back.
+  virtual void restore(const model::State& state, const IntegratorCheckpoint& saved);
   /// take_change() without the bound: by default a restart (prepare); returns whether the counters restarted.
   virtual bool absorb_change(const model::SecondOrderSystem& system, const model::SystemChange& change,
                              const model::State& state);

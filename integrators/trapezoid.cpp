@@ -44,6 +44,7 @@ void Trapezoid::prepare(const model::SecondOrderSystem& system, const model::Sta
   }
   grid_ = model::TimeGrid(initial.t, rule_.dt(), name());
   k_ = 0;
+  iterations_before_ = 0;
   a_ = model::AverageAcceleration::consistent_acceleration(system, initial);
   f_.resize(n);
   u_next_.resize(n);
@@ -113,7 +114,7 @@ void Trapezoid::step(model::State& s) {
   } catch (const SolverError& e) {
     throw SolverError(at_step() + e.what());
   }
-  stats_.lin_iterations = K_eff_->iterations();
+  stats_.lin_iterations = iterations_before_ + K_eff_->iterations();
   rule_.advance(s, a_, u_next_, work_);
   ++stats_.steps;
   ++stats_.rhs_evals;
@@ -128,6 +129,26 @@ void Trapezoid::advance(double t_out, model::State& state) {
   }
 }
 
+std::optional<IntegratorCheckpoint> Trapezoid::checkpoint() const {
+  IntegratorCheckpoint saved{.vectors = {a_}, .numbers = {grid_.t0(), static_cast<double>(k_)}};
+  const std::vector<double> counters = stats_.counters();
+  saved.numbers.insert(saved.numbers.end(), counters.begin(), counters.end());
+  return saved;
+}
+
+void Trapezoid::restore(const model::State& state, const IntegratorCheckpoint& saved) {
+  if (saved.vectors.size() != 1 || saved.vectors[0].size() != state.u.size() || saved.numbers.size() != 2 + Stats::counter_count)
+    throw InputError(std::string(name()) + ": the checkpoint does not fit this model (" + std::to_string(saved.vectors.size()) +
+                     " vectors, " + std::to_string(saved.numbers.size()) + " numbers)");
+  a_ = saved.vectors[0];
+  grid_ = model::TimeGrid(saved.numbers[0], rule_.dt(), name());
+  k_ = static_cast<long>(saved.numbers[1]);
+  const double factorization_s = stats_.factorization_s;
+  stats_ = Stats::from_counters(saved.numbers, 2);
+  stats_.factorization_s = factorization_s;
+  if (K_eff_) iterations_before_ = stats_.lin_iterations - K_eff_->iterations();  // an iterative solver's count goes on
+}
+
 bool Trapezoid::absorb_change(const model::SecondOrderSystem& system, const model::SystemChange& change,
                               const model::State& state) {
   // K_eff = K + c M with C = alpha M (SystemChange::apply keeps it so).
@@ -137,6 +158,7 @@ bool Trapezoid::absorb_change(const model::SecondOrderSystem& system, const mode
     const Stats before = stats_;
     prepare(system, state);  // the grid starts afresh at state.t, a level of the old one
     stats_ += before;
+    iterations_before_ = stats_.lin_iterations;  // an iterative K_eff's count goes on from the sum
     return false;
   }
   stats_.factorization_s += clock.seconds();

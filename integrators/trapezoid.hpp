@@ -54,8 +54,12 @@ class Trapezoid final : public Integrator {
   double dt() const { return rule_.dt(); }
   /// Whether the last reset eliminates the system's modal coordinates (modal_elimination.hpp).
   bool eliminates_modal_coordinates() const { return eliminates_modal_; }
+  /// The acceleration a_n the recurrence carries, its grid (origin and index) and counters.
+  std::optional<IntegratorCheckpoint> checkpoint() const override;
+  bool restarts_exactly() const override { return true; }
 
  private:
+  void restore(const model::State& state, const IntegratorCheckpoint& saved) override;
   void prepare(const model::SecondOrderSystem& system, const model::State& initial) override;
   /// t_out must lie on the grid t_0 + k dt (within 1e-9 dt).
   void advance(double t_out, model::State& state) override;
@@ -71,6 +75,7 @@ class Trapezoid final : public Integrator {
   bool eliminates_modal_ = false;
   model::TimeGrid grid_{0.0, 1.0, "trapezoid"};  ///< t_k = t_0 + k dt from the last reset
   long k_ = 0;
+  long iterations_before_ = 0;  ///< an iterative K_eff's iterations counted before a restore
   void solve_nonlinear(const model::State& s);
   Vector a_, f_, u_next_, work_;
   Stats stats_;

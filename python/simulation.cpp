@@ -23,7 +23,16 @@ using simulation::ScenarioStepper;
 class Simulation {
  public:
   Simulation(ScenarioHandle scenario, bool energy)
-      : stepper_(std::make_shared<ScenarioStepper>(scenario.scenario, energy)), handle_(std::move(scenario)) {}
+      : stepper_(std::make_shared<ScenarioStepper>(refusing_a_restart(scenario.scenario), energy)),
+        handle_(std::move(scenario)) {}
+
+  /// A Simulation steps from rest: a scenario's [restart] (which `roifem run` takes) is refused, not left out.
+  static const scenario::Scenario& refusing_a_restart(const scenario::Scenario& sc) {
+    if (sc.restart)
+      throw InputError((sc.restart->where.empty() ? sc.file.string() : sc.restart->where) +
+                       ": [restart]: roifem.Simulation steps from rest; `roifem run` goes on an earlier run");
+    return sc;
+  }
 
   /// The stepper, or ValueError once closed.
   ScenarioStepper& live() const {

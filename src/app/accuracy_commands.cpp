@@ -71,7 +71,7 @@ void add_model_error_command(CLI::App& app, Action& action) {
   cmd->callback([&action, o] {
     action = [o] {
       const auto s = scenario::read_scenario(o->scenario);
-      scenario::refuse_cuts(s, "roifem model-error");
+      scenario::refuse_run_only_tables(s, "roifem model-error");
       if (!s.material_regions.empty())
         throw InputError(o->scenario + ": [[material_region]]: the CalculiX deck writes one material; give one [material]");
       const mesh::TetMesh mesh = mesh::read_mesh(s.mesh);

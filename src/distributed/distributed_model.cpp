@@ -84,7 +84,7 @@ Vector DistributedModel::gather(Vec x, bool to_all) const {
 }
 
 void check_distributable(const scenario::Scenario& sc) {
-  scenario::refuse_cuts(sc, "roifem-mpi");
+  scenario::refuse_run_only_tables(sc, "roifem-mpi");
   if (sc.tools.empty()) return;
   std::string names;
   for (const auto& tool : sc.tools) names += (names.empty() ? "'" : ", '") + tool.name + "'";

@@ -418,7 +418,7 @@ void print_summary(const CompareResults& results, double dt, std::ostream& log) 
 }  // namespace
 
 CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o, std::ostream& log) {
-  scenario::refuse_cuts(sc, "roifem compare");
+  scenario::refuse_run_only_tables(sc, "roifem compare");
   check_output_directory(o.out);
   const auto built = simulation::build_scenario_model(sc);
   const model::SecondOrderSystem& system = built->system();

@@ -240,7 +240,7 @@ ConvergenceResults run_convergence_study(const ConvergenceOptions& o, std::ostre
   if (o.modes < 1) throw InputError("--modes: at least one eigenfrequency");
   if (o.adapt_passes < 0 || o.adapt_passes > 6) throw InputError("--adapt: give 0 to 6 adaptation passes");
   const scenario::Scenario s = scenario::read_scenario(o.scenario);
-  scenario::refuse_cuts(s, "roifem convergence");
+  scenario::refuse_run_only_tables(s, "roifem convergence");
   check_generated_brain(s);
   if (o.c3d10) {
     if (!s.tools.empty()) throw InputError(s.file.string() + ": --c3d10 takes set forces only, not tools");

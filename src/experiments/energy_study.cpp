@@ -192,7 +192,7 @@ std::span<const Column<EnergyRow>> energy_summary_columns() { return summary; }
 std::span<const Column<EnergySample>> energy_sample_columns() { return samples; }
 
 EnergyStudy run_energy_study(const scenario::Scenario& sc, const EnergyStudyOptions& o, std::ostream& log) {
-  scenario::refuse_cuts(sc, "roifem energy");
+  scenario::refuse_run_only_tables(sc, "roifem energy");
   if (!(o.rtol > 0) || !(o.rtol < 1)) throw InputError("energy: --rtol must lie in (0, 1), not " + number_text(o.rtol));
   if (!(o.max_run_s > 0)) throw InputError("energy: --max-run-seconds must be positive, not " + number_text(o.max_run_s));
   if (!(o.t_end >= 0) || !std::isfinite(o.t_end))

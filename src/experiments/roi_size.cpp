@@ -314,7 +314,7 @@ RoiSizeResults run_roi_size(const RoiSizeOptions& o, std::ostream& log) {
                      number_text(o.coarse) + " and " + number_text(o.resolution) + ")");
   integrators::integrator_info(o.integrator);  // an unknown name stops here, listing the valid ones
   const scenario::Scenario sc = scenario::read_scenario(o.scenario);
-  scenario::refuse_cuts(sc, "roifem roi-size");
+  scenario::refuse_run_only_tables(sc, "roifem roi-size");
   if (!sc.roi || (sc.roi->kind != roi::RoiSpec::Kind::ball && sc.roi->kind != roi::RoiSpec::Kind::nearest))
     throw InputError(sc.file.string() +
                      ": roi-size needs an ROI target: [roi] kind = \"nearest\" (target_mm) or \"ball\" (center_mm)");

@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "common/errors.hpp"
 #include "model/internal_force.hpp"
 
 namespace roifem::model {
@@ -71,6 +72,27 @@ void EnergyLedger::record(const State& next) {
   previous_ = next;
   f_previous_ = f_next;
   Mv_previous_.swap(Mv_next_);
+}
+
+std::vector<double> EnergyLedger::sums() const {
+  return {kinetic_, strain_, dissipated_, work_, initial_total_, coupling_, tool_work_, cut_, load_work_at_tools_};
+}
+
+void EnergyLedger::resume(const State& state, const std::vector<double>& sums) {
+  if (sums.size() != 9) throw InputError("a restart's energy sums: " + std::to_string(sums.size()) + " numbers, not 9");
+  previous_ = state;
+  f_previous_ = system_.load.at(state.t);
+  system_.apply_mass(state.v, Mv_previous_);
+  if (tools_ != nullptr) tools_previous_ = tool_terms(state);
+  kinetic_ = sums[0];
+  strain_ = sums[1];
+  dissipated_ = sums[2];
+  work_ = sums[3];
+  initial_total_ = sums[4];
+  coupling_ = sums[5];
+  tool_work_ = sums[6];
+  cut_ = sums[7];
+  load_work_at_tools_ = sums[8];
 }
 
 void EnergyLedger::account_cut(const State& state, double energy_removed) {

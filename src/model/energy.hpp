@@ -15,6 +15,8 @@
 /// A cut (simulation/scenario_cuts.hpp) changes the system in place between two states: the
 /// energy its removed elements and mass carried is booked as E_cut (account_cut), and from then
 /// on E + D + E_cut = E_0 + W + W_tools, again exactly for the trapezoidal rule.
+#include <vector>
+
 #include "model/second_order_system.hpp"
 #include "model/tools.hpp"
 
@@ -43,6 +45,11 @@ class EnergyLedger {
   void account_cut(const State& state, double energy_removed);
   /// E_cut: the energy the cuts took away (J).
   double cut() const { return cut_; }
+  /// Its running sums (dissipation, the loads' and tools' work, E_0, E_cut, ...), for a restart.
+  std::vector<double> sums() const;
+  /// Goes on from `state` with the sums() a ledger had there, as that ledger would: what it keeps
+  /// of the state (M v, the load, the tools' terms) is computed from it as record() computed it.
+  void resume(const State& state, const std::vector<double>& sums);
 
  private:
   /// The tools' terms of a state: positions g, coupling u, loads on their nodes, forces F.

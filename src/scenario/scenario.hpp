@@ -45,13 +45,23 @@ struct Scenario {
   /// default 1 kHz) and a neo-Hookean model's modified-Newton iterations per tick (default 2).
   std::optional<double> haptic_rate_hz;
   std::optional<int> haptic_newton_iterations;
-  /// The scenario as resolved (defaults filled in), as TOML text: stored with the results.
+  /// [restart]: go on from a restart point of an earlier run of this scenario (`roifem run --from
+  /// FILE --step K` sets the same): its results file and step (none: the last point it holds).
+  struct Restart {
+    std::filesystem::path from;
+    std::optional<long> step;
+    std::string where;  ///< "file:line:column" of the table, for messages (empty: the command line)
+  };
+  std::optional<Restart> restart;
+  /// The scenario as resolved (defaults filled in), as TOML text: stored with the results. Without
+  /// [restart]: a restarted run stores the scenario of the run it goes on.
   std::string resolved_toml() const;
 };
 
-/// InputError naming the scenario's first [[cut]] when it has any: `command` (e.g. "roifem energy")
-/// measures the uncut model, and a cut left out without a word would be a silent wrong answer.
-void refuse_cuts(const Scenario& scenario, std::string_view command);
+/// InputError naming the scenario's first [[cut]], or its [restart], when it has one: `command`
+/// (e.g. "roifem energy") measures the uncut model from rest, and either left out without a word
+/// would be a silent wrong answer. `roifem run` takes both.
+void refuse_run_only_tables(const Scenario& scenario, std::string_view command);
 
 /// Reads and checks a scenario. Throws InputError naming the file, line, table and key for syntax
 /// errors, unknown keys, wrong types, missing required keys and non-finite or out-of-range values.

@@ -564,6 +564,19 @@ Scenario scenario_from_table(const toml::table& root, const std::string& source,
                        ")");
     if (iterations) s.haptic_newton_iterations = static_cast<int>(*iterations);
   }
+  if (const toml::table* t = top.subtable("restart")) {
+    StrictTable restart(*t, source, "restart");
+    const auto from = restart.string("from");
+    const auto step = restart.integer("step");
+    if (!from) restart.missing("from");
+    s.restart =
+        Scenario::Restart{.from = std::filesystem::path(*from).is_absolute() ? std::filesystem::path(*from) : directory / *from,
+                          .step = step,
+                          .where = restart.where(*t)};
+    restart.close();
+    if (step && *step < 0)
+      throw InputError(source + ": key 'restart.step' must be 0 or more (got " + std::to_string(*step) + ")");
+  }
   if (const toml::table* t = top.subtable("output")) {
     StrictTable output(*t, source, "output");
     s.field_every = output.integer("field_every").value_or(s.field_every);
@@ -574,7 +587,10 @@ Scenario scenario_from_table(const toml::table& root, const std::string& source,
   return s;
 }
 
-void refuse_cuts(const Scenario& scenario, std::string_view command) {
+void refuse_run_only_tables(const Scenario& scenario, std::string_view command) {
+  if (scenario.restart)
+    throw InputError((scenario.restart->where.empty() ? scenario.file.string() : scenario.restart->where) + ": [restart]: " +
+                     std::string(command) + " starts from rest and does not go on an earlier run; `roifem run` does");
   if (scenario.cuts.empty()) return;
   const cutting::Blade& first = scenario.cuts.front();
   throw InputError((first.where.empty() ? scenario.file.string() : first.where) + ": [[cut]] '" + first.name + "' (" +

@@ -158,8 +158,10 @@ LiveScene::LiveScene(const scenario::Scenario& scenario, double rate_hz, double 
   if (!scenario_.tools.empty() || !scenario_.cuts.empty())
     log << "serve: the scenario's " << scenario_.tools.size() << " [[tool]](s) and " << scenario_.cuts.size()
         << " [[cut]](s) are left out: the page's hand is the tool\n";
+  if (scenario_.restart) log << "serve: the scenario's [restart] is left out: every grab starts from rest\n";
   scenario_.tools.clear();
   scenario_.cuts.clear();
+  scenario_.restart.reset();
   const std::size_t given = scenario_.loads.size();
   if (loads == SceneLoads::left_out) scenario_.loads.clear();
   loads_said_ = given == 0 ? "none (the scenario has no [[load]])"

@@ -89,28 +89,78 @@ void ResultsRecorder::record(long k, const model::State& s, double seconds) {
     roi_series_->append(roi_record_.data());
   }
   if (scenario_.field_every > 0 && k % scenario_.field_every == 0) {
-    const std::string name = io::format("fields/displacement_mm_%06ld", k);
     const Vector u_free = model_.condensation ? model_.condensation->expand(s.u, s.t) : s.u;
     const Vector field_mm = model_.full.displacement(u_free, s.t) / mm;
-    h5_.write(name, std::vector<double>(field_mm.data(), field_mm.data() + field_mm.size()),
-              {static_cast<hsize_t>(model_.mesh.num_nodes()), 3});
-    xdmf_.times.push_back(s.t);
-    xdmf_.fields.push_back("/" + name);
-    if (topology_varies_) {
-      xdmf_.topologies.push_back(topology_);
-      xdmf_.topology_tets.push_back(topology_tets_);
-    }
+    write_field(k, s.t, std::vector<double>(field_mm.data(), field_mm.data() + field_mm.size()));
   }
   if (k % flush_every == 0) h5_.flush();
 }
 
+void ResultsRecorder::write_field(long k, double t, const std::vector<double>& field_mm) {
+  const std::string name = io::format("fields/displacement_mm_%06ld", k);
+  h5_.write(name, field_mm, {static_cast<hsize_t>(model_.mesh.num_nodes()), 3});
+  xdmf_.times.push_back(t);
+  xdmf_.fields.push_back("/" + name);
+  if (topology_varies_) {
+    xdmf_.topologies.push_back(topology_);
+    xdmf_.topology_tets.push_back(topology_tets_);
+  }
+}
+
+void ResultsRecorder::record_checkpoint(const RunCheckpoint& checkpoint) {
+  if (checkpoint.step == last_checkpoint_) return;
+  write_checkpoint(h5_, checkpoint);
+  last_checkpoint_ = checkpoint.step;
+}
+
+void ResultsRecorder::make_constraint_series() {
+  for (const auto& tool : model_.tools.tools())
+    multiplier_force_.push_back(h5_.appendable("tools/" + tool.name + "/multiplier_force_N", {3}));
+  drift_.emplace(h5_.appendable("tools/position_drift_mm", {}));
+}
+
+void ResultsRecorder::replay(long k, const EarlierRun& earlier) {
+  const auto copy = [&](io::AppendableDataset& to, const std::string& name) {
+    const double* row = earlier.row(name, k);
+    if (row == nullptr) throw InputError(earlier.file().path() + ": no dataset /" + name + " to go on from");
+    to.append(row);
+  };
+  copy(time_s_, "time_s");
+  copy(wall_s_, "step_wall_time_s");
+  copy(kinetic_, "energy/kinetic_J");
+  copy(strain_, "energy/strain_J");
+  copy(dissipated_, "energy/dissipated_J");
+  copy(work_, "energy/external_work_J");
+  if (cut_energy_) copy(*cut_energy_, "energy/cut_J");
+  if (tool_work_) {
+    copy(*tool_work_, "energy/tool_work_J");
+    for (std::size_t a = 0; a < tool_force_.size(); ++a) {
+      const std::string& name = model_.tools.tools()[a].name;
+      copy(tool_force_[a], "tools/" + name + "/force_N");
+      copy(tool_position_[a], "tools/" + name + "/displacement_mm");
+    }
+    if (earlier.row("tools/position_drift_mm", 0) != nullptr) {
+      if (multiplier_force_.empty()) make_constraint_series();
+      for (std::size_t a = 0; a < multiplier_force_.size(); ++a)
+        copy(multiplier_force_[a], "tools/" + model_.tools.tools()[a].name + "/multiplier_force_N");
+      copy(*drift_, "tools/position_drift_mm");
+    }
+  }
+  if (roi_series_) copy(*roi_series_, "roi/displacement_mm");
+  if (earlier.has_field(k)) write_field(k, *earlier.row("time_s", k), earlier.field(k));
+  if (checkpoint_due(k) && earlier.file().has(io::format("restart/step_%06ld", k)))
+    record_checkpoint(read_checkpoint(earlier.file(), k));
+  if (k % flush_every == 0) h5_.flush();
+}
+
+void ResultsRecorder::resume(const RunCheckpoint& checkpoint, const std::string& restarted_from) {
+  ledger_.resume(checkpoint.state, checkpoint.ledger);
+  h5_.attribute("restarted_from", restarted_from);
+}
+
 void ResultsRecorder::record_constraints(const integrators::ConstraintReport& report, double t) {
   if (model_.tools.empty()) return;
-  if (multiplier_force_.empty()) {
-    for (const auto& tool : model_.tools.tools())
-      multiplier_force_.push_back(h5_.appendable("tools/" + tool.name + "/multiplier_force_N", {3}));
-    drift_.emplace(h5_.appendable("tools/position_drift_mm", {}));
-  }
+  if (multiplier_force_.empty()) make_constraint_series();
   for (std::size_t a = 0; a < multiplier_force_.size(); ++a) multiplier_force_[a].append(report.forces.data() + 3 * a);
   const double drift_mm = report.position_drift / mm;
   drift_->append(&drift_mm);
@@ -163,7 +213,8 @@ void ResultsRecorder::write_cuts() {
   h5_.write("cuts/removed_at_s", removed_at_s_, {removed_at_s_.size()});
 }
 
-std::vector<std::filesystem::path> ResultsRecorder::finish(const integrators::Stats& st) {
+std::vector<std::filesystem::path> ResultsRecorder::finish(const integrators::Stats& st, const RunCheckpoint& last) {
+  record_checkpoint(last);  // a finished run can be made longer from its last step
   write_cuts();
   h5_.attribute(
       "counters",

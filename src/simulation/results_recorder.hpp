@@ -24,6 +24,8 @@
 #include "io/xdmf.hpp"
 #include "model/energy.hpp"
 #include "scenario/scenario.hpp"
+#include "simulation/earlier_run.hpp"
+#include "simulation/run_checkpoint.hpp"
 #include "simulation/scenario_cuts.hpp"
 #include "simulation/scenario_model.hpp"
 
@@ -42,11 +44,21 @@ class ResultsRecorder {
   /// A cut at `at_cut`, the start of step `step` (ScenarioStepper::on_cut): the ledger books it;
   /// `still_there` (per tetrahedron, after it) is the topology of the fields from then on.
   void record_cut(long step, const CutEvent& event, const model::State& at_cut, const std::vector<bool>& still_there);
+  /// Whether step k gets a restart point: every output.field_every-th (a finished run's last is
+  /// written by finish()).
+  bool checkpoint_due(long k) const { return scenario_.field_every > 0 && k > 0 && k % scenario_.field_every == 0; }
+  /// Step k's restart point (run_checkpoint.hpp), after record() of the same step.
+  void record_checkpoint(const RunCheckpoint& checkpoint);
+  /// A restart: step k as `earlier` recorded it (every series' row, its field and its restart
+  /// point, in the order record() writes them), for k = 0..K before the run goes on.
+  void replay(long k, const EarlierRun& earlier);
+  /// A restart: the ledger goes on from the restart point's sums, and the file says whence it came.
+  void resume(const RunCheckpoint& checkpoint, const std::string& restarted_from);
   /// max over the steps of |F_multipliers - F_residual| / max |F_residual| (0 without a DAE form).
   double multiplier_disagreement() const { return force_peak_ > 0 ? force_gap_ / force_peak_ : 0.0; }
   /// Writes the counters, marks the file complete and moves it into place (with results.xdmf).
   /// Returns the stale results.incomplete.{h5,xdmf} of an earlier, stopped run that it removed.
-  std::vector<std::filesystem::path> finish(const integrators::Stats& stats);
+  std::vector<std::filesystem::path> finish(const integrators::Stats& stats, const RunCheckpoint& last);
   /// Keeps every recorded step as results.incomplete.h5 (status: `why`) beside any good results.h5.
   void abandon(const std::string& why);
   const model::EnergyLedger& ledger() const { return ledger_; }
@@ -80,7 +92,12 @@ class ResultsRecorder {
   std::string topology_ = "/mesh/tets";
   long topology_tets_ = 0;
   bool topology_varies_ = false;
+  long last_checkpoint_ = -1;
   void write_cuts();
+  /// Step k's displacement field (mm, #N x 3) at time t, and its XDMF entry.
+  void write_field(long k, double t, const std::vector<double>& field_mm);
+  /// The multipliers' series, made at the first report of a DAE form.
+  void make_constraint_series();
 };
 
 /// Removes out/results.incomplete.{h5,xdmf}, left by an earlier run that was stopped, once a run

@@ -3,11 +3,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <optional>
 #include <ostream>
 
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
 #include "common/interrupt.hpp"
+#include "common/number_text.hpp"
 #include "common/timer.hpp"
 #include "condensation/reduced_model.hpp"
 #include "integrators/integrator_table.hpp"
@@ -140,22 +143,26 @@ void check_results_fit(const scenario::Scenario& sc, const ScenarioModel& built,
              static_cast<double>(space.available) / 1e9));
 }
 
-/// The run loop with the recorder as its observer. A divergence, a solver failure, an element that
-/// inverts or a signal keeps every completed step, marked incomplete, beside (never in place of) a
-/// good results.h5.
+/// The run loop with the recorder as its observer, from the step the stepper is at (0, or a
+/// restart's). A divergence, a solver failure, an element that inverts or a signal keeps every
+/// completed step, marked incomplete, beside (never in place of) a good results.h5.
 RunSummary integrate(const scenario::Scenario& sc, ScenarioStepper& stepper, ResultsRecorder& recorder, PeakDisplacement& peak,
                      const std::filesystem::path& out, std::ostream& log) {
   const integrators::Integrator& integrator = stepper.integrator();
-  recorder.record(0, stepper.state(), 0.0);
-  if (const auto held = integrator.constraints()) recorder.record_constraints(*held, stepper.state().t);
+  if (stepper.steps_taken() == 0) {
+    recorder.record(0, stepper.state(), 0.0);
+    if (const auto held = integrator.constraints()) recorder.record_constraints(*held, stepper.state().t);
+  }
   const InterruptGuard interrupts;
   try {
-    return run(stepper, sc.steps,
-               {[&](long k, const model::State& s, double seconds) {
+    return run(stepper, sc.steps - stepper.steps_taken(),
+               {[&](long, const model::State& s, double seconds) {
+                  const long k = stepper.steps_taken();
                   recorder.record(k, s, seconds);
                   if (const auto held = integrator.constraints()) recorder.record_constraints(*held, s.t);
+                  if (recorder.checkpoint_due(k)) recorder.record_checkpoint(stepper.checkpoint(recorder.ledger()));
                 },
-                [&](long k, const model::State& s, double) { peak.observe(k, s); }},
+                [&](long, const model::State& s, double) { peak.observe(stepper.steps_taken(), s); }},
                "run " + sc.file.filename().string());
   } catch (const Error& e) {
     if (!dynamic_cast<const SolverError*>(&e) && !dynamic_cast<const ModelError*>(&e) && !dynamic_cast<const Interrupted*>(&e))
@@ -167,9 +174,48 @@ RunSummary integrate(const scenario::Scenario& sc, ScenarioStepper& stepper, Res
   }
 }
 
+/// [restart] (or --from, --step): the earlier run and its restart point, checked before anything
+/// is written.
+struct Restart {
+  std::unique_ptr<EarlierRun> earlier;
+  RunCheckpoint from;
+};
+
+Restart restart_point(const scenario::Scenario& sc) {
+  Restart r{.earlier = std::make_unique<EarlierRun>(sc.restart->from, sc), .from = {}};
+  r.from = r.earlier->checkpoint(sc.restart->step);
+  if (r.earlier->integrator() != sc.integrator) r.from.integrator.reset();  // another method's own state means nothing here
+  if (r.from.step >= sc.steps)
+    throw InputError(format("%s: a restart at step %ld of a run of %ld steps has nothing left to run (time.steps: more)",
+                            (sc.restart->where.empty() ? sc.file.string() : sc.restart->where).c_str(), r.from.step, sc.steps));
+  return r;
+}
+
+/// The earlier run's steps 0..K into the recorder as it recorded them, its cuts replayed, and the
+/// stepper at its restart point.
+void restart(const scenario::Scenario& sc, const Restart& r, ScenarioStepper& stepper, ResultsRecorder& recorder,
+             std::ostream& log) {
+  const EarlierRun& earlier = *r.earlier;
+  const RunCheckpoint& from = r.from;
+  const std::string before = earlier.integrator();
+  const bool exact = stepper.resume(from, [&](long k) { recorder.replay(k, earlier); });
+  const std::string whence =
+      format("%s, step %ld (t = %s s)", earlier.file().path().c_str(), from.step, number_text(from.state.t).c_str());
+  recorder.resume(from, whence);
+  log << "restarted from " << whence << ": steps 0.." << from.step << " as it recorded them, then "
+      << (exact ? sc.integrator + " goes on exactly as the run that never stopped"
+          : before != sc.integrator
+              ? sc.integrator + " (the run went with " + before +
+                    ") starts afresh from u, v at t = " + number_text(from.state.t) + " s"
+              : sc.integrator + " starts afresh from u, v at t = " + number_text(from.state.t) +
+                    " s (its step sizes and history are its library's own: the run goes on within its tolerances)")
+      << "\n";
+}
+
 }  // namespace
 
 ScenarioRunSummary run_scenario(const scenario::Scenario& sc, const std::filesystem::path& out, std::ostream& log) {
+  const std::optional<Restart> restarting = sc.restart ? std::optional<Restart>(restart_point(sc)) : std::nullopt;
   check_output_directory(out);
   ScenarioRunSummary summary;
   Stopwatch setup_clock;
@@ -193,9 +239,10 @@ ScenarioRunSummary run_scenario(const scenario::Scenario& sc, const std::filesys
     recorder.record_cut(stepper.steps_taken() + 1, event, at_cut, stepper.cuts().still_there());
     for (const auto& w : event.warnings) log << "\nwarning: " << w << '\n';
   });
+  if (restarting) restart(sc, *restarting, stepper, recorder, log);
   PeakDisplacement peak(*built);
   const RunSummary run_summary = integrate(sc, stepper, recorder, peak, out, log);
-  for (const auto& stale : recorder.finish(run_summary.stats))
+  for (const auto& stale : recorder.finish(run_summary.stats, stepper.checkpoint(recorder.ledger())))
     log << "removed " << stale.string() << ", an earlier run's that was stopped\n";
 
   const model::EnergyLedger& ledger = recorder.ledger();

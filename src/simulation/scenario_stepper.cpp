@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "common/errors.hpp"
+#include "common/number_text.hpp"
 #include "io/csv.hpp"
 
 namespace roifem::simulation {
@@ -41,6 +42,44 @@ void ScenarioStepper::step() {
   integrator_->advance_to(next_time(), state_);
   ++k_;  // the seam (Integrator::advance_to) keeps u and v where they are: the Python module's views rely on it
   if (ledger_) ledger_->record(state_);
+}
+
+RunCheckpoint ScenarioStepper::checkpoint(const model::EnergyLedger& ledger) const {
+  return {.step = k_, .state = state_, .integrator = integrator_->checkpoint(), .restarted = restarted_, .ledger = ledger.sums()};
+}
+
+bool ScenarioStepper::resume(const RunCheckpoint& saved, const std::function<void(long step)>& replayed) {
+  if (k_ != 0) throw Error("internal: a restart resumes a stepper at rest, not at step " + std::to_string(k_));
+  if (saved.state.u.size() != state_.u.size())
+    throw InputError(io::format("%s: the restart point has %lld unknowns where this scenario's model has %lld",
+                                scenario_.file.c_str(), static_cast<long long>(saved.state.u.size()),
+                                static_cast<long long>(state_.u.size())));
+  // The cuts up to the restart point, on the model and the integrator, in the run's order: the
+  // factor takes the same corrections (a cut's change does not depend on the state; what the
+  // state gives the integrator and the ledger is replaced by the checkpoint's below).
+  replayed(0);
+  for (long j = 1; j <= saved.step; ++j) {
+    if (cuts_.due(grid_.at(j))) {
+      k_ = j - 1;  // the listeners hear the cut at the start of step j, as in the run
+      state_.t = grid_.at(j - 1);
+      cut_due(grid_.at(j));
+    }
+    replayed(j);
+  }
+  state_.u = saved.state.u;
+  state_.v = saved.state.v;
+  state_.t = saved.state.t;
+  k_ = saved.step;
+  restarted_ = saved.restarted;
+  try {
+    integrator_->resume(model_->system(), state_, saved.integrator);
+  } catch (const InputError& e) {
+    throw InputError(io::format("%s: a restart at step %ld (t = %s s): %s; restart with another integrator",
+                                scenario_.file.c_str(), saved.step, number_text(saved.state.t).c_str(), e.what()));
+  }
+  if (ledger_) ledger_->resume(state_, saved.ledger);
+  reactions_.reset();
+  return saved.integrator.has_value() && integrator_->restarts_exactly();
 }
 
 long ScenarioStepper::steps_to(double t) const {

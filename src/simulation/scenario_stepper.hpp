@@ -17,6 +17,7 @@
 #include "model/energy.hpp"
 #include "model/reaction_forces.hpp"
 #include "scenario/scenario.hpp"
+#include "simulation/run_checkpoint.hpp"
 #include "simulation/run_loop.hpp"
 #include "simulation/scenario_cuts.hpp"
 #include "simulation/scenario_model.hpp"
@@ -57,6 +58,17 @@ class ScenarioStepper final : public Stepper {
   double next_time() const { return grid_.at(k_ + 1); }
   /// The ledger; nullptr without energy bookkeeping.
   const model::EnergyLedger* energy() const { return ledger_ ? &*ledger_ : nullptr; }
+
+  /// The run's restart point at this step (run_checkpoint.hpp), with the sums of `ledger` (the
+  /// results' ledger; the stepper's own where it keeps one).
+  RunCheckpoint checkpoint(const model::EnergyLedger& ledger) const;
+  /// Goes on from `saved`, a checkpoint of a run of this scenario, from rest: replays the cuts due
+  /// up to its step (each heard by the cut listeners, as in the run), calling `replayed(j)` for each
+  /// step j = 0..K where the run recorded it (after that step's cuts); then the state, the
+  /// integrator (exactly where it keeps checkpoints, else afresh from the state:
+  /// Integrator::resume) and the stepper's own ledger are the checkpoint's. Returns whether the
+  /// integrator goes on exactly.
+  bool resume(const RunCheckpoint& saved, const std::function<void(long step)>& replayed);
 
   /// The ROI nodes' displacement in mm, #ROI x 3 row-major, computed as `roifem run` records it
   /// (zero at a fixed component). Empty for the full model.

@@ -120,3 +120,11 @@ def test_the_version_is_the_clis_and_every_results_file_carries_it(cli, scenario
     with h5py.File(tmp_path / "results.h5", "r") as f:
         stored = f.attrs["roifem_version"]
         assert (stored.decode() if isinstance(stored, bytes) else stored) == roifem.__version__
+
+
+def test_a_restart_table_is_refused_not_left_out(scenarios, tmp_path):
+    # roifem run goes on an earlier run ([restart]); a Simulation steps from rest and says so.
+    text = (scenarios / "paper-setup2.toml").read_text().replace('"../meshes/', f'"{scenarios.parent / "meshes"}/')
+    (tmp_path / "restart.toml").write_text(text + '\n[restart]\nfrom = "earlier/results.h5"\n')
+    with pytest.raises(roifem.InputError, match=r"\[restart\]: roifem.Simulation steps from rest"):
+        roifem.Simulation(tmp_path / "restart.toml")

@@ -21,11 +21,12 @@ TEST(ProgressReporter, LogsALineWithItsEstimateOnceThePhaseHasRunItsStatedTime) 
     EXPECT_EQ(log.str(), "") << "before after_s";
     std::this_thread::sleep_for(std::chrono::milliseconds(80));
     progress.update(50);
-    progress.update(60);  // within every_s of the first: no second line
+    progress.update(60);   // within every_s of the first: no second line
     progress.update(200);  // done: nothing to estimate
   }
   const std::string said = log.str();
-  EXPECT_TRUE(std::regex_match(said, std::regex("  reference ida-bdf5: 50 of 200 outputs in 0\\.[0-9] s; about 0\\.[0-9] s to go\n")))
+  EXPECT_TRUE(
+      std::regex_match(said, std::regex("  reference ida-bdf5: 50 of 200 outputs in 0\\.[0-9] s; about 0\\.[0-9] s to go\n")))
       << said;
 }
 
