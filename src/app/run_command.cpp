@@ -30,7 +30,8 @@ void add_run_command(CLI::App& app, Action& action) {
                                "trapezoidal rule and energy-momentum go on bit for bit, the library methods afresh from u and v "
                                "(the scenario's [restart] table says the same)");
   cmd->add_option("--step", o->step,
-                  "The restart point's step: a multiple of output.field_every, or a finished run's last (default: the "
+                  "The restart point's step: a multiple of output.restart_every (default 10 x field_every), or a finished run's "
+                  "last (default: the "
                   "last point the file holds)")
       ->needs(from);
   cmd->callback([&action, o] {

@@ -41,6 +41,10 @@ struct Scenario {
   /// The absolute tolerance in force: atol, or rtol x 1 mm.
   double absolute_tolerance() const { return atol.value_or(rtol.value_or(0) * 1e-3); }
   long field_every = 10;  ///< full displacement field every k steps (0: none)
+  /// [output] restart_every: a restart point every k steps (0: only a finished run's last); not
+  /// given: every 10th field (restart_interval()).
+  std::optional<long> restart_every;
+  long restart_interval() const { return restart_every.value_or(10 * field_every); }
   /// [haptic]: the haptic loop's settings (`roifem serve`), where the file gives them: its rate (Hz,
   /// default 1 kHz) and a neo-Hookean model's modified-Newton iterations per tick (default 2).
   std::optional<double> haptic_rate_hz;

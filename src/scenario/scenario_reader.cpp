@@ -580,6 +580,9 @@ Scenario scenario_from_table(const toml::table& root, const std::string& source,
   if (const toml::table* t = top.subtable("output")) {
     StrictTable output(*t, source, "output");
     s.field_every = output.integer("field_every").value_or(s.field_every);
+    s.restart_every = output.integer("restart_every");
+    if (s.restart_every && *s.restart_every < 0)
+      throw InputError(source + ": key 'output.restart_every' must be >= 0 (got " + std::to_string(*s.restart_every) + ")");
     output.close();
     if (s.field_every < 0) throw InputError(source + ": key 'output.field_every' must be >= 0");
   }
@@ -685,6 +688,7 @@ std::string Scenario::resolved_toml() const {
     if (haptic_newton_iterations) o << "newton_iterations = " << *haptic_newton_iterations << "\n";
   }
   o << "\n[output]\nfield_every = " << field_every << "\n";
+  if (restart_every) o << "restart_every = " << *restart_every << "\n";
   return o.str();
 }
 

@@ -56,7 +56,7 @@ RunCheckpoint EarlierRun::checkpoint(std::optional<long> step) const {
     const std::vector<long> steps = checkpoint_steps(file_);
     if (steps.empty())
       throw InputError(file_.path() +
-                       ": holds no restart point (a run written before restarts, or with output.field_every "
+                       ": holds no restart point (a run written before restarts, or with output.restart_every "
                        "= 0 that did not finish)");
     step = steps.back();
   }

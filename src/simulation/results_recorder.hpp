@@ -44,9 +44,12 @@ class ResultsRecorder {
   /// A cut at `at_cut`, the start of step `step` (ScenarioStepper::on_cut): the ledger books it;
   /// `still_there` (per tetrahedron, after it) is the topology of the fields from then on.
   void record_cut(long step, const CutEvent& event, const model::State& at_cut, const std::vector<bool>& still_there);
-  /// Whether step k gets a restart point: every output.field_every-th (a finished run's last is
+  /// Whether step k gets a restart point: every output.restart_every-th (a finished run's last is
   /// written by finish()).
-  bool checkpoint_due(long k) const { return scenario_.field_every > 0 && k > 0 && k % scenario_.field_every == 0; }
+  bool checkpoint_due(long k) const {
+    const long every = scenario_.restart_interval();
+    return every > 0 && k > 0 && k % every == 0;
+  }
   /// Step k's restart point (run_checkpoint.hpp), after record() of the same step.
   void record_checkpoint(const RunCheckpoint& checkpoint);
   /// A restart: step k as `earlier` recorded it (every series' row, its field and its restart
@@ -65,6 +68,8 @@ class ResultsRecorder {
   /// The size of what the run writes (bytes, without HDF5's overhead): per step and per field.
   static double bytes_per_step(const ScenarioModel& model);
   static double bytes_per_field(const ScenarioModel& model) { return 24.0 * static_cast<double>(model.mesh.num_nodes()); }
+  /// A restart point: u, v and an integrator's vector, per unknown.
+  static double bytes_per_restart_point(const ScenarioModel& model) { return 24.0 * static_cast<double>(model.system().size()); }
   bool has_fields() const { return !xdmf_.times.empty(); }
 
  private:

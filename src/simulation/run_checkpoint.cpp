@@ -53,9 +53,9 @@ RunCheckpoint read_checkpoint(const io::Hdf5Reader& file, long step) {
     std::string have;
     for (const long k : checkpoint_steps(file)) have += (have.empty() ? "" : ", ") + std::to_string(k);
     throw InputError(file.path() + ": no restart point at step " + std::to_string(step) + " (it has " +
-                     (have.empty() ? std::string("none: a run written before restarts, or with output.field_every = 0 that did "
+                     (have.empty() ? std::string("none: a run written before restarts, or with output.restart_every = 0 that did "
                                                  "not finish")
-                                   : "steps " + have + ": every output.field_every-th step and a finished run's last") +
+                                   : "steps " + have + ": every output.restart_every-th step and a finished run's last") +
                      ")");
   }
   RunCheckpoint c;

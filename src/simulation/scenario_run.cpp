@@ -131,7 +131,10 @@ void print_deformation(const DeformationReport& r, const PeakDisplacement& peak,
 void check_results_fit(const scenario::Scenario& sc, const ScenarioModel& built, const std::filesystem::path& out) {
   const double steps = static_cast<double>(sc.steps);
   const double fields = sc.field_every > 0 ? std::floor(steps / static_cast<double>(sc.field_every)) + 1 : 0;
-  const double bytes = steps * ResultsRecorder::bytes_per_step(built) + fields * ResultsRecorder::bytes_per_field(built);
+  const long restart_every = sc.restart_interval();
+  const double points = (restart_every > 0 ? std::floor(steps / static_cast<double>(restart_every)) : 0) + 1;
+  const double bytes = steps * ResultsRecorder::bytes_per_step(built) + fields * ResultsRecorder::bytes_per_field(built) +
+                       points * ResultsRecorder::bytes_per_restart_point(built);
   std::error_code ec;
   const auto space = std::filesystem::space(std::filesystem::absolute(out).parent_path(), ec);
   if (ec || bytes <= static_cast<double>(space.available)) return;

@@ -10,7 +10,7 @@ roifem=$1 scenarios=$2 work=$3 signal=$4
 rm -rf "$work"
 mkdir -p "$work"
 mesh=$(cd "$scenarios/../meshes" && pwd)/brain-800.msh
-sed -e 's/^steps = .*/steps = 10000000/' -e "s#^mesh = .*#mesh = \"$mesh\"#" "$scenarios/paper-setup2.toml" > "$work/long.toml"
+sed -e 's/^steps = .*/steps = 2000000/' -e "s#^mesh = .*#mesh = \"$mesh\"#" "$scenarios/paper-setup2.toml" > "$work/long.toml"
 echo "a good result from an earlier run" > "$work/results.h5"
 "$roifem" run "$work/long.toml" --out "$work" > "$work/log.txt" 2>&1 &
 pid=$!

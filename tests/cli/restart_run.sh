@@ -12,7 +12,7 @@ rm -rf "$work"
 mkdir -p "$work"
 make() {  # make NAME STEPS
   sed -e "s#\.\./meshes/#$(cd "$scenarios/../meshes" && pwd)/#" -e "s/^integrator = .*/integrator = \"$integrator\"/" \
-      -e "s/^steps = .*/steps = $2/" -e 's/^field_every = .*/field_every = 10/' "$scenarios/$scenario.toml" > "$work/$1.toml"
+      -e "s/^steps = .*/steps = $2/" -e "s/^field_every = .*/field_every = 10\nrestart_every = 10/" "$scenarios/$scenario.toml" > "$work/$1.toml"
   [ -z "$rtol" ] || sed -i "s/^steps = $2\$/steps = $2\nrtol = $rtol/" "$work/$1.toml"
 }
 make long "$steps"

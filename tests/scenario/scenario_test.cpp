@@ -109,6 +109,21 @@ TEST(ScenarioReader, ReadsTheHapticTableAndRefusesARateOrBudgetOutOfRange) {
       << error_of(valid + "[haptic]\nrate = 500\n");
 }
 
+TEST(ScenarioReader, ReadsTheRestartTableAndLeavesItOutOfTheResolvedScenario) {
+  const Scenario plain = parse_scenario(valid, "s.toml", "/data");
+  EXPECT_FALSE(plain.restart);
+  EXPECT_EQ(plain.restart_interval(), 10 * plain.field_every);  // every 10th field unless given
+  const Scenario s = parse_scenario(valid + "[restart]\nfrom = \"run/results.h5\"\nstep = 20\n", "s.toml", "/data");
+  ASSERT_TRUE(s.restart);
+  EXPECT_EQ(s.restart->from, std::filesystem::path("/data/run/results.h5"));
+  EXPECT_EQ(s.restart->step, std::optional<long>(20));
+  // The resolved scenario is the run's own: a restarted run stores what the run it goes on stored.
+  EXPECT_EQ(s.resolved_toml(), plain.resolved_toml());
+  EXPECT_EQ(error_of(valid + "[restart]\nstep = 2\n").find("s.toml:"), 0U);
+  EXPECT_NE(error_of(valid + "[restart]\nstep = 2\n").find("missing required key 'restart.from'"), std::string::npos);
+  EXPECT_EQ(error_of(valid + "[restart]\nfrom = \"a.h5\"\nstep = -1\n"), "s.toml: key 'restart.step' must be 0 or more (got -1)");
+}
+
 TEST(ScenarioReader, ReadsTheElementAndNamesAnUnknownOne) {
   EXPECT_EQ(parse_scenario(valid, "s.toml", "/data").element, fem::Element::tet4);
   const std::string nodal = replaced(valid, "mesh = \"brain.msh\"", "mesh = \"brain.msh\"\nelement = \"nodal-pressure\"");
