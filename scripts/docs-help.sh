@@ -23,7 +23,7 @@ Ctrl-C / SIGTERM (every completed step kept).
 | command | what | guide |
 |---|---|---|
 | `roifem paper --out results/paper` | the Hansen & Larsen (1998) experiment: findings, Table 2, plots, the error budget | [paper.md](paper.md), [accuracy.md](accuracy.md) |
-| `roifem run scenarios/paper-setup1.toml --out results/setup1` | one scenario: `results.h5` and `results.xdmf` | [results.md](results.md), [../scenarios/README.md](../scenarios/README.md) |
+| `roifem run scenarios/paper-setup1.toml --out results/setup1` | one scenario: `results.h5` and `results.xdmf`; with `--from DIR/results.h5 [--step K]`, it goes on from a restart point of an earlier run | [results.md](results.md), [../scenarios/README.md](../scenarios/README.md) |
 | `roifem compare scenarios/paper-setup2.toml --out results/compare` | every integrator against the exact modal solution: errors, cost, stability limits | [integrators.md](integrators.md) |
 | `roifem energy scenarios/paper-full-neo-hookean-undamped.toml --out results/energy` | each integrator's energy balance over an (undamped) run: how far each drifts | [large-deformation.md](large-deformation.md) |
 | `roifem roi-size scenarios/paper-setup1.toml --max-error-mm 0.5` | how large an ROI an error budget needs, per reduction | [paper.md](paper.md) |
