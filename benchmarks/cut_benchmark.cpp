@@ -27,6 +27,7 @@
 
 #include "brain_meshes.hpp"
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "common/timer.hpp"
 #include "cutting/blade.hpp"
 #include "fem/element_removal.hpp"
@@ -233,18 +234,18 @@ std::string measure(const std::filesystem::path& mesh_file, long roi_nodes, cons
     double prefetch_s = 0;
     cut_haptic(ahead, ahead_system, ahead_state, stiffness_change, *brain->model.dofs, position, &prefetch_s);
     const double ahead_event_s = ahead.change_seconds();
-    lines += io::format(
-                 "%8lld %5ld %6lld %6ld %5ld %5lld %8.3f %9.2f %8.3f %8.3f %10.1f %9.2f  %.1e | %8.2f %5.0f %7.3f %7.3f | %8.2f "
-                 "%8.2f %5.0f\t",
-                 static_cast<long long>(brain->mesh.num_nodes()), roi_nodes, static_cast<long long>(n), condensed.interface_dofs,
-                 k, static_cast<long long>(dofs.size()), form_s * 1e3, update_s * 1e3, solve_s * 1e3, after_s * 1e3,
-                 refactor_s * 1e3, condense_s, gap, event_s * 1e3, std::ceil(event_s / rule.dt()), tick_before_s * 1e3,
-                 tick_after_s * 1e3, prefetch_s * 1e3, ahead_event_s * 1e3, std::ceil(ahead_event_s / rule.dt())) +
-             io::format("%lld,%ld,%lld,%ld,%ld,%lld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.3g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
-                        static_cast<long long>(brain->mesh.num_nodes()), roi_nodes, static_cast<long long>(n),
-                        condensed.interface_dofs, k, static_cast<long long>(dofs.size()), form_s * 1e3, update_s * 1e3,
-                        solve_s * 1e3, after_s * 1e3, refactor_s * 1e3, condense_s, gap, event_s * 1e3, tick_before_s * 1e3,
-                        tick_after_s * 1e3, prefetch_s * 1e3, ahead_event_s * 1e3);
+    lines +=
+        format(
+            "%8lld %5ld %6lld %6ld %5ld %5lld %8.3f %9.2f %8.3f %8.3f %10.1f %9.2f  %.1e | %8.2f %5.0f %7.3f %7.3f | %8.2f "
+            "%8.2f %5.0f\t",
+            static_cast<long long>(brain->mesh.num_nodes()), roi_nodes, static_cast<long long>(n), condensed.interface_dofs, k,
+            static_cast<long long>(dofs.size()), form_s * 1e3, update_s * 1e3, solve_s * 1e3, after_s * 1e3, refactor_s * 1e3,
+            condense_s, gap, event_s * 1e3, std::ceil(event_s / rule.dt()), tick_before_s * 1e3, tick_after_s * 1e3,
+            prefetch_s * 1e3, ahead_event_s * 1e3, std::ceil(ahead_event_s / rule.dt())) +
+        format("%lld,%ld,%lld,%ld,%ld,%lld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.3g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
+               static_cast<long long>(brain->mesh.num_nodes()), roi_nodes, static_cast<long long>(n), condensed.interface_dofs, k,
+               static_cast<long long>(dofs.size()), form_s * 1e3, update_s * 1e3, solve_s * 1e3, after_s * 1e3, refactor_s * 1e3,
+               condense_s, gap, event_s * 1e3, tick_before_s * 1e3, tick_after_s * 1e3, prefetch_s * 1e3, ahead_event_s * 1e3);
   }
   return lines;
 }
@@ -430,7 +431,7 @@ std::string measure_blade(const std::filesystem::path& mesh_file, long roi_nodes
   const LoopTicks plain = loop_ticks(plain_s, dt), beside = loop_ticks(beside_s, dt), cut = loop_ticks(corrected.seconds, dt),
                   background = loop_ticks(refreshed.seconds, dt);
   const auto nodes = static_cast<long long>(brain->mesh.num_nodes());
-  return io::format(
+  return format(
              "%8lld %5ld %5.1f %6ld %6zu %5ld %5ld | %7.3f %7.3f %7.2f %6.1f | %7.3f %7.3f %6.1f | %7.3f %7.3f %7.2f %6.1f "
              "%8.2f %4ld | %7.3f %7.3f %7.2f %6.1f %8.2f %4ld %5ld %7.3f %6.1f\t",
              nodes, roi_nodes, speed * 1e3, ticks, schedule.size(), skipped, corrected.events, plain.median * 1e3,
@@ -438,14 +439,13 @@ std::string measure_blade(const std::filesystem::path& mesh_file, long roi_nodes
              cut.median * 1e3, cut.p99 * 1e3, cut.max * 1e3, cut.late_per_10k, corrected.event_max * 1e3, corrected.cold,
              background.median * 1e3, background.p99 * 1e3, background.max * 1e3, background.late_per_10k,
              refreshed.event_max * 1e3, refreshed.cold, refreshed.swaps, refreshed.swap_max * 1e3, factor_mb) +
-         io::format("%lld,%ld,%g,%ld,%zu,%ld,%ld,%ld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%ld,%.0f,", nodes, roi_nodes,
-                    speed * 1e3, ticks, schedule.size(), skipped, corrected.events, corrected.removed, plain.median * 1e3,
-                    plain.p99 * 1e3, plain.max * 1e3, plain.late_per_10k, cut.median * 1e3, cut.p99 * 1e3, cut.max * 1e3,
-                    cut.late_per_10k, corrected.event_max * 1e3, corrected.cold, corrected.prefetched) +
-         io::format("%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%ld,%ld,%.6g,%.4g\n", beside.median * 1e3, beside.p99 * 1e3,
-                    beside.late_per_10k, background.median * 1e3, background.p99 * 1e3, background.max * 1e3,
-                    background.late_per_10k, refreshed.event_max * 1e3, refreshed.cold, refreshed.swaps, refreshed.swap_max * 1e3,
-                    factor_mb);
+         format("%lld,%ld,%g,%ld,%zu,%ld,%ld,%ld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%ld,%.0f,", nodes, roi_nodes,
+                speed * 1e3, ticks, schedule.size(), skipped, corrected.events, corrected.removed, plain.median * 1e3,
+                plain.p99 * 1e3, plain.max * 1e3, plain.late_per_10k, cut.median * 1e3, cut.p99 * 1e3, cut.max * 1e3,
+                cut.late_per_10k, corrected.event_max * 1e3, corrected.cold, corrected.prefetched) +
+         format("%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%ld,%ld,%.6g,%.4g\n", beside.median * 1e3, beside.p99 * 1e3,
+                beside.late_per_10k, background.median * 1e3, background.p99 * 1e3, background.max * 1e3, background.late_per_10k,
+                refreshed.event_max * 1e3, refreshed.cold, refreshed.swaps, refreshed.swap_max * 1e3, factor_mb);
 }
 
 /// Split mode on the same brain and ROI, run as a scenario (the copies are the model's from the
@@ -457,7 +457,7 @@ std::string measure_split(const std::filesystem::path& mesh_file, long roi_nodes
   std::string lines;
   for (const double size : sizes) {
     const double x = 6, top = 40 + size / 2;
-    const std::string text = io::format(
+    const std::string text = format(
         "mesh = \"%s\"\n[material]\npreset = \"paper\"\n[boundary]\nfixed = [\"base\"]\n"
         "[[load]]\nset = \"opening_left\"\nforce_N = [-0.01601, 0.0, 0.0]\nramp_s = 0.5\n"
         "[[load]]\nset = \"opening_right\"\nforce_N = [0.01601, 0.0, 0.0]\nramp_s = 0.5\n"
@@ -470,7 +470,7 @@ std::string measure_split(const std::filesystem::path& mesh_file, long roi_nodes
     try {
       stepper = std::make_unique<simulation::ScenarioStepper>(sc, false);
     } catch (const InputError& e) {
-      lines += io::format("%8s %5ld %5g  refused: %s\t\n", "-", roi_nodes, size, e.what());
+      lines += format("%8s %5ld %5g  refused: %s\t\n", "-", roi_nodes, size, e.what());
       continue;
     }
     std::size_t faces = 0, splits = 0, changed = 0;
@@ -494,11 +494,10 @@ std::string measure_split(const std::filesystem::path& mesh_file, long roi_nodes
     refactored.analyze(K_eff, system.dense_block_dofs());
     const double refactor_s = median_seconds(3, [&] { refactored.factorize(K_eff); });
     const auto nodes = static_cast<long long>(stepper->model().split_plan->num_nodes);
-    lines +=
-        io::format("%8lld %5ld %5g %6zu %6zu %5zu %9.3f %9.3f %8.3f %10.1f\t", nodes, roi_nodes, size, faces, splits, changed,
-                   simulation::median(before) * 1e3, event_s * 1e3, simulation::median(after) * 1e3, refactor_s * 1e3) +
-        io::format("%lld,%ld,%g,%zu,%zu,%zu,%.6g,%.6g,%.6g,%.6g\n", nodes, roi_nodes, size, faces, splits, changed,
-                   simulation::median(before) * 1e3, event_s * 1e3, simulation::median(after) * 1e3, refactor_s * 1e3);
+    lines += format("%8lld %5ld %5g %6zu %6zu %5zu %9.3f %9.3f %8.3f %10.1f\t", nodes, roi_nodes, size, faces, splits, changed,
+                    simulation::median(before) * 1e3, event_s * 1e3, simulation::median(after) * 1e3, refactor_s * 1e3) +
+             format("%lld,%ld,%g,%zu,%zu,%zu,%.6g,%.6g,%.6g,%.6g\n", nodes, roi_nodes, size, faces, splits, changed,
+                    simulation::median(before) * 1e3, event_s * 1e3, simulation::median(after) * 1e3, refactor_s * 1e3);
   }
   return lines;
 }

@@ -13,6 +13,7 @@
 #include <cstdio>
 
 #include "brain_meshes.hpp"
+#include "common/format.hpp"
 #include "haptic/haptic_model.hpp"
 #include "io/csv.hpp"
 #include "scale/child_process.hpp"
@@ -32,13 +33,13 @@ struct Options {
 
 /// "0.412 0.602 0.731 1.20 3" : median, p99, p99.9, max (ms), late per 10,000.
 std::string stats_text(const TickStats& t, long ticks) {
-  return io::format("%7.3f %7.3f %7.3f %7.2f %6.1f", t.median * 1e3, t.p99 * 1e3, t.p999 * 1e3, t.max * 1e3,
-                    1e4 * static_cast<double>(t.late) / static_cast<double>(ticks));
+  return format("%7.3f %7.3f %7.3f %7.2f %6.1f", t.median * 1e3, t.p99 * 1e3, t.p999 * 1e3, t.max * 1e3,
+                1e4 * static_cast<double>(t.late) / static_cast<double>(ticks));
 }
 
 std::string stats_csv(const TickStats& t) {
-  return io::format("%.6g,%.6g,%.6g,%.6g,%ld,%ld,%ld,%ld,%ld", t.median * 1e3, t.p99 * 1e3, t.p999 * 1e3, t.max * 1e3, t.late,
-                    t.late_preempted, t.late_page_fault, t.page_faults, t.preemptions);
+  return format("%.6g,%.6g,%.6g,%.6g,%ld,%ld,%ld,%ld,%ld", t.median * 1e3, t.p99 * 1e3, t.p999 * 1e3, t.max * 1e3, t.late,
+                t.late_preempted, t.late_page_fault, t.page_faults, t.preemptions);
 }
 
 int run(const Options& o) {
@@ -70,7 +71,7 @@ int run(const Options& o) {
           run_in_child([&] { return measure_haptic(mesh_file, roi, o.haptic).serialize(); }, o.model_timeout_s);
       if (!child.ok) {
         std::printf("%8ld %5ld  failed: %s\n", n, roi, child.output.c_str());
-        csv.row(io::format("%ld,%ld,,,,,,,,,,", n, roi));
+        csv.row(format("%ld,%ld,,,,,,,,,,", n, roi));
         continue;
       }
       const HapticMeasurement m = HapticMeasurement::parse(child.output);
@@ -80,19 +81,19 @@ int run(const Options& o) {
                   stats_text(m.plain, ticks).c_str(), stats_text(m.haptic, ticks).c_str(), stats_text(m.control, ticks).c_str(),
                   ratio, m.haptic.late_preempted, m.haptic.late_page_fault, m.memory_locked ? " (memory locked)" : "");
       std::fflush(stdout);
-      csv.row(io::format("%ld,%ld,%ld,%ld,%ld,%.6g,%.6g,%.6g,%ld,%.6g,%d,%d,", m.nodes, m.roi_nodes, m.system_dofs,
-                         m.interface_dofs, m.tool_nodes, m.setup_s, m.attach_s * 1e3, m.peak_force_N, ticks, o.haptic.rate_hz,
-                         m.blas_threads, m.memory_locked ? 1 : 0) +
+      csv.row(format("%ld,%ld,%ld,%ld,%ld,%.6g,%.6g,%.6g,%ld,%.6g,%d,%d,", m.nodes, m.roi_nodes, m.system_dofs, m.interface_dofs,
+                     m.tool_nodes, m.setup_s, m.attach_s * 1e3, m.peak_force_N, ticks, o.haptic.rate_hz, m.blas_threads,
+                     m.memory_locked ? 1 : 0) +
               stats_csv(m.plain) + "," + stats_csv(m.haptic) + "," + stats_csv(m.control) + "," + stats_csv(m.nonlinear) +
-              io::format(",%.6g,%d,%.6g,%.6g,%.6g", ratio, m.newton_iterations, m.newton_residual, m.force_error_rel,
-                         m.newton_iterations > 0 ? m.nonlinear.median / m.haptic.median : 0.0));
+              format(",%.6g,%d,%.6g,%.6g,%.6g", ratio, m.newton_iterations, m.newton_residual, m.force_error_rel,
+                     m.newton_iterations > 0 ? m.nonlinear.median / m.haptic.median : 0.0));
       if (m.newton_iterations > 0 && m.nonlinear_ticks > 0)
         std::printf(
             "%8s %5s  nonlinear tick (hybrid ROI, %d modified-Newton iterations, hand x %g): %s (ms, late per 10,000); "
             "%.2fx the linear tick; Newton residual after them %.1e; force %.1e from a converged step's%s\n",
             "", "", m.newton_iterations, o.haptic.hand_scale, stats_text(m.nonlinear, m.nonlinear_ticks).c_str(),
             m.nonlinear.median / m.haptic.median, m.newton_residual, m.force_error_rel,
-            m.nonlinear_ticks < ticks ? io::format(" (stopped after %ld ticks)", m.nonlinear_ticks).c_str() : "");
+            m.nonlinear_ticks < ticks ? format(" (stopped after %ld ticks)", m.nonlinear_ticks).c_str() : "");
       else if (m.newton_iterations > 0)
         std::printf("%8s %5s  nonlinear tick: stopped before its first timed tick (its message above)\n", "", "");
     }

@@ -19,6 +19,7 @@
 
 #include "brain_meshes.hpp"
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "io/csv.hpp"
 #include "io/plots.hpp"
 #include "scale/child_process.hpp"
@@ -55,22 +56,22 @@ ModelSpec roi_spec(const std::string& text, long nodes) {
 
 std::string row_text(long nodes, const std::string& label, const std::optional<ScaleMeasurement>& m,
                      const std::optional<ScaleMeasurement>& full, const std::string& failure) {
-  if (!m) return io::format("%8ld %-10s  failed: %s", nodes, label.c_str(), failure.c_str());
+  if (!m) return format("%8ld %-10s  failed: %s", nodes, label.c_str(), failure.c_str());
   const double vs_full = full ? full->step_median_s / m->step_median_s : 0;
   std::string note;
   if (m->newton_per_step > 0)
-    note = io::format(
-        "  Newton %.2f iterations/step; %ld steps from rest in %.1f s (%.1f s in Newton), %ld retried; peak |u| %.2f mm",
-        m->newton_per_step, m->steps_timed, m->all_steps_s, m->factorization_s, m->retried_steps, m->peak_displacement_mm);
+    note =
+        format("  Newton %.2f iterations/step; %ld steps from rest in %.1f s (%.1f s in Newton), %ld retried; peak |u| %.2f mm",
+               m->newton_per_step, m->steps_timed, m->all_steps_s, m->factorization_s, m->retried_steps, m->peak_displacement_mm);
   if (m->cg_iterations_per_step > 0) {
-    note = io::format("  CG %.0f iterations/step; ", m->cg_iterations_per_step);
-    note += m->deviation_vs_direct >= 0 ? io::format("max |u_cg - u_direct| / max |u| = %.1e", m->deviation_vs_direct)
+    note = format("  CG %.0f iterations/step; ", m->cg_iterations_per_step);
+    note += m->deviation_vs_direct >= 0 ? format("max |u_cg - u_direct| / max |u| = %.1e", m->deviation_vs_direct)
                                         : (m->check_note.empty() ? std::string("not checked") : m->check_note);
   }
-  return io::format("%8ld %-10s %6ld %8ld %6ld %8.2f %9.2f %9.2f %8.2f %10.3f %10.3f %9.2f %8.0f %8s%s", nodes, label.c_str(),
-                    m->roi_nodes, m->system_dofs, m->interface_dofs, m->assembly_s, m->factorization_s, m->condensation_s,
-                    m->integrator_setup_s, m->step_median_s * 1e3, m->step_p99_s * 1e3, 1.0 / m->step_median_s, m->peak_rss_mb,
-                    full ? io::format("%.3gx", vs_full).c_str() : "-", note.c_str());
+  return format("%8ld %-10s %6ld %8ld %6ld %8.2f %9.2f %9.2f %8.2f %10.3f %10.3f %9.2f %8.0f %8s%s", nodes, label.c_str(),
+                m->roi_nodes, m->system_dofs, m->interface_dofs, m->assembly_s, m->factorization_s, m->condensation_s,
+                m->integrator_setup_s, m->step_median_s * 1e3, m->step_p99_s * 1e3, 1.0 / m->step_median_s, m->peak_rss_mb,
+                full ? format("%.3gx", vs_full).c_str() : "-", note.c_str());
 }
 
 int run(const Options& o) {
@@ -106,7 +107,7 @@ int run(const Options& o) {
       std::printf("%s\n", row_text(n, spec.label, m, direct_full ? std::nullopt : full, child.output).c_str());
       std::fflush(stdout);
       if (m)
-        csv.row(io::format(
+        csv.row(format(
             "%ld,%s,%ld,%ld,%ld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%ld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%ld,ok",
             m->nodes, spec.label.c_str(), m->roi_nodes, m->system_dofs, m->interface_dofs, m->read_s, m->assembly_s,
             m->factorization_s, m->condensation_s, m->integrator_setup_s, m->setup_s(), m->step_median_s * 1e3,
@@ -114,7 +115,7 @@ int run(const Options& o) {
             full && !direct_full ? full->step_median_s / m->step_median_s : 1.0, m->cg_iterations_per_step,
             m->deviation_vs_direct, m->newton_per_step, m->all_steps_s, m->peak_displacement_mm, m->retried_steps));
       else
-        csv.row(io::format("%ld,%s,,,,,,,,,,,,,,,,,,,,,,failed", n, spec.label.c_str()));
+        csv.row(format("%ld,%s,,,,,,,,,,,,,,,,,,,,,,failed", n, spec.label.c_str()));
     }
   }
   csv.close();
@@ -151,13 +152,13 @@ int run(const Options& o) {
       if (r.nodes == 0) r.nodes = n;  // every probe failed: the mesh's own count is unknown here
       std::string probes;
       for (const auto& [count, result] : r.probes)
-        probes += result.measurement ? io::format("%ld:%.3fms ", count, result.measurement->step_median_s * 1e3)
-                                     : io::format("%ld:failed ", count);
+        probes += result.measurement ? format("%ld:%.3fms ", count, result.measurement->step_median_s * 1e3)
+                                     : format("%ld:failed ", count);
       std::printf("%8ld nodes: ROI %ld nodes (%ld dofs, %ld on the interface), step %.3f ms   probes %s\n", r.nodes, r.roi_nodes,
                   r.system_dofs, r.interface_dofs, r.step_median_s * 1e3, probes.c_str());
       std::fflush(stdout);
-      haptic.row(io::format("%ld,%.6g,%ld,%ld,%ld,%.6g,%s", r.nodes, o.haptic_rate_hz, r.roi_nodes, r.system_dofs,
-                            r.interface_dofs, r.step_median_s * 1e3, probes.c_str()));
+      haptic.row(format("%ld,%.6g,%ld,%ld,%ld,%.6g,%s", r.nodes, o.haptic_rate_hz, r.roi_nodes, r.system_dofs, r.interface_dofs,
+                        r.step_median_s * 1e3, probes.c_str()));
     }
     haptic.close();
   }

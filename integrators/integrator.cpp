@@ -5,10 +5,10 @@
 #include <limits>
 
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "common/number_text.hpp"
 #include "integrators/callback_guard.hpp"
 #include "integrators/stability_watch.hpp"
-#include "io/csv.hpp"
 #include "model/internal_force.hpp"
 
 namespace roifem::integrators {
@@ -138,7 +138,7 @@ void Integrator::check_bounded(const model::State& state) {
   if (finite && norm <= divergence_factor * bound) return;
   const std::string why =
       finite
-          ? io::format(
+          ? format(
                 "its kinetic energy, %.3g J, is %.2g times the most the loads can have given the exact solution by then, %.3g J",
                 0.5 * norm * norm, norm * norm / (bound * bound), 0.5 * bound * bound)
           : std::string("non-finite values");

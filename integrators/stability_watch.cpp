@@ -5,9 +5,9 @@
 #include <string>
 
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "common/number_text.hpp"
 #include "integrators/stability.hpp"
-#include "io/csv.hpp"
 #include "model/internal_force.hpp"
 #include "model/spectrum.hpp"
 
@@ -27,11 +27,11 @@ void StabilityWatch::check(std::string_view name, const model::SecondOrderSystem
   smallest_limit_ = std::min(smallest_limit_, limit);
   if (dt_ <= limit) return;
   throw SolverError(
-      io::format("%s: the step %s s is beyond the stability limit %s s that the tangent gives at t = %s s, "
-                 "step %ld (its highest frequency %.4g rad/s, the model's at rest %.4g): a smaller time.dt_s, "
-                 "or an implicit method",
-                 std::string(name).c_str(), number_text(dt_).c_str(), number_text(limit).c_str(), number_text(state.t).c_str(),
-                 steps, omega, model::highest_frequency(system, 1e-6)));
+      format("%s: the step %s s is beyond the stability limit %s s that the tangent gives at t = %s s, "
+             "step %ld (its highest frequency %.4g rad/s, the model's at rest %.4g): a smaller time.dt_s, "
+             "or an implicit method",
+             std::string(name).c_str(), number_text(dt_).c_str(), number_text(limit).c_str(), number_text(state.t).c_str(), steps,
+             omega, model::highest_frequency(system, 1e-6)));
 }
 
 }  // namespace roifem::integrators

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
-# Lint: the formatter check (clang-format 14, .clang-format) on every tracked C++ file, then
+# Lint: the layer check (scripts/check_layers.py), the formatter check (clang-format 14, .clang-format) on every tracked C++ file, then
 # clang-tidy 14 (.clang-tidy: the checks and why) on every source of src/ and integrators/, zero
 # findings allowed. Needs the release build's compile_commands.json (scripts/run-tests.sh makes it).
 #   --fix       apply the formatter instead of checking
@@ -11,6 +11,8 @@
 #               or after touching memory handling (it found a possible null BLAS setter call)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# The layers (docs/architecture.md): no #include runs back up.
+/usr/bin/python3 scripts/check_layers.py .
 mapfile -t files < <(git ls-files '*.cpp' '*.hpp')
 if [[ "${1:-}" == "--fix" ]]; then
   clang-format-14 -i "${files[@]}"

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "scale/machine_bounds.hpp"
+#include "common/format.hpp"
 
 #include <cblas.h>
 
@@ -88,7 +89,7 @@ void report_machine_bounds(const std::filesystem::path& out) {
       "solve's)\n",
       b.threads, b.dgemm_gflops, b.read_gb_per_s);
   io::CsvWriter csv(out / "machine.csv", "threads,dgemm_gflops,read_gb_per_s");
-  csv.row(io::format("%d,%.6g,%.6g", b.threads, b.dgemm_gflops, b.read_gb_per_s));
+  csv.row(format("%d,%.6g,%.6g", b.threads, b.dgemm_gflops, b.read_gb_per_s));
   csv.close();
 }
 

@@ -15,7 +15,7 @@
 #include "anatomy/voxel_mask.hpp"
 #include "common/did_you_mean.hpp"
 #include "common/errors.hpp"
-#include "io/csv.hpp"
+#include "common/format.hpp"
 #include "mesh/msh_writer.hpp"
 #include "mesh/node_count_search.hpp"
 #include "mesh/quality_smoothing.hpp"
@@ -373,10 +373,10 @@ void check_mask_holds_the_nodes(const BrainImageOptions& o, const ImageVolume& i
   const double voxel = image.spacing_mm().minCoeff();
   const double needed_mm3 = static_cast<double>(o.target_nodes) * std::pow(2 * voxel, 3) / 1.5;
   if (volume_mm3 >= needed_mm3) return;
-  const std::string after = o.cut_height_mm > 0 || o.opening ? io::format(" after the bottom cut (--cut-mm %g)%s",
-                                                                          o.cut_height_mm, o.opening ? " and the opening" : "")
+  const std::string after = o.cut_height_mm > 0 || o.opening ? format(" after the bottom cut (--cut-mm %g)%s", o.cut_height_mm,
+                                                                      o.opening ? " and the opening" : "")
                                                              : "";
-  throw InputError(io::format(
+  throw InputError(format(
       "%s: the mask holds %.4g mm^3 (%.0f voxels of %.3g mm^3)%s, and --nodes %lld needs at least %.4g mm^3 (elements of two "
       "voxels, %.3g mm, or larger): fewer --nodes%s",
       image.source.c_str(), volume_mm3, volume_mm3 / image.voxel_volume_mm3(), image.voxel_volume_mm3(), after.c_str(),

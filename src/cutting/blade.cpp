@@ -8,7 +8,7 @@
 #include <limits>
 
 #include "common/errors.hpp"
-#include "io/csv.hpp"
+#include "common/format.hpp"
 
 namespace roifem::cutting {
 
@@ -121,10 +121,10 @@ void refuse_a_degenerate_sweep(const Blade& blade, const mesh::TetMesh& mesh) {
   const double floor = smallest_swept_area * mean_edge * mean_edge;
   if (area >= floor) return;
   throw InputError(
-      io::format("%s: the blade's edge sweeps %.3g mm^2, below %g of the mesh's mean edge squared (%.3g mm^2): "
-                 "an edge of no length or one moving along itself cuts nothing cleanly; give the edge a "
-                 "length across its motion",
-                 blade.describe().c_str(), area / (mm * mm), smallest_swept_area, mean_edge * mean_edge / (mm * mm)));
+      format("%s: the blade's edge sweeps %.3g mm^2, below %g of the mesh's mean edge squared (%.3g mm^2): "
+             "an edge of no length or one moving along itself cuts nothing cleanly; give the edge a "
+             "length across its motion",
+             blade.describe().c_str(), area / (mm * mm), smallest_swept_area, mean_edge * mean_edge / (mm * mm)));
 }
 
 std::vector<Crossing> swept_elements(const Blade& blade, const mesh::TetMesh& mesh) {

@@ -7,13 +7,13 @@
 
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "common/timer.hpp"
 #include "distributed/condensed_roi.hpp"
 #include "distributed/distributed_run.hpp"
 #include "distributed/mumps_condensation.hpp"
 #include "distributed/root_work.hpp"
 #include "integrators/trapezoid.hpp"
-#include "io/csv.hpp"
 #include "io/hdf5_file.hpp"
 #include "roi/roi.hpp"
 #include "simulation/scenario_model.hpp"
@@ -57,7 +57,7 @@ void condense_distributed(const scenario::Scenario& sc, const std::filesystem::p
   MPI_Comm_size(comm, &ranks);
   const ResidentMemory memory = peak_resident_megabytes(comm);
   if (rank != 0) return;
-  log << io::format(
+  log << format(
       "%s: K~ on %zu ROI dofs (%zu nodes) from %ld dofs on %d ranks: assembly %.2f s, MUMPS analysis + factorization "
       "with the Schur complement %.2f s, %.3g entries in the factors, MUMPS peak %.0f MB on one rank; process peaks %.0f MB on "
       "one "
@@ -66,8 +66,8 @@ void condense_distributed(const scenario::Scenario& sc, const std::filesystem::p
       condensed.factor_s, condensed.factor_entries, condensed.peak_megabytes, memory.largest, memory.total);
   const model::SecondOrderSystem roi = condensed_roi_system(model, condensed, d);
   const double peak = roi_peak(roi, sc);
-  log << io::format("the condensed ROI model, trapezoid at dt = %g s over %ld steps on one rank: peak %.6g mm\n", sc.dt, sc.steps,
-                    peak / mm);
+  log << format("the condensed ROI model, trapezoid at dt = %g s over %ld steps on one rank: peak %.6g mm\n", sc.dt, sc.steps,
+                peak / mm);
   {
     AtomicFile file(out / "condensation.h5");
     io::Hdf5Writer h5(file.temporary_path());
@@ -97,7 +97,7 @@ void condense_distributed(const scenario::Scenario& sc, const std::filesystem::p
     f_scale = std::max(f_scale, reference.load.terms()[k].pattern.lpNorm<Eigen::Infinity>());
   }
   const double peak_ref = roi_peak(reference, sc);
-  log << io::format(
+  log << format(
       "serial condensation (one process, CHOLMOD): max |K~_mumps - K~| / max |K~| = %.2e, max |f~_mumps - f~| / max |f~| = %.2e, "
       "ROI peak %.6g mm (difference %.2e relative)\n",
       (condensed.K_tilde - K_ref).lpNorm<Eigen::Infinity>() / K_ref.lpNorm<Eigen::Infinity>(),

@@ -11,12 +11,12 @@
 
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "common/interrupt.hpp"
 #include "common/timer.hpp"
 #include "distributed/distributed_trapezoid.hpp"
 #include "distributed/root_work.hpp"
 #include "fem/element.hpp"
-#include "io/csv.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/xdmf.hpp"
 #include "simulation/progress.hpp"
@@ -129,7 +129,7 @@ class RootRecorder {
                                  {&iterations_, iterations}})
       series->append(&value);
     if (u_free) {
-      const std::string name = io::format("fields/displacement_mm_%06ld", k);
+      const std::string name = format("fields/displacement_mm_%06ld", k);
       const Vector field_mm = frame_.displacement(*u_free, t) / mm;
       h5_.write(name, std::vector<double>(field_mm.data(), field_mm.data() + field_mm.size()),
                 {static_cast<hsize_t>(frame_.mesh->num_nodes()), 3});
@@ -189,14 +189,14 @@ DistributedRunSummary run_distributed(const scenario::Scenario& sc, const std::f
   summary.dofs = model.dofs();
   summary.solver = trapezoid.solver();
   summary.setup_s = setup.seconds();
-  const std::string integrator = io::format("trapezoid (PETSc, %s, %d ranks)", summary.solver.c_str(), summary.ranks);
+  const std::string integrator = format("trapezoid (PETSc, %s, %d ranks)", summary.solver.c_str(), summary.ranks);
   if (rank == 0) {
-    log << io::format("%s: full model, %ld dofs on %d ranks (%ld nodes, %ld elements, %s), %s\n", sc.file.string().c_str(),
-                      summary.dofs, summary.ranks, static_cast<long>(mesh.num_nodes()), static_cast<long>(mesh.num_tets()),
-                      std::string(fem::element_name(sc.element)).c_str(), integrator.c_str());
+    log << format("%s: full model, %ld dofs on %d ranks (%ld nodes, %ld elements, %s), %s\n", sc.file.string().c_str(),
+                  summary.dofs, summary.ranks, static_cast<long>(mesh.num_nodes()), static_cast<long>(mesh.num_tets()),
+                  std::string(fem::element_name(sc.element)).c_str(), integrator.c_str());
     if (sc.roi) log << "  (the scenario's [roi] is for roifem run: here every free node is dynamic)\n";
     for (const auto& w : frame.warnings) log << "warning: " << w << '\n';
-    log << io::format("setup %.2f s (read, partition, assemble, set up K_eff's solver)\n", summary.setup_s);
+    log << format("setup %.2f s (read, partition, assemble, set up K_eff's solver)\n", summary.setup_s);
   }
   std::unique_ptr<RootRecorder> recorder;
   on_root(comm, [&] { recorder = std::make_unique<RootRecorder>(sc, frame, out, integrator); });
@@ -219,12 +219,12 @@ DistributedRunSummary run_distributed(const scenario::Scenario& sc, const std::f
       trapezoid.step();
       step_s.push_back(clock.seconds());
       record(k, step_s.back());
-      if (rank == 0) progress.update(k, io::format("%d KSP iterations", static_cast<int>(trapezoid.last_iterations())));
+      if (rank == 0) progress.update(k, format("%d KSP iterations", static_cast<int>(trapezoid.last_iterations())));
       // A signal reaches the ranks at different steps (mpirun forwards it, a batch system sends it
       // to each): they agree after every step, so that all stop after the same one.
       if (const int signal_number = agreed_signal(comm, InterruptGuard::signal_received()))
-        throw Agreed<Interrupted>(signal_number, io::format("interrupted by signal %d after step %ld of %ld (t = %g s)",
-                                                            signal_number, k, sc.steps, trapezoid.t()));
+        throw Agreed<Interrupted>(signal_number, format("interrupted by signal %d after step %ld of %ld (t = %g s)",
+                                                        signal_number, k, sc.steps, trapezoid.t()));
     }
   } catch (const Error& e) {
     if (recorder) {
@@ -250,7 +250,7 @@ DistributedRunSummary run_distributed(const scenario::Scenario& sc, const std::f
   summary.total_rss_mb = memory.total;
   summary.now_rss_mb = memory.largest_now;
   if (rank == 0)
-    log << io::format(
+    log << format(
         "done: %ld steps, median %.4f s per step, %.1f KSP iterations per step; final kinetic %.3e J, strain %.3e J, "
         "work %.3e J, dissipated %.3e J; "
         "peak memory %.0f MB on one rank, %.0f MB on all (%.0f MB on one rank at the end)\nresults: %s (ParaView: "

@@ -7,12 +7,11 @@
 #include <sstream>
 
 #include "common/errors.hpp"
-#include "io/csv.hpp"
+#include "common/format.hpp"
 
 namespace roifem::experiments {
 
 namespace fs = std::filesystem;
-using io::format;
 
 bool calculix_available() { return std::system("command -v ccx >/dev/null 2>&1") == 0; }
 

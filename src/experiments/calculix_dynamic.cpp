@@ -6,13 +6,12 @@
 #include <ostream>
 
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "experiments/calculix_deck.hpp"
-#include "io/csv.hpp"
 
 namespace roifem::experiments {
 
 namespace fs = std::filesystem;
-using io::format;
 
 namespace {
 

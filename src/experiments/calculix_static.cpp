@@ -7,13 +7,12 @@
 #include <sstream>
 
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "experiments/calculix_deck.hpp"
-#include "io/csv.hpp"
 
 namespace roifem::experiments {
 
 namespace fs = std::filesystem;
-using io::format;
 
 namespace {
 

@@ -10,13 +10,13 @@
 
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "common/interrupt.hpp"
 #include "common/number_text.hpp"
 #include "common/timer.hpp"
 #include "experiments/roi_error.hpp"
 #include "integrators/factory.hpp"
 #include "integrators/stability.hpp"
-#include "io/csv.hpp"
 #include "io/plots.hpp"
 #include "model/internal_force.hpp"
 #include "model/modal_reference.hpp"
@@ -27,8 +27,6 @@
 namespace roifem::experiments {
 
 namespace {
-
-using io::format;
 
 /// The exact solution (or a tight run's) on the output grid, and what a run is measured against.
 struct Reference {

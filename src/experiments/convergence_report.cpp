@@ -3,12 +3,11 @@
 #include <ostream>
 #include <string>
 
+#include "common/format.hpp"
 #include "experiments/convergence_study.hpp"
 #include "io/csv.hpp"
 
 namespace roifem::experiments {
-
-using io::format;
 
 namespace {
 

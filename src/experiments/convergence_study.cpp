@@ -7,6 +7,7 @@
 #include <ostream>
 
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "common/timer.hpp"
 #include "experiments/calculix_static.hpp"
 #include "experiments/richardson.hpp"
@@ -15,7 +16,6 @@
 #include "fem/recovery_estimate.hpp"
 #include "fem/static_solve.hpp"
 #include "integrators/trapezoid.hpp"
-#include "io/csv.hpp"
 #include "io/plots.hpp"
 #include "mesh/adapted_size_field.hpp"
 #include "mesh/brain_mesh.hpp"
@@ -30,8 +30,6 @@
 namespace roifem::experiments {
 
 namespace {
-
-using io::format;
 
 /// Refuses a scenario whose mesh is not the brain `roifem mesh` generates: the study regenerates it.
 void check_generated_brain(const scenario::Scenario& s) {

@@ -8,12 +8,12 @@
 
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "common/interrupt.hpp"
 #include "common/number_text.hpp"
 #include "common/timer.hpp"
 #include "integrators/factory.hpp"
 #include "integrators/integrator_table.hpp"
-#include "io/csv.hpp"
 #include "io/plots.hpp"
 #include "model/energy.hpp"
 #include "model/internal_force.hpp"
@@ -25,7 +25,6 @@ namespace {
 
 using io::Cell;
 using io::Column;
-using io::format;
 
 /// A figure where the run reached an output; empty otherwise.
 Cell error_figure(double value) { return std::isfinite(value) ? Cell(value) : Cell(); }

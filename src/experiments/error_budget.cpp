@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "experiments/error_budget.hpp"
+#include "common/format.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -24,8 +25,6 @@
 #include "simulation/progress.hpp"
 
 namespace roifem::experiments {
-
-using io::format;
 
 double ErrorCurve::peak() const { return max.empty() ? 0 : *std::max_element(max.begin(), max.end()); }
 

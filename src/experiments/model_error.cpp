@@ -4,15 +4,13 @@
 #include <ostream>
 
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "experiments/calculix_static.hpp"
 #include "experiments/convergence_study.hpp"
 #include "fem/loads.hpp"
 #include "fem/static_solve.hpp"
-#include "io/csv.hpp"
 
 namespace roifem::experiments {
-
-using io::format;
 
 namespace {
 

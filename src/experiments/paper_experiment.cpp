@@ -11,6 +11,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "common/number_text.hpp"
 #include "common/timer.hpp"
 #include "condensation/reduced_model.hpp"
@@ -19,8 +20,6 @@
 #include "experiments/roi_error.hpp"
 #include "fem/static_solve.hpp"
 #include "integrators/trapezoid.hpp"
-#include "io/csv.hpp"
-#include "io/displacement_field.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/plots.hpp"
 #include "io/xdmf.hpp"
@@ -33,8 +32,6 @@
 namespace roifem::experiments {
 
 namespace {
-
-using io::format;
 
 struct Setup {
   std::string name;

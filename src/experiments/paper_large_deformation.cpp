@@ -7,12 +7,12 @@
 #include <ostream>
 
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "condensation/reduced_model.hpp"
 #include "experiments/paper_model.hpp"
 #include "experiments/paper_report.hpp"
 #include "experiments/roi_error.hpp"
 #include "integrators/trapezoid.hpp"
-#include "io/csv.hpp"
 #include "io/plots.hpp"
 #include "io/result_table.hpp"
 #include "mesh/gmsh_reader.hpp"
@@ -24,8 +24,6 @@
 namespace roifem::experiments {
 
 namespace {
-
-using io::format;
 
 std::string drive_name(PaperDrive drive) { return drive == PaperDrive::spatulas ? "spatulas" : "forces"; }
 

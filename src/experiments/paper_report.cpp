@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "experiments/paper_report.hpp"
+#include "common/format.hpp"
 
 #include <algorithm>
 #include <ostream>
@@ -8,8 +9,6 @@
 #include "io/result_table.hpp"
 
 namespace roifem::experiments {
-
-using io::format;
 
 namespace {
 

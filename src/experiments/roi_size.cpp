@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "experiments/roi_size.hpp"
+#include "common/format.hpp"
 
 #include <algorithm>
 #include <array>
@@ -23,8 +24,6 @@
 namespace roifem::experiments {
 
 namespace {
-
-using io::format;
 
 /// The full model's run, and the peak error of reduced models against it at the evaluated nodes.
 class ErrorProbe {

@@ -8,10 +8,10 @@
 #include <type_traits>
 
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "fem/assembly.hpp"
 #include "fem/hyperelastic_element.hpp"
 #include "fem/tet4_excess_batch.hpp"
-#include "io/csv.hpp"
 
 namespace roifem::fem {
 
@@ -98,8 +98,8 @@ void HyperelasticAssembler::for_each_element(Evaluator&& evaluate, Visit&& visit
     const auto nodes = nodes_of(slot, buffer);
     auto check = [&](const auto& r) {
       if (!(r.min_J > 0))
-        throw ModelError(io::format("tetrahedron %lld (nodes %d %d %d %d) has inverted: det F = %.4g <= 0",
-                                    static_cast<long long>(e), c[0], c[1], c[2], c[3], r.min_J));
+        throw ModelError(format("tetrahedron %lld (nodes %d %d %d %d) has inverted: det F = %.4g <= 0", static_cast<long long>(e),
+                                c[0], c[1], c[2], c[3], r.min_J));
     };
     if (nodes.size() == 4) {
       auto gather = [&](const Vector& u_full) {
@@ -139,8 +139,8 @@ void HyperelasticAssembler::for_each_element(const Vector& u_full, Evaluate what
 
 void HyperelasticAssembler::check_size(const Vector& u_full) const {
   if (u_full.size() != 3 * mesh_.num_nodes())
-    throw InputError(io::format("hyperelastic assembly: %lld displacement values for %lld nodes",
-                                static_cast<long long>(u_full.size()), static_cast<long long>(mesh_.num_nodes())));
+    throw InputError(format("hyperelastic assembly: %lld displacement values for %lld nodes",
+                            static_cast<long long>(u_full.size()), static_cast<long long>(mesh_.num_nodes())));
 }
 
 void HyperelasticAssembler::scatter(std::size_t slot, std::span<const int> nodes, const Eigen::Ref<const DenseMatrix>& K_e,
@@ -183,8 +183,8 @@ void HyperelasticAssembler::force(const Vector& u_full, Eigen::Ref<Vector> f_int
 
 void HyperelasticAssembler::excess_force_free(const Vector& u_free, Eigen::Ref<Vector> g) const {
   if (u_free.size() != dofs_.num_free())
-    throw InputError(io::format("hyperelastic assembly: %lld free displacement values for %lld free dofs",
-                                static_cast<long long>(u_free.size()), static_cast<long long>(dofs_.num_free())));
+    throw InputError(format("hyperelastic assembly: %lld free displacement values for %lld free dofs",
+                            static_cast<long long>(u_free.size()), static_cast<long long>(dofs_.num_free())));
   if (mesh_.is_quadratic()) {
     add_forces(dofs_.prescribed() + dofs_.expand_homogeneous(u_free), Evaluate::excess, g);
     return;
@@ -207,8 +207,8 @@ void HyperelasticAssembler::excess_force_free(const Vector& u_free, Eigen::Ref<V
       if (!(J[l] > 0)) {
         const std::size_t slot = batch * kTet4Lanes + as_size(l);
         const auto& c = mesh_.tets[as_size(elements_[slot])];
-        throw ModelError(io::format("tetrahedron %lld (nodes %d %d %d %d) has inverted: det F = %.4g <= 0",
-                                    static_cast<long long>(elements_[slot]), c[0], c[1], c[2], c[3], J[l]));
+        throw ModelError(format("tetrahedron %lld (nodes %d %d %d %d) has inverted: det F = %.4g <= 0",
+                                static_cast<long long>(elements_[slot]), c[0], c[1], c[2], c[3], J[l]));
       }
     for (int k = 0; k < 12; ++k)
       for (int l = 0; l < kTet4Lanes; ++l)

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "common/errors.hpp"
-#include "io/csv.hpp"
+#include "common/format.hpp"
 
 namespace roifem::fem {
 
@@ -61,9 +61,9 @@ std::vector<StaticLoadSolution> solve_hyperelastic_static(const HyperelasticAsse
       } catch (const Error& e) {  // no convergence, or an element inverted on the way
         if (++cutbacks > o.max_cutbacks)
           throw SolverError(
-              io::format("static solve: stopped at %.6g of the load, the increment to %.6g failed after %d "
-                         "cutbacks: %s",
-                         reached, s, o.max_cutbacks, e.what()));
+              format("static solve: stopped at %.6g of the load, the increment to %.6g failed after %d "
+                     "cutbacks: %s",
+                     reached, s, o.max_cutbacks, e.what()));
         increment /= 2;
         continue;
       }

@@ -4,9 +4,9 @@
 #include <algorithm>
 
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "fem/assembly.hpp"
 #include "fem/tet10.hpp"
-#include "io/csv.hpp"
 
 namespace roifem::fem {
 
@@ -15,9 +15,9 @@ mesh::Triangle facet_load_nodes(const mesh::TetMesh& mesh, const mesh::Triangle&
   const mesh::Triangle mid{mesh.midside.at(t[0], t[1]), mesh.midside.at(t[1], t[2]), mesh.midside.at(t[2], t[0])};
   if (std::find(mid.begin(), mid.end(), -1) != mid.end())
     throw InputError(
-        io::format("%s: the triangle with corners %d, %d, %d (0-based) is not a face of the tetrahedra: an edge "
-                   "of it is no tetrahedron's",
-                   mesh.source.c_str(), t[0], t[1], t[2]));
+        format("%s: the triangle with corners %d, %d, %d (0-based) is not a face of the tetrahedra: an edge "
+               "of it is no tetrahedron's",
+               mesh.source.c_str(), t[0], t[1], t[2]));
   return mid;
 }
 

@@ -1,9 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "io/csv.hpp"
 
-#include <cstdarg>
-#include <vector>
-
 #include "common/errors.hpp"
 #include "common/version.hpp"
 
@@ -21,18 +18,6 @@ void CsvWriter::close() {
   if (!out_) throw InputError(file_.final_path().string() + ": write failed (disk full?)");
   out_.close();
   file_.commit();
-}
-
-std::string format(const char* fmt, ...) {
-  va_list args, copy;
-  va_start(args, fmt);
-  va_copy(copy, args);
-  const int n = std::vsnprintf(nullptr, 0, fmt, copy);
-  va_end(copy);
-  std::vector<char> buffer(static_cast<std::size_t>(n) + 1);
-  std::vsnprintf(buffer.data(), buffer.size(), fmt, args);
-  va_end(args);
-  return std::string(buffer.data(), static_cast<std::size_t>(n));
 }
 
 }  // namespace roifem::io

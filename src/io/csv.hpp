@@ -23,7 +23,4 @@ class CsvWriter {
   std::ofstream out_;
 };
 
-/// printf-style formatting to std::string.
-std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
-
 }  // namespace roifem::io

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "io/result_table.hpp"
+#include "common/format.hpp"
 
 #include <algorithm>
 

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "mesh/msh2_diagnosis.hpp"
+#include "common/format.hpp"
 
 #include <fstream>
 #include <sstream>

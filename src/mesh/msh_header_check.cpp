@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "mesh/msh_header_check.hpp"
+#include "common/format.hpp"
 
 #include <array>
 #include <cstdint>

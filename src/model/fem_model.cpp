@@ -8,9 +8,9 @@
 #include <string_view>
 
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "fem/assembly.hpp"
 #include "fem/loads.hpp"
-#include "io/csv.hpp"
 #include "model/hyperelastic_force.hpp"
 #include "model/prescribed_motion.hpp"
 
@@ -35,9 +35,9 @@ Vector set_load(const mesh::TetMesh& mesh, const fem::DofMap& dofs, const SetLoa
                      "' lies wholly on fixed nodes: it would move nothing; load a set off the supports");
   if (lost > 1e-12 * total)
     warnings.push_back(
-        io::format("the load on set '%s' acts partly on fixed nodes: %.3g%% of it (%.3g N) "
-                   "goes into the supports and moves nothing",
-                   load.set.c_str(), 100 * lost / total, lost));
+        format("the load on set '%s' acts partly on fixed nodes: %.3g%% of it (%.3g N) "
+               "goes into the supports and moves nothing",
+               load.set.c_str(), 100 * lost / total, lost));
   return kept;
 }
 
@@ -71,7 +71,7 @@ constexpr std::size_t fewest_tool_nodes = 3;
 void warn_of_a_tool_below_the_mesh(const mesh::TetMesh& mesh, const SetTool& t, const Tool& tool,
                                    std::vector<std::string>& warnings) {
   if (tool.nodes.size() >= fewest_tool_nodes) return;
-  warnings.push_back(io::format(
+  warnings.push_back(format(
       "%s holds %zu node%s, and the elements there have %.3g mm edges: its force is that of the nodes the mesh puts there, "
       "and changes with the mesh; give it a footprint of %zu nodes or more (%s)",
       t.describe().c_str(), tool.nodes.size(), tool.nodes.size() == 1 ? "" : "s", edge_length_around(mesh, tool.nodes) / mm,
@@ -167,8 +167,8 @@ void require_a_support(const mesh::TetMesh& mesh, const fem::DofMap& dofs) {
 
 std::string SetTool::describe() const {
   return "tool '" + name + "' (" +
-         (set.empty() ? io::format("boundary nodes within %g mm of (%g, %g, %g) mm", radius / mm, center.x() / mm,
-                                   center.y() / mm, center.z() / mm)
+         (set.empty() ? format("boundary nodes within %g mm of (%g, %g, %g) mm", radius / mm, center.x() / mm, center.y() / mm,
+                               center.z() / mm)
                       : "set '" + set + "'") +
          ")";
 }

@@ -5,7 +5,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
-#include "io/csv.hpp"
+#include "common/format.hpp"
 #include "serve/scalpel.hpp"
 
 namespace roifem::serve {
@@ -29,14 +29,14 @@ void write_file(const fs::path& path, const std::string& text) {
 std::string path_csv(const GrabRecord& grab) {
   std::string text = "t_s,x_mm,y_mm,z_mm\n";
   for (const HandSample& s : grab.samples)
-    text += io::format("%.17g,%.17g,%.17g,%.17g\n", s.t, s.g.x() / mm, s.g.y() / mm, s.g.z() / mm);
+    text += format("%.17g,%.17g,%.17g,%.17g\n", s.t, s.g.x() / mm, s.g.y() / mm, s.g.z() / mm);
   return text;
 }
 
 std::string force_csv(const GrabRecord& grab) {
   std::string text = "t_s,fx_N,fy_N,fz_N\n";
   for (const HandSample& s : grab.samples)
-    text += io::format("%.17g,%.17g,%.17g,%.17g\n", s.t, s.force.x(), s.force.y(), s.force.z());
+    text += format("%.17g,%.17g,%.17g,%.17g\n", s.t, s.force.x(), s.force.y(), s.force.z());
   return text;
 }
 
@@ -91,8 +91,8 @@ std::vector<LiveCut> cuts_of_grab(const std::vector<LiveCut>& record, const Grab
 
 fs::path write_replay(const LiveScene& scene, const GrabRecord& grab, const fs::path& directory, const std::string& name) {
   if (grab.samples.size() < 2 || grab.samples.front().t != 0)
-    throw InputError(io::format("grab %u: nothing to replay (it has %zu ticks from t = 0)", grab.grab,
-                                grab.samples.size() > 0 ? grab.samples.size() - 1 : 0));
+    throw InputError(format("grab %u: nothing to replay (it has %zu ticks from t = 0)", grab.grab,
+                            grab.samples.size() > 0 ? grab.samples.size() - 1 : 0));
   const std::string path_file = name + ".csv";
   const scenario::Scenario replay = replay_scenario(scene, grab, path_file);
   write_file(directory / path_file, path_csv(grab));
@@ -103,11 +103,11 @@ fs::path write_replay(const LiveScene& scene, const GrabRecord& grab, const fs::
   const std::string equals =
       !live.nonlinear() ? "to round-off.\n"
       : newton.tolerance > 0
-          ? io::format(
+          ? format(
                 "to the live loop's Newton tolerance (%g of the law's correction, at most %d iterations a tick;\n# "
                 "roifem run solves each step by Newton to convergence).\n",
                 newton.tolerance, newton.iterations)
-          : io::format(
+          : format(
                 "within what the live loop's fixed budget of %d Newton iterations a tick left unresolved\n# (roifem "
                 "run solves each step by Newton to convergence; roifem serve --newton-tolerance converges live).\n",
                 newton.iterations);

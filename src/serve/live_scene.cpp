@@ -6,9 +6,9 @@
 #include <ostream>
 
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "common/timer.hpp"
 #include "condensation/reduced_model.hpp"
-#include "io/csv.hpp"
 #include "mesh/tet_mesh.hpp"
 
 namespace roifem::serve {
@@ -105,12 +105,12 @@ std::vector<PlannedModel> model_plan(const scenario::Scenario& scenario, const s
     const std::string base = neo ? uncut.substr(0, uncut.size() - suffix.size()) : uncut;
     const fem::MaterialModel law = neo ? neo_hookean : linear;
     if (cut && (neo || (base != "full" && base != condensation::Reduction{}.label())))
-      throw InputError(io::format(
-          "serve: --models: %s: the page's scalpel cuts the linear full model (full%s) or static condensation (static%s): "
-          "%s",
-          name.c_str(), kCutSuffix, kCutSuffix,
-          neo ? "cuts are built for the linear material"
-              : "a reduction by modes keeps the uncut mesh's modes, and the haptic loop takes a cut on a lumped mass"));
+      throw InputError(
+          format("serve: --models: %s: the page's scalpel cuts the linear full model (full%s) or static condensation (static%s): "
+                 "%s",
+                 name.c_str(), kCutSuffix, kCutSuffix,
+                 neo ? "cuts are built for the linear material"
+                     : "a reduction by modes keeps the uncut mesh's modes, and the haptic loop takes a cut on a lumped mass"));
     if (base == "full") {
       plan.push_back({name, std::nullopt, law, cut});
       continue;
@@ -119,8 +119,8 @@ std::vector<PlannedModel> model_plan(const scenario::Scenario& scenario, const s
     try {
       r = condensation::parse_reduction(base);
     } catch (const InputError& e) {
-      throw InputError(io::format("serve: --models: '%s' is neither full nor a reduction (either with %s or not): %s",
-                                  name.c_str(), kNeoHookeanSuffix, e.what()));
+      throw InputError(format("serve: --models: '%s' is neither full nor a reduction (either with %s or not): %s", name.c_str(),
+                              kNeoHookeanSuffix, e.what()));
     }
     if (r.info().learns_from_loads)
       throw InputError("serve: --models: " + name + " learns its basis from the scenario's loads, not from a hand");
@@ -128,9 +128,9 @@ std::vector<PlannedModel> model_plan(const scenario::Scenario& scenario, const s
       throw InputError("serve: --models: " + name + " reduces an ROI, and " + scenario.file.string() + " has no [roi]");
     if (neo && !r.is_static_condensation())
       throw InputError(
-          io::format("serve: --models: %s: a reduction by modes linearizes the ROI's motion; the neo-Hookean "
-                     "ROI takes static condensation (static%s)",
-                     name.c_str(), kNeoHookeanSuffix));
+          format("serve: --models: %s: a reduction by modes linearizes the ROI's motion; the neo-Hookean "
+                 "ROI takes static condensation (static%s)",
+                 name.c_str(), kNeoHookeanSuffix));
     plan.push_back({r.label() + (neo ? suffix : "") + (cut ? cut_suffix : ""), r, law, cut});
   }
   return plan;
@@ -149,11 +149,11 @@ LiveScene::LiveScene(const scenario::Scenario& scenario, double rate_hz, double 
                      std::ostream& log, integrators::HapticNewton newton, SceneLoads loads)
     : scenario_(scenario), dt_(1.0 / rate_hz), radius_mm_(radius_mm), newton_(newton) {
   if (!(rate_hz > 0) || !(rate_hz <= 100000))
-    throw InputError(io::format("serve: a haptic rate of %g Hz (0 < rate <= 100 kHz)", rate_hz));
-  if (!(radius_mm > 0)) throw InputError(io::format("serve: a tool radius of %g mm (it must be positive)", radius_mm));
+    throw InputError(format("serve: a haptic rate of %g Hz (0 < rate <= 100 kHz)", rate_hz));
+  if (!(radius_mm > 0)) throw InputError(format("serve: a tool radius of %g mm (it must be positive)", radius_mm));
   if (newton.iterations < 1 || newton.iterations > 1000 || !(newton.tolerance >= 0))
-    throw InputError(io::format("serve: %d Newton iterations a tick within %g (1 to 1,000 iterations, a tolerance >= 0)",
-                                newton.iterations, newton.tolerance));
+    throw InputError(format("serve: %d Newton iterations a tick within %g (1 to 1,000 iterations, a tolerance >= 0)",
+                            newton.iterations, newton.tolerance));
   if (scenario.element != fem::Element::tet4) throw InputError(scenario.file.string() + ": serve takes tet4 elements only");
   if (!scenario_.tools.empty() || !scenario_.cuts.empty())
     log << "serve: the scenario's " << scenario_.tools.size() << " [[tool]](s) and " << scenario_.cuts.size()
@@ -166,8 +166,8 @@ LiveScene::LiveScene(const scenario::Scenario& scenario, double rate_hz, double 
   if (loads == SceneLoads::left_out) scenario_.loads.clear();
   loads_said_ = given == 0 ? "none (the scenario has no [[load]])"
                 : loads == SceneLoads::kept
-                    ? io::format("the scenario's %zu [[load]](s), ramping from each grab's start (--loads)", given)
-                    : io::format("none: the scenario's %zu [[load]](s) left out, the hand alone (--loads keeps them)", given);
+                    ? format("the scenario's %zu [[load]](s), ramping from each grab's start (--loads)", given)
+                    : format("none: the scenario's %zu [[load]](s) left out, the hand alone (--loads keeps them)", given);
   log << "serve: loads: " << loads_said_ << "\n";
   for (const auto& [name, reduction, law, cut] : model_plan(scenario_, models)) {
     const Stopwatch clock;
@@ -206,8 +206,8 @@ LiveScene::LiveScene(const scenario::Scenario& scenario, double rate_hz, double 
       for (const int n : live.model->roi_nodes) live.in_roi[static_cast<std::size_t>(n)] = 1;
     else
       for (Index n = 0; n < mesh.num_nodes(); ++n) live.in_roi[static_cast<std::size_t>(n)] = dofs.free_dof(n, 0) >= 0 ? 1 : 0;
-    log << io::format("serve: model %-18s %7ld unknowns, prepared in %.2f s\n", name.c_str(),
-                      static_cast<long>(live.model->system().size()), clock.seconds())
+    log << format("serve: model %-18s %7ld unknowns, prepared in %.2f s\n", name.c_str(),
+                  static_cast<long>(live.model->system().size()), clock.seconds())
         << std::flush;
     models_.push_back(std::move(live));
   }
@@ -303,17 +303,17 @@ std::variant<Grip, std::string> LiveScene::grip(std::size_t k, const Vec3& cente
   for (const int n : surface_->nodes)
     if ((m.node(n) - center).norm() <= radius) grip.nodes.push_back(n);
   if (grip.nodes.empty())
-    return io::format("no boundary node within %g mm of (%.1f, %.1f, %.1f) mm", radius_mm_, center_mm.x(), center_mm.y(),
-                      center_mm.z());
+    return format("no boundary node within %g mm of (%.1f, %.1f, %.1f) mm", radius_mm_, center_mm.x(), center_mm.y(),
+                  center_mm.z());
   const fem::DofMap& dofs = *live.model->full.dofs;
   for (const int n : grip.nodes) {
     if (dofs.free_dof(n, 0) < 0 || dofs.free_dof(n, 1) < 0 || dofs.free_dof(n, 2) < 0)
-      return io::format("node %d there is fixed: a tool moves free nodes only", n);
+      return format("node %d there is fixed: a tool moves free nodes only", n);
     if (!live.in_roi[static_cast<std::size_t>(n)])
-      return io::format("node %d there is outside the %s model's ROI", n, live.name.c_str());
+      return format("node %d there is outside the %s model's ROI", n, live.name.c_str());
     for (const int neighbour : neighbours_[static_cast<std::size_t>(n)])
       if (!live.in_roi[static_cast<std::size_t>(neighbour)] && dofs.free_dof(neighbour, 0) >= 0)
-        return io::format(
+        return format(
             "node %d there shares an element with node %d of the static part: the ROI must hold the tool's nodes "
             "and their neighbours",
             n, neighbour);

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cstring>
 
-#include "io/csv.hpp"
+#include "common/format.hpp"
 
 namespace roifem::serve {
 
@@ -16,7 +16,7 @@ void append(std::string& out, const T& value) {
   out.append(bytes, sizeof(T));
 }
 
-std::string vec3(const Vec3& v) { return io::format("[%.6g,%.6g,%.6g]", v.x(), v.y(), v.z()); }
+std::string vec3(const Vec3& v) { return format("[%.6g,%.6g,%.6g]", v.x(), v.y(), v.z()); }
 
 }  // namespace
 
@@ -82,12 +82,12 @@ std::string hello_message(const LiveScene& scene, std::size_t model, bool driver
   std::string models;
   for (const LiveModel& m : scene.models()) {
     if (!models.empty()) models += ",";
-    models += io::format("{\"name\":%s,\"description\":%s,\"unknowns\":%ld,\"roi_nodes\":%zu,\"nonlinear\":%s,\"cut\":%s}",
-                         json_string(m.name).c_str(), json_string(m.description).c_str(), static_cast<long>(m.unknowns),
-                         m.roi_size, m.nonlinear() ? "true" : "false", m.cuttable() ? "true" : "false");
+    models += format("{\"name\":%s,\"description\":%s,\"unknowns\":%ld,\"roi_nodes\":%zu,\"nonlinear\":%s,\"cut\":%s}",
+                     json_string(m.name).c_str(), json_string(m.description).c_str(), static_cast<long>(m.unknowns), m.roi_size,
+                     m.nonlinear() ? "true" : "false", m.cuttable() ? "true" : "false");
   }
   const auto& box = scene.box();
-  return io::format(
+  return format(
       "{\"type\":\"hello\",\"scenario\":%s,\"models\":[%s],\"model\":%zu,\"role\":\"%s\",\"rate_hz\":%.6g,\"radius_mm\":%.6g,"
       "\"box_mm\":[%s,%s],\"vertices\":%zu,\"loads\":%s}",
       json_string(scene.scenario().file.filename().string()).c_str(), models.c_str(), model, driver ? "driver" : "watcher",
@@ -98,17 +98,17 @@ std::string hello_message(const LiveScene& scene, std::size_t model, bool driver
 std::string state_message(const LiveScene& scene, const PhysicsSnapshot& s, const TickFigures& ticks, const FrameFigures& frame,
                           const CompareFigures& compare, bool recording) {
   const std::string comparison =
-      compare.on ? io::format(
+      compare.on ? format(
                        ",\"compare\":{\"reference\":%s,\"t\":%.6f,\"full_force_mN\":%s,\"error_mN\":%s,\"largest_error_mN\":%.6g,"
                        "\"largest_full_force_mN\":%.6g,\"behind_s\":%.4f}",
                        compare.reference.empty() ? "null" : json_string(compare.reference).c_str(), compare.t,
                        vec3(1e3 * compare.reference_force).c_str(), vec3(1e3 * compare.error).c_str(),
                        1e3 * compare.largest_error, 1e3 * compare.largest_force, compare.behind_s)
                  : std::string();
-  const std::string newton = scene.models()[s.model].nonlinear() ? io::format(",\"newton\":{\"iterations\":%d,\"residual\":%.3g}",
-                                                                              s.newton_iterations, s.newton_residual)
+  const std::string newton = scene.models()[s.model].nonlinear() ? format(",\"newton\":{\"iterations\":%d,\"residual\":%.3g}",
+                                                                          s.newton_iterations, s.newton_residual)
                                                                  : std::string();
-  return io::format(
+  return format(
       "{\"type\":\"state\",\"t\":%.6f,\"model\":%zu,\"model_name\":%s,\"grab\":%u,\"holding\":%s,\"grip_nodes\":%zu,"
       "\"force_mN\":%s,\"tool_mm\":%s,\"g_mm\":%s,\"seq\":%u,\"recording\":%s,"
       "\"ticks\":{\"median_ms\":%.4f,\"p99_ms\":%.4f,\"late_per_10k\":%.2f,\"rate_hz\":%.1f,\"count\":%ld,\"slips\":%ld},"
@@ -133,7 +133,7 @@ std::string json_string(const std::string& text) {
       out += '\\';
       out += c;
     } else if (static_cast<unsigned char>(c) < 0x20) {
-      out += io::format("\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
+      out += format("\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
     } else {
       out += c;
     }

@@ -9,8 +9,8 @@
 #include <cmath>
 
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "common/timer.hpp"
-#include "io/csv.hpp"
 #include "simulation/cut_event.hpp"
 
 namespace roifem::serve {
@@ -42,8 +42,8 @@ double seconds_between(const timespec& a, const timespec& b) {
 PhysicsLoop::PhysicsLoop(LiveScene& scene, PhysicsSettings settings)
     : scene_(scene), settings_(settings), model_(scene.default_model()) {
   if (!(settings.hand_speed_mm_s > 0))
-    throw InputError(io::format("serve: a hand speed of %g mm/s (it must be positive)", settings.hand_speed_mm_s));
-  if (!(settings.reach_mm > 0)) throw InputError(io::format("serve: a reach of %g mm (it must be positive)", settings.reach_mm));
+    throw InputError(format("serve: a hand speed of %g mm/s (it must be positive)", settings.hand_speed_mm_s));
+  if (!(settings.reach_mm > 0)) throw InputError(format("serve: a reach of %g mm (it must be positive)", settings.reach_mm));
 }
 
 PhysicsLoop::~PhysicsLoop() { stop(); }
@@ -144,7 +144,7 @@ void PhysicsLoop::handle(const HandMessage& event) {
       break;
     case HandKind::model:
       if (event.model >= scene_.models().size()) {
-        say(io::format("refused: model %u (there are %zu)", event.model, scene_.models().size()));
+        say(format("refused: model %u (there are %zu)", event.model, scene_.models().size()));
         break;
       }
       model_ = event.model;
@@ -179,16 +179,16 @@ void PhysicsLoop::pick(const HandMessage& event) {
     for (const int n : std::get<Grip>(grip).nodes)
       if (live.on_cut[static_cast<std::size_t>(n)]) {
         say(
-            io::format("refused pick: node %d there lies on a cut (a tetrahedron at it was removed): the hand holds whole "
-                       "tissue, pick beside the cut",
-                       n));
+            format("refused pick: node %d there lies on a cut (a tetrahedron at it was removed): the hand holds whole "
+                   "tissue, pick beside the cut",
+                   n));
         return;
       }
   std::string refactored;
   if (live.haptic_stale) {  // cut between grabs: a fresh factor of the cut model
     live.haptic = std::make_unique<integrators::HapticTrapezoid>(live.model->system(), scene_.dt());
     live.haptic_stale = false;
-    refactored = io::format(" (its factor made afresh after the cuts: %.1f ms)", 1e3 * clock.seconds());
+    refactored = format(" (its factor made afresh after the cuts: %.1f ms)", 1e3 * clock.seconds());
   }
   integrators::HapticTrapezoid& haptic = *live.haptic;
   try {
@@ -206,15 +206,15 @@ void PhysicsLoop::pick(const HandMessage& event) {
   g_ = target_g_ = force_ = Vec3::Zero();
   ++grab_;
   samples_.push(sample());
-  say(io::format("grab %u: %zu node(s) at (%.1f, %.1f, %.1f) mm on the %s model, attached in %.1f ms%s", grab_,
-                 grip_.nodes.size(), grip_.center_mm.x(), grip_.center_mm.y(), grip_.center_mm.z(),
-                 scene_.models()[model_].name.c_str(), 1e3 * clock.seconds(), refactored.c_str()));
+  say(format("grab %u: %zu node(s) at (%.1f, %.1f, %.1f) mm on the %s model, attached in %.1f ms%s", grab_, grip_.nodes.size(),
+             grip_.center_mm.x(), grip_.center_mm.y(), grip_.center_mm.z(), scene_.models()[model_].name.c_str(),
+             1e3 * clock.seconds(), refactored.c_str()));
 }
 
 void PhysicsLoop::make_whole() {
   LiveModel& live = scene_.models()[model_];
   if (!live.cuttable()) {
-    say(io::format("refused: the %s model is not cut by the scalpel: it is whole", live.name.c_str()));
+    say(format("refused: the %s model is not cut by the scalpel: it is whole", live.name.c_str()));
     return;
   }
   const Stopwatch clock;
@@ -227,15 +227,15 @@ void PhysicsLoop::make_whole() {
     say(std::string("could not make the model whole again: ") + e.what());
     return;
   }
-  say(io::format("whole again: the %s model built afresh in %.2f s (the other models were never cut)", live.name.c_str(),
-                 clock.seconds()));
+  say(format("whole again: the %s model built afresh in %.2f s (the other models were never cut)", live.name.c_str(),
+             clock.seconds()));
 }
 
 void PhysicsLoop::cut(const HandMessage& event) {
   LiveModel& live = scene_.models()[model_];
   if (!live.cuttable()) {
-    say(io::format("refused cut: the %s model is not cut by the scalpel (choose a model whose name ends in %s)",
-                   live.name.c_str(), kCutSuffix));
+    say(format("refused cut: the %s model is not cut by the scalpel (choose a model whose name ends in %s)", live.name.c_str(),
+               kCutSuffix));
     return;
   }
   const Stopwatch clock;
@@ -246,25 +246,24 @@ void PhysicsLoop::cut(const HandMessage& event) {
   for (const Index e : event.crossed)
     if (there[static_cast<std::size_t>(e)]) elements.push_back(e);
   if (elements.empty()) {
-    say(event.crossed.empty()
-            ? std::string("cut: the stroke's blade crosses no tetrahedron")
-            : io::format("cut: the %zu tetrahedra the stroke crosses are already removed", event.crossed.size()));
+    say(event.crossed.empty() ? std::string("cut: the stroke's blade crosses no tetrahedron")
+                              : format("cut: the %zu tetrahedra the stroke crosses are already removed", event.crossed.size()));
     return;
   }
   for (const Index e : elements)
     for (const int n : mesh.tets[static_cast<std::size_t>(e)]) {
       if (at.in_static_part[static_cast<std::size_t>(n)]) {
         say(
-            io::format("refused cut: it reaches tetrahedron %ld, which touches node %d of the static part: a cut stays inside "
-                       "the ROI (cut nearer the target, or serve a larger [roi])",
-                       static_cast<long>(e), n));
+            format("refused cut: it reaches tetrahedron %ld, which touches node %d of the static part: a cut stays inside "
+                   "the ROI (cut nearer the target, or serve a larger [roi])",
+                   static_cast<long>(e), n));
         return;
       }
       if (attached_ && std::binary_search(grip_.nodes.begin(), grip_.nodes.end(), n)) {
         say(
-            io::format("refused cut: it reaches tetrahedron %ld, which holds node %d of the hand: a cut stays clear of the "
-                       "hand (release, or cut farther from it)",
-                       static_cast<long>(e), n));
+            format("refused cut: it reaches tetrahedron %ld, which holds node %d of the hand: a cut stays clear of the "
+                   "hand (release, or cut farther from it)",
+                   static_cast<long>(e), n));
         return;
       }
     }
@@ -274,8 +273,8 @@ void PhysicsLoop::cut(const HandMessage& event) {
                                  [&](int n) { return at.in_static_part[static_cast<std::size_t>(n)]; }))
       ++left;
   if (left == elements.size()) {
-    say(io::format("refused cut: it would remove the last %zu tetrahedra of the %s: nothing would be left to move", left,
-                   live.condensed() ? "ROI" : "mesh"));
+    say(format("refused cut: it would remove the last %zu tetrahedra of the %s: nothing would be left to move", left,
+               live.condensed() ? "ROI" : "mesh"));
     return;
   }
   model::State between = attached_ ? model::State{} : model::State::at_rest(live.model->system().size());
@@ -299,11 +298,11 @@ void PhysicsLoop::cut(const HandMessage& event) {
     }
   for (const Index e : taken.elements)
     for (const int n : mesh.tets[static_cast<std::size_t>(e)]) live.on_cut[static_cast<std::size_t>(n)] = 1;
-  std::string said = io::format(
-      "cut: %zu tetrahedra removed from the %s model %s in %.1f ms", taken.elements.size(), live.name.c_str(),
-      attached_ ? io::format("at t = %.3f s of grab %u", state_.t, grab_).c_str() : "between grabs", 1e3 * clock.seconds());
+  std::string said =
+      format("cut: %zu tetrahedra removed from the %s model %s in %.1f ms", taken.elements.size(), live.name.c_str(),
+             attached_ ? format("at t = %.3f s of grab %u", state_.t, grab_).c_str() : "between grabs", 1e3 * clock.seconds());
   if (!taken.orphan_nodes.empty())
-    said += io::format("; %zu node(s) left with no tetrahedron, held at rest", taken.orphan_nodes.size());
+    said += format("; %zu node(s) left with no tetrahedron, held at rest", taken.orphan_nodes.size());
   for (const std::string& w : taken.warnings) said += "; " + w;
   pending_cuts_.push_back({.model = model_,
                            .grab = grab_,
@@ -399,7 +398,7 @@ void PhysicsLoop::run() {
       force_ = scene_.models()[model_].haptic->tick(g_, state_);
       tick_seconds_.push(static_cast<float>(clock.seconds()));
     } catch (const Error& e) {
-      failure_ = io::format("the tick at t = %.4f s failed, the grab ended: %s", state_.t + dt, e.what());
+      failure_ = format("the tick at t = %.4f s failed, the grab ended: %s", state_.t + dt, e.what());
       say(failure_);
       attached_ = holding_ = false;
       force_ = Vec3::Zero();

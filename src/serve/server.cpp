@@ -13,8 +13,8 @@
 #include <sstream>
 
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "common/interrupt.hpp"
-#include "io/csv.hpp"
 #include "serve/compare_loop.hpp"
 #include "serve/hand_message.hpp"
 #include "serve/hand_recording.hpp"
@@ -76,7 +76,7 @@ class Server::Impl {
     if (!ec) acceptor_.listen(net::socket_base::max_listen_connections, ec);
     if (ec)
       throw InputError(
-          io::format("serve: cannot listen on %s port %u: %s", options_.host.c_str(), options_.port, ec.message().c_str()));
+          format("serve: cannot listen on %s port %u: %s", options_.host.c_str(), options_.port, ec.message().c_str()));
     snapshot_.model = scene_.default_model();  // the physics' first, until it publishes
     mesh_for(snapshot_.model);
   }
@@ -526,15 +526,15 @@ void Server::Impl::on_second_timer() {
 void Server::Impl::report_refusals(WsSession& session) {
   Refusals& r = session.refusals();
   if (r.total() > 0)
-    log_ << io::format(
+    log_ << format(
                 "serve: client %ld: refused %ld message(s) in the last second (%ld malformed, %ld over the limit of %ld/s, %ld "
                 "from a watcher, %ld with the physics' queue full)%s%s\n",
                 session.id(), r.total(), r.malformed, r.over_rate, most_messages_per_second, r.watcher, r.queue,
                 r.malformed > 0 ? "; the last malformed: " : "", r.malformed > 0 ? r.last_malformed.c_str() : "")
          << std::flush;
   if (r.frames_skipped > 0)
-    log_ << io::format("serve: client %ld: %ld frame(s) skipped in the last second (the page reads slower than %g Hz)\n",
-                       session.id(), r.frames_skipped, options_.display_hz)
+    log_ << format("serve: client %ld: %ld frame(s) skipped in the last second (the page reads slower than %g Hz)\n",
+                   session.id(), r.frames_skipped, options_.display_hz)
          << std::flush;
   r = {};
   session.messages_this_second() = 0;
@@ -561,16 +561,16 @@ void Server::Impl::follow_grab() {
       if (reference) comparison_.reference = scene_.models()[*reference].name;
       const LiveModel& live = scene_.models()[s.model];
       if (compare_ && live.cuttable())
-        say(io::format("compare: the %s model is the scalpel's and the full model stays whole: nothing to compare",
-                       live.name.c_str()));
+        say(format("compare: the %s model is the scalpel's and the full model stays whole: nothing to compare",
+                   live.name.c_str()));
       else if (compare_ && !reference && live.condensed())
-        say(io::format("compare: no full model with the %s model's law is prepared (--models: full%s): nothing to compare",
-                       live.name.c_str(), live.nonlinear() ? kNeoHookeanSuffix : ""));
+        say(format("compare: no full model with the %s model's law is prepared (--models: full%s): nothing to compare",
+                   live.name.c_str(), live.nonlinear() ? kNeoHookeanSuffix : ""));
     }
     grab_.samples.push_back(s);
     if (compare_ && s.grab != compare_lost_grab_ && !compare_->feed(s)) {
       compare_lost_grab_ = s.grab;
-      say(io::format("compare: the full model fell 65,536 ticks behind grab %u: its comparison stops", s.grab));
+      say(format("compare: the full model fell 65,536 ticks behind grab %u: its comparison stops", s.grab));
     }
   }
 }
@@ -584,9 +584,9 @@ void Server::Impl::save_grab(const std::string& why) {
   if (grab_.samples.size() < 2) return say("not saved: no grab yet");
   try {
     grab_.cuts = cuts_of_grab(cuts_, grab_);
-    const auto file = write_replay(scene_, grab_, options_.record, io::format("grab-%03u-%d", grab_.grab, ++saved_));
-    say(io::format("saved (%s): %s, %zu ticks; replay: roifem run %s --out DIR", why.c_str(), file.string().c_str(),
-                   grab_.samples.size() - 1, file.string().c_str()));
+    const auto file = write_replay(scene_, grab_, options_.record, format("grab-%03u-%d", grab_.grab, ++saved_));
+    say(format("saved (%s): %s, %zu ticks; replay: roifem run %s --out DIR", why.c_str(), file.string().c_str(),
+               grab_.samples.size() - 1, file.string().c_str()));
   } catch (const Error& e) {
     say(std::string("not saved: ") + e.what());
   }

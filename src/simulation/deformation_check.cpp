@@ -4,7 +4,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 
-#include "io/csv.hpp"
+#include "common/format.hpp"
 
 namespace roifem::simulation {
 
@@ -38,7 +38,6 @@ double mean_edge_length(const mesh::TetMesh& mesh) {
 
 DeformationReport check_deformation(ScenarioModel& model, const PeakDisplacement& peak, const std::vector<bool>& still_there,
                                     const std::vector<mesh::Tet>* tets_at_peak) {
-  using io::format;
   DeformationReport r;
   const mesh::TetMesh& mesh = model.mesh;
   const Vec3 extent = mesh.nodes.rowwise().maxCoeff() - mesh.nodes.rowwise().minCoeff();

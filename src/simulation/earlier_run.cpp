@@ -4,7 +4,7 @@
 #include <sstream>
 
 #include "common/errors.hpp"
-#include "io/csv.hpp"
+#include "common/format.hpp"
 
 namespace roifem::simulation {
 
@@ -78,12 +78,12 @@ const double* EarlierRun::row(const std::string& name, long k) const {
   if (s.values.empty()) return nullptr;
   if (static_cast<std::size_t>(k + 1) * s.record > s.values.size())
     throw InputError(
-        io::format("%s: /%s holds %zu steps, not step %ld", file_.path().c_str(), name.c_str(), s.values.size() / s.record, k));
+        format("%s: /%s holds %zu steps, not step %ld", file_.path().c_str(), name.c_str(), s.values.size() / s.record, k));
   return s.values.data() + static_cast<std::size_t>(k) * s.record;
 }
 
-bool EarlierRun::has_field(long k) const { return file_.has(io::format("fields/displacement_mm_%06ld", k)); }
+bool EarlierRun::has_field(long k) const { return file_.has(format("fields/displacement_mm_%06ld", k)); }
 
-std::vector<double> EarlierRun::field(long k) const { return file_.doubles(io::format("fields/displacement_mm_%06ld", k)); }
+std::vector<double> EarlierRun::field(long k) const { return file_.doubles(format("fields/displacement_mm_%06ld", k)); }
 
 }  // namespace roifem::simulation

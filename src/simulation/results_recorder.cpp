@@ -4,7 +4,7 @@
 #include <algorithm>
 
 #include "common/errors.hpp"
-#include "io/csv.hpp"
+#include "common/format.hpp"
 
 namespace roifem::simulation {
 
@@ -97,7 +97,7 @@ void ResultsRecorder::record(long k, const model::State& s, double seconds) {
 }
 
 void ResultsRecorder::write_field(long k, double t, const std::vector<double>& field_mm) {
-  const std::string name = io::format("fields/displacement_mm_%06ld", k);
+  const std::string name = format("fields/displacement_mm_%06ld", k);
   h5_.write(name, field_mm, {static_cast<hsize_t>(model_.mesh.num_nodes()), 3});
   xdmf_.times.push_back(t);
   xdmf_.fields.push_back("/" + name);
@@ -148,7 +148,7 @@ void ResultsRecorder::replay(long k, const EarlierRun& earlier) {
   }
   if (roi_series_) copy(*roi_series_, "roi/displacement_mm");
   if (earlier.has_field(k)) write_field(k, *earlier.row("time_s", k), earlier.field(k));
-  if (checkpoint_due(k) && earlier.file().has(io::format("restart/step_%06ld", k)))
+  if (checkpoint_due(k) && earlier.file().has(format("restart/step_%06ld", k)))
     record_checkpoint(read_checkpoint(earlier.file(), k));
   if (k % flush_every == 0) h5_.flush();
 }
@@ -190,7 +190,7 @@ void ResultsRecorder::record_cut(long step, const CutEvent& event, const model::
   std::vector<int> tets;
   for (std::size_t e = 0; e < still_there.size(); ++e)
     if (still_there[e]) tets.insert(tets.end(), model_.mesh.tets[e].begin(), model_.mesh.tets[e].end());
-  topology_ = io::format("/mesh/tets_from_step_%06ld", step);
+  topology_ = format("/mesh/tets_from_step_%06ld", step);
   topology_tets_ = static_cast<long>(tets.size() / 4);
   h5_.write(topology_.substr(1), tets, {tets.size() / 4, 4});
   if (!topology_varies_) {  // the fields before the first cut: the whole mesh
@@ -216,11 +216,10 @@ void ResultsRecorder::write_cuts() {
 std::vector<std::filesystem::path> ResultsRecorder::finish(const integrators::Stats& st, const RunCheckpoint& last) {
   record_checkpoint(last);  // a finished run can be made longer from its last step
   write_cuts();
-  h5_.attribute(
-      "counters",
-      io::format("steps=%ld rhs_evals=%ld jac_evals=%ld lin_setups=%ld lin_solves=%ld lin_iterations=%ld failed_steps=%ld",
-                 st.steps, st.rhs_evals, st.jac_evals, st.lin_setups, st.lin_solves, st.lin_iterations, st.failed_steps) +
-          (st.nonlinear_iterations > 0 ? io::format(" nonlinear_iterations=%ld", st.nonlinear_iterations) : std::string()));
+  h5_.attribute("counters",
+                format("steps=%ld rhs_evals=%ld jac_evals=%ld lin_setups=%ld lin_solves=%ld lin_iterations=%ld failed_steps=%ld",
+                       st.steps, st.rhs_evals, st.jac_evals, st.lin_setups, st.lin_solves, st.lin_iterations, st.failed_steps) +
+                    (st.nonlinear_iterations > 0 ? format(" nonlinear_iterations=%ld", st.nonlinear_iterations) : std::string()));
   h5_.attribute("status", "complete");
   h5_.close();
   file_.commit();

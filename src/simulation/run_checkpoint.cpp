@@ -4,13 +4,13 @@
 #include <string>
 
 #include "common/errors.hpp"
-#include "io/csv.hpp"
+#include "common/format.hpp"
 
 namespace roifem::simulation {
 
 namespace {
 
-std::string group_of(long step) { return io::format("restart/step_%06ld", step); }
+std::string group_of(long step) { return format("restart/step_%06ld", step); }
 
 void write_vector(io::Hdf5Writer& h5, const std::string& name, const Vector& v) {
   h5.write(name, std::vector<double>(v.data(), v.data() + v.size()), {static_cast<hsize_t>(v.size())});

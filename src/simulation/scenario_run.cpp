@@ -9,12 +9,12 @@
 
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "common/interrupt.hpp"
 #include "common/number_text.hpp"
 #include "common/timer.hpp"
 #include "condensation/reduced_model.hpp"
 #include "integrators/integrator_table.hpp"
-#include "io/csv.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/xdmf.hpp"
 #include "model/energy.hpp"
@@ -29,8 +29,6 @@
 namespace roifem::simulation {
 
 namespace {
-
-using io::format;
 
 /// The DAE forms restart IDA at every kink of the tools' paths (ida_tool_dae.hpp): a sampled
 /// trajectory has one per sample, each about as costly as starting afresh. Said before the run.

@@ -4,8 +4,8 @@
 #include <cmath>
 
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "common/number_text.hpp"
-#include "io/csv.hpp"
 
 namespace roifem::simulation {
 
@@ -51,9 +51,9 @@ RunCheckpoint ScenarioStepper::checkpoint(const model::EnergyLedger& ledger) con
 bool ScenarioStepper::resume(const RunCheckpoint& saved, const std::function<void(long step)>& replayed) {
   if (k_ != 0) throw Error("internal: a restart resumes a stepper at rest, not at step " + std::to_string(k_));
   if (saved.state.u.size() != state_.u.size())
-    throw InputError(io::format("%s: the restart point has %lld unknowns where this scenario's model has %lld",
-                                scenario_.file.c_str(), static_cast<long long>(saved.state.u.size()),
-                                static_cast<long long>(state_.u.size())));
+    throw InputError(format("%s: the restart point has %lld unknowns where this scenario's model has %lld",
+                            scenario_.file.c_str(), static_cast<long long>(saved.state.u.size()),
+                            static_cast<long long>(state_.u.size())));
   // The cuts up to the restart point, on the model and the integrator, in the run's order: the
   // factor takes the same corrections (a cut's change does not depend on the state; what the
   // state gives the integrator and the ledger is replaced by the checkpoint's below).
@@ -74,8 +74,8 @@ bool ScenarioStepper::resume(const RunCheckpoint& saved, const std::function<voi
   try {
     integrator_->resume(model_->system(), state_, saved.integrator);
   } catch (const InputError& e) {
-    throw InputError(io::format("%s: a restart at step %ld (t = %s s): %s; restart with another integrator",
-                                scenario_.file.c_str(), saved.step, number_text(saved.state.t).c_str(), e.what()));
+    throw InputError(format("%s: a restart at step %ld (t = %s s): %s; restart with another integrator", scenario_.file.c_str(),
+                            saved.step, number_text(saved.state.t).c_str(), e.what()));
   }
   if (ledger_) ledger_->resume(state_, saved.ledger);
   reactions_.reset();
@@ -83,14 +83,14 @@ bool ScenarioStepper::resume(const RunCheckpoint& saved, const std::function<voi
 }
 
 long ScenarioStepper::steps_to(double t) const {
-  if (!std::isfinite(t)) throw InputError(io::format("step_to: t = %g s is not a time to step to", t));
+  if (!std::isfinite(t)) throw InputError(format("step_to: t = %g s is not a time to step to", t));
   if (t <= state_.t)
     throw InputError(
-        io::format("step_to: t = %.9g s is not ahead of the simulation, which is at t = %.9g s (step %ld)", t, state_.t, k_));
+        format("step_to: t = %.9g s is not ahead of the simulation, which is at t = %.9g s (step %ld)", t, state_.t, k_));
   // The last grid point t_k <= t (to within 1e-9 dt), counted without stepping there.
   const double k = std::floor((t - grid_.t0()) / grid_.dt() + 1e-9);
   if (k > 1e15)
-    throw InputError(io::format("step_to: t = %g s is %.3g steps of dt = %g s away", t, k - static_cast<double>(k_), grid_.dt()));
+    throw InputError(format("step_to: t = %g s is %.3g steps of dt = %g s away", t, k - static_cast<double>(k_), grid_.dt()));
   return grid_.last_at_or_before(t) - k_;
 }
 

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "common/errors.hpp"
-#include "io/csv.hpp"
+#include "common/format.hpp"
 
 namespace roifem::solvers {
 
@@ -20,7 +20,7 @@ NewtonReport newton(const NonlinearSystem& system, Vector& x, double force_scale
     system.residual_and_jacobian(x, r, J);
     const double residual = r.lpNorm<Eigen::Infinity>();
     report.history.push_back({k, residual, 0.0});
-    if (!std::isfinite(residual)) throw SolverError(io::format("Newton: the residual is not finite at iteration %d", k));
+    if (!std::isfinite(residual)) throw SolverError(format("Newton: the residual is not finite at iteration %d", k));
     const double last_increment = k > 0 ? report.history[static_cast<std::size_t>(k - 1)].increment : INFINITY;
     const double increment_target = o.increment_tolerance * std::max(x.lpNorm<Eigen::Infinity>(), o.increment_floor);
     // Converged: the residual within its tolerance and the last correction negligible. A zero
@@ -31,19 +31,19 @@ NewtonReport newton(const NonlinearSystem& system, Vector& x, double force_scale
     if ((residual <= residual_target || at_floor) && (last_increment <= increment_target || residual == 0)) return report;
     if (k == o.max_iterations)
       throw SolverError(
-          io::format("Newton did not converge in %d iterations: residual %.3e N (tolerance %.3e), last "
-                     "correction %.3e m (tolerance %.3e)",
-                     o.max_iterations, residual, residual_target, last_increment, increment_target));
+          format("Newton did not converge in %d iterations: residual %.3e N (tolerance %.3e), last "
+                 "correction %.3e m (tolerance %.3e)",
+                 o.max_iterations, residual, residual_target, last_increment, increment_target));
     try {
       if (k == 0 && solver.size() != J.rows()) solver.analyze(J);
       solver.factorize(J);
     } catch (const NotPositiveDefinite& e) {
       throw IndefiniteJacobian(
-          io::format("Newton: the tangent is singular or not positive definite at iteration %d%s: the "
-                     "structure is unstable at this load, or the iterate far from the solution",
-                     k, e.column >= 0 ? io::format(" (column %lld)", static_cast<long long>(e.column)).c_str() : ""));
+          format("Newton: the tangent is singular or not positive definite at iteration %d%s: the "
+                 "structure is unstable at this load, or the iterate far from the solution",
+                 k, e.column >= 0 ? format(" (column %lld)", static_cast<long long>(e.column)).c_str() : ""));
     } catch (const SolverError& e) {  // SparseLu: singular
-      throw SolverError(io::format("Newton: the Jacobian at iteration %d: %s", k, e.what()));
+      throw SolverError(format("Newton: the Jacobian at iteration %d: %s", k, e.what()));
     }
     solver.solve(-r, dx);
     if (o.line_search) {

@@ -10,10 +10,11 @@
 #include <sstream>
 
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "common/version.hpp"
+#include "fem/displacement_field.hpp"
 #include "fem/dof_map.hpp"
 #include "io/csv.hpp"
-#include "io/displacement_field.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/xdmf.hpp"
 
@@ -137,7 +138,7 @@ TEST(DisplacementField, IsInMillimetresWithPrescribedValuesAtConstrainedComponen
   const fem::DofMap dofs(constraints);
   ASSERT_EQ(dofs.num_free(), 4);
   const Vector u_free = Vector::LinSpaced(4, 1e-3, 4e-3);  // metres: x0, y0, y1, z1
-  const std::vector<double> field = displacement_field_mm(dofs, u_free);
+  const std::vector<double> field = fem::displacement_field_mm(dofs, u_free);
   ASSERT_EQ(field.size(), 6u);
   const std::vector<double> expected{1.0, 2.0, 0.0, 2.0, 3.0, 4.0};
   for (std::size_t i = 0; i < 6; ++i) EXPECT_NEAR(field[i], expected[i], 1e-12) << i;

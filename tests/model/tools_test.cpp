@@ -7,9 +7,9 @@
 #include <functional>
 
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "fem/loads.hpp"
 #include "integrators/trapezoid.hpp"
-#include "io/csv.hpp"
 #include "mesh/box_mesh.hpp"
 #include "model/energy.hpp"
 #include "model/fem_model.hpp"
@@ -154,7 +154,7 @@ TEST(Tools, BadToolsAndLoadsOnSupportsAreRefusedByName) {
   const Vector full = fem::set_force(b.mesh, "y0", Vec3(0, 0, 1));
   double lost = 0;
   for (const int n : fixed) lost += full.segment<3>(3 * n).squaredNorm();
-  EXPECT_NE(partly.warnings[0].find(io::format("%.3g N", std::sqrt(lost))), std::string::npos) << partly.warnings[0];
+  EXPECT_NE(partly.warnings[0].find(format("%.3g N", std::sqrt(lost))), std::string::npos) << partly.warnings[0];
 }
 
 TEST(Tools, ToolsThatHoldEveryFreeNodeLeaveNothingToIntegrate) {

@@ -8,8 +8,8 @@
 #include <sstream>
 
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "h5_read.hpp"
-#include "io/csv.hpp"
 #include "test_support.hpp"
 
 namespace roifem::simulation {
@@ -210,7 +210,7 @@ TEST(ScenarioRun, AHybridRoiOfEveryFreeNodeIsTheFullNonlinearModel) {
 scenario::Scenario spatula_scenario(const std::string& roi_block, long steps, double mm, const std::string& material_model) {
   const std::string text = "mesh = \"" + std::string(ROIFEM_MESH_DIR) +
                            "/brain-800.msh\"\n[material]\npreset = \"paper\"\nmodel = \"" + material_model + "\"\n" +
-                           io::format(R"([[tool]]
+                           format(R"([[tool]]
 name = "left"
 set = "opening_left"
 displacement_mm = [%g, 0, 0]
@@ -221,7 +221,7 @@ set = "opening_right"
 displacement_mm = [%g, 0, 0]
 ramp_s = 0.5
 )",
-                                      -mm, mm) +
+                                  -mm, mm) +
                            roi_block + "[time]\ndt_s = 0.05\nsteps = " + std::to_string(steps) + "\n[output]\nfield_every = 10\n";
   return scenario::parse_scenario(text, "test.toml", ".");
 }

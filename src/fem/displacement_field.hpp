@@ -7,11 +7,11 @@
 #include "common/types.hpp"
 #include "fem/dof_map.hpp"
 
-namespace roifem::io {
+namespace roifem::fem {
 
-inline std::vector<double> displacement_field_mm(const fem::DofMap& dofs, const Vector& u_free) {
+inline std::vector<double> displacement_field_mm(const DofMap& dofs, const Vector& u_free) {
   const Vector full = dofs.expand(u_free) / mm;
   return {full.data(), full.data() + full.size()};
 }
 
-}  // namespace roifem::io
+}  // namespace roifem::fem
