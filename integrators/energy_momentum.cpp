@@ -145,7 +145,7 @@ std::optional<IntegratorCheckpoint> EnergyMomentum::checkpoint() const {
 }
 
 void EnergyMomentum::restore(const model::State& state, const IntegratorCheckpoint& saved) {
-  if (saved.vectors.size() != 1 || saved.vectors[0].size() != state.u.size() || saved.numbers.size() != 2 + Stats::counter_count)
+  if (saved.vectors.size() != 1 || saved.vectors[0].size() != state.u.size() || saved.numbers.size() != 2 + stats_fields().size())
     throw InputError(std::string(name()) + ": the checkpoint does not fit this model");
   f_now_ = saved.vectors[0];
   grid_ = model::TimeGrid(saved.numbers[0], dt_, name());

@@ -74,57 +74,10 @@ bool Integrator::absorb_change(const model::SecondOrderSystem& system, const mod
   return true;
 }
 
-Stats& Stats::operator+=(const Stats& o) {
-  steps += o.steps;
-  rhs_evals += o.rhs_evals;
-  jac_evals += o.jac_evals;
-  lin_setups += o.lin_setups;
-  lin_solves += o.lin_solves;
-  failed_steps += o.failed_steps;
-  lin_iterations += o.lin_iterations;
-  nonlinear_iterations += o.nonlinear_iterations;
-  indefinite_steps += o.indefinite_steps;
-  factorization_s += o.factorization_s;
-  system_changes += o.system_changes;
-  return *this;
-}
-
 void Integrator::set_time_limit(double seconds) {
   if (!(seconds >= 0)) throw InputError(std::string(name()) + ": a time limit must be 0 or more, not " + number_text(seconds));
   deadline_ = std::chrono::steady_clock::now() +
               std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(seconds));
-}
-
-std::vector<double> Stats::counters() const {
-  const long values[counter_count] = {steps,
-                                      rhs_evals,
-                                      jac_evals,
-                                      lin_setups,
-                                      lin_solves,
-                                      failed_steps,
-                                      lin_iterations,
-                                      nonlinear_iterations,
-                                      indefinite_steps,
-                                      system_changes};
-  return std::vector<double>(std::begin(values), std::end(values));
-}
-
-Stats Stats::from_counters(const std::vector<double>& numbers, std::size_t first) {
-  if (numbers.size() < first + counter_count) throw InputError("a checkpoint's counters are missing (a damaged file?)");
-  long values[counter_count];
-  for (std::size_t i = 0; i < counter_count; ++i) values[i] = static_cast<long>(numbers[first + i]);
-  Stats s;
-  s.steps = values[0];
-  s.rhs_evals = values[1];
-  s.jac_evals = values[2];
-  s.lin_setups = values[3];
-  s.lin_solves = values[4];
-  s.failed_steps = values[5];
-  s.lin_iterations = values[6];
-  s.nonlinear_iterations = values[7];
-  s.indefinite_steps = values[8];
-  s.system_changes = values[9];
-  return s;
 }
 
 double Integrator::smallest_stability_limit() const {

@@ -18,6 +18,7 @@
 #include <string_view>
 #include <vector>
 
+#include "integrators/stats.hpp"
 #include "model/energy_bound.hpp"
 #include "model/second_order_system.hpp"
 #include "model/system_change.hpp"
@@ -26,21 +27,6 @@ namespace roifem::integrators {
 
 struct IntegratorInfo;
 class StabilityWatch;
-
-/// Counters every integrator reports (zero where the method has no such thing).
-struct Stats {
-  long steps = 0, rhs_evals = 0, jac_evals = 0, lin_setups = 0, lin_solves = 0, failed_steps = 0;
-  long lin_iterations = 0;        ///< iterations of an iterative linear solver (trapezoid-cg)
-  long nonlinear_iterations = 0;  ///< Newton iterations on a nonlinear system
-  long indefinite_steps = 0;      ///< steps whose Newton matrix was indefinite (solved by LU, not Cholesky)
-  double factorization_s = 0;     ///< seconds in linear-solver setups: orderings, analyses, factorizations
-  long system_changes = 0;        ///< changes of the system taken in place (cuts), without a restart
-  Stats& operator+=(const Stats& o);
-  /// The counters as numbers (a checkpoint's), and back (factorization_s is a time: not kept).
-  std::vector<double> counters() const;
-  static Stats from_counters(const std::vector<double>& numbers, std::size_t first = 0);
-  static constexpr std::size_t counter_count = 10;
-};
 
 /// What a method carries from one step to the next beyond the state (u, v, t): its own vectors
 /// (the trapezoidal rule's acceleration) and numbers (its grid's origin and step index, its

@@ -137,7 +137,7 @@ std::optional<IntegratorCheckpoint> Trapezoid::checkpoint() const {
 }
 
 void Trapezoid::restore(const model::State& state, const IntegratorCheckpoint& saved) {
-  if (saved.vectors.size() != 1 || saved.vectors[0].size() != state.u.size() || saved.numbers.size() != 2 + Stats::counter_count)
+  if (saved.vectors.size() != 1 || saved.vectors[0].size() != state.u.size() || saved.numbers.size() != 2 + stats_fields().size())
     throw InputError(std::string(name()) + ": the checkpoint does not fit this model (" + std::to_string(saved.vectors.size()) +
                      " vectors, " + std::to_string(saved.numbers.size()) + " numbers)");
   a_ = saved.vectors[0];

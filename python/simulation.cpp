@@ -86,13 +86,7 @@ std::optional<long> count_of(py::handle value, const char* what) {
 
 py::dict stats_dict(const integrators::Stats& st) {
   py::dict d;
-  d["steps"] = st.steps;
-  d["rhs_evals"] = st.rhs_evals;
-  d["jac_evals"] = st.jac_evals;
-  d["lin_setups"] = st.lin_setups;
-  d["lin_solves"] = st.lin_solves;
-  d["lin_iterations"] = st.lin_iterations;
-  d["failed_steps"] = st.failed_steps;
+  for (const integrators::StatsField& f : integrators::stats_fields()) d[py::str(std::string(f.name))] = st.*f.member;
   d["factorization_s"] = st.factorization_s;
   return d;
 }
@@ -261,7 +255,8 @@ void bind_simulation(py::module_& m) {
           "each tool's force on the tissue (N), by name (the surgeon feels its opposite)")
       .def_property_readonly(
           "stats", [](const Simulation& self) { return stats_dict(self.live().integrator().stats()); },
-          "the integrator's counters: steps, rhs_evals, jac_evals, lin_setups, lin_solves, ...")
+          "the integrator's counters: steps, rhs_evals, jac_evals, lin_setups, lin_solves, failed_steps, lin_iterations, "
+          "nonlinear_iterations, indefinite_steps, system_changes (integrators/stats.hpp's table), factorization_s")
       .def("__repr__", [](const Simulation& self) {
         if (!self.is_open()) return std::string("<roifem.Simulation (closed)>");
         const ScenarioStepper& s = self.live();

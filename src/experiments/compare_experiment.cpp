@@ -277,7 +277,7 @@ bool record_run(Sweep& w, const std::string& name, const std::string& mode, doub
   } catch (const OverBudget& stop) {
     row.stable = false;
     row.wall_s = run_clock.seconds();
-    row.status = format("stopped at t = %.3g s after %.0f s (--max-run-seconds)", stop.t, row.wall_s);
+    row.status = format("stopped at t = %.3g s after %.1f s (over --max-run-seconds %g)", stop.t, row.wall_s, w.o.max_run_s);
     w.log << format("  %-20s %-8s %9.3g  %s; no error figures\n", name.c_str(), mode.c_str(), dt_or_tol, row.status.c_str());
     w.results.rows.push_back(row);
     after_run(w);
@@ -285,12 +285,7 @@ bool record_run(Sweep& w, const std::string& name, const std::string& mode, doub
   }
   row.wall_s = run_clock.seconds();
   const auto st = integrator->stats();
-  row.steps = st.steps;
-  row.rhs_evals = st.rhs_evals;
-  row.jac_evals = st.jac_evals;
-  row.lin_setups = st.lin_setups;
-  row.lin_solves = st.lin_solves;
-  row.nonlinear_iterations = st.nonlinear_iterations;
+  row.stats = st;
   const std::string newton =
       nonlinear && st.nonlinear_iterations > 0
           ? format("  %.2f Newton/step, %ld Jacobians, %ld setups",
@@ -304,7 +299,7 @@ bool record_run(Sweep& w, const std::string& name, const std::string& mode, doub
                    w.ref.tool_force_peak * 1e3, row.tools.position_drift_mm)
           : "";
   w.log << format("  %-20s %-8s %9.3g  %8ld steps  %9.3f s  max error %s mm%s%s\n", name.c_str(), mode.c_str(), dt_or_tol,
-                  row.steps, row.wall_s, row.stable ? format("%.3e", row.err_max_mm).c_str() : "(diverged)", newton.c_str(),
+                  row.stats.steps, row.wall_s, row.stable ? format("%.3e", row.err_max_mm).c_str() : "(diverged)", newton.c_str(),
                   tool_figures.c_str())
         << std::flush;  // a sweep runs for minutes: show each run as it ends
   w.results.rows.push_back(row);
@@ -394,23 +389,23 @@ void print_summary(const CompareResults& results, double dt, std::ostream& log) 
     if (r.stable && r.err_max_mm <= 0.1 && (!cheapest || r.wall_s < cheapest->wall_s)) cheapest = &r;
   if (cheapest)
     log << format("\ncheapest run within 0.1 mm max error: %s (%s %g): %.4f s, %ld steps, max error %.4f mm\n",
-                  cheapest->integrator.c_str(), cheapest->mode.c_str(), cheapest->dt_or_tol, cheapest->wall_s, cheapest->steps,
-                  cheapest->err_max_mm);
+                  cheapest->integrator.c_str(), cheapest->mode.c_str(), cheapest->dt_or_tol, cheapest->wall_s,
+                  cheapest->stats.steps, cheapest->err_max_mm);
   const CompareRow* trapezoid = nullptr;
   for (const auto& r : results.rows)
-    if (r.integrator == "trapezoid" && r.mode == "fixed" && std::abs(r.dt_or_tol - dt) < 1e-12 * dt && r.steps > 0)
+    if (r.integrator == "trapezoid" && r.mode == "fixed" && std::abs(r.dt_or_tol - dt) < 1e-12 * dt && r.stats.steps > 0)
       trapezoid = &r;
   if (!trapezoid) return;
-  const double trapezoid_step = trapezoid->wall_s / static_cast<double>(trapezoid->steps);
+  const double trapezoid_step = trapezoid->wall_s / static_cast<double>(trapezoid->stats.steps);
   log << "cost relative to the trapezoidal rule at dt = " << dt
       << " s: per step (wall time per step, the run's setup included) and in all (the run's wall time), for fixed steps at "
          "dt and adaptive ones at rtol 1e-6, from the same compare run:\n";
   log << format("  %-20s %-8s %10s %12s %8s\n", "integrator", "mode", "per step", "in all", "steps");
   for (const auto& r : results.rows)
-    if (r.stable && r.steps > 0 &&
+    if (r.stable && r.stats.steps > 0 &&
         ((r.mode == "fixed" && std::abs(r.dt_or_tol - dt) < 1e-12 * dt) || (r.mode == "adaptive" && r.dt_or_tol == 1e-6)))
       log << format("  %-20s %-8s %9.2fx %11.3gx %8ld\n", r.integrator.c_str(), r.mode.c_str(),
-                    r.wall_s / static_cast<double>(r.steps) / trapezoid_step, r.wall_s / trapezoid->wall_s, r.steps);
+                    r.wall_s / static_cast<double>(r.stats.steps) / trapezoid_step, r.wall_s / trapezoid->wall_s, r.stats.steps);
 }
 
 }  // namespace

@@ -21,12 +21,11 @@ struct CompareRow {
   std::string integrator, mode;
   double dt_or_tol = 0;
   int theoretical_order = 0;  ///< the method's (its table row)
-  long steps = 0, rhs_evals = 0, jac_evals = 0, lin_setups = 0, lin_solves = 0;
-  long nonlinear_iterations = 0;  ///< Newton iterations on a nonlinear system
+  integrators::Stats stats;   ///< the run's counters (integrators/stats.hpp)
   double wall_s = 0, err_max_mm = 0, err_rms_mm = 0, energy_drift = 0;
   ToolFigures tools;  ///< with tools (tools.csv)
   bool stable = true;
-  /// "ok", "diverged: <the solver's message>" or "stopped at t = ... s after ... s (--max-run-seconds)":
+  /// "ok", "diverged: <the solver's message>" or "stopped at t = ... s after ... s (over --max-run-seconds ...)":
   /// a run that did not finish keeps its row, with this reason, and no error figures.
   std::string status = "ok";
   bool finished() const { return status == "ok"; }

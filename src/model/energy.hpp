@@ -12,7 +12,7 @@
 /// so that E + D = E_0 + W + W_tools, again exactly for the trapezoidal rule. A nonlinear system's
 /// strain energy is its W(t, u) (model/internal_force.hpp), the same ledger then holding to the
 /// rule's O(dt^2) error.
-/// A cut (simulation/scenario_cuts.hpp) changes the system in place between two states: the
+/// A cut (simulation/cuts/scenario_cuts.hpp) changes the system in place between two states: the
 /// energy its removed elements and mass carried is booked as E_cut (account_cut), and from then
 /// on E + D + E_cut = E_0 + W + W_tools, again exactly for the trapezoidal rule.
 #include <vector>

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// A change of a second-order system's operators on a few of its dofs, as a cut in remove mode
-/// makes it (simulation/scenario_cuts.hpp): with U selecting the dofs,
+/// makes it (simulation/cuts/scenario_cuts.hpp): with U selecting the dofs,
 ///   K += U dK U^T,   M += U diag(dM) U^T,   C = alpha M follows,   p_k += U dp_k (each load term).
 /// Dofs left with no element (`held`) have no stiffness and no load from then on; their lumped
 /// mass stays in M as a stand-in so that M remains invertible for every method, and the caller

@@ -57,6 +57,19 @@ std::vector<std::vector<int>> node_neighbours(const mesh::TetMesh& mesh) {
   return neighbours;
 }
 
+}  // namespace
+
+std::pair<const ModelKindInfo*, std::string> kind_of_name(std::string_view name) {
+  for (const ModelKindInfo& k : model_kinds)
+    if (!k.suffix.empty() && name.size() > k.suffix.size() && name.ends_with(k.suffix))
+      return {&k, std::string(name.substr(0, name.size() - k.suffix.size()))};
+  return {&model_kind(ModelKind::linear), std::string(name)};
+}
+
+std::string model_name(std::string_view base, ModelKind kind) { return std::string(base) + std::string(model_kind(kind).suffix); }
+
+namespace {
+
 /// A model to prepare: its name, its reduction (none: the full model) and its law.
 struct PlannedModel {
   std::string name;
@@ -74,45 +87,45 @@ bool is_neo_hookean(const scenario::Scenario& scenario) {
 /// The models to prepare: those named, or by default the linear ones and the hybrid ROI (a
 /// neo-Hookean scenario's own law first).
 std::vector<PlannedModel> model_plan(const scenario::Scenario& scenario, const std::vector<std::string>& names) {
-  const std::string suffix = kNeoHookeanSuffix;
-  const auto linear = fem::MaterialModel::linear, neo_hookean = fem::MaterialModel::neo_hookean;
+  const auto planned = [](std::string_view base, std::optional<condensation::Reduction> r, ModelKind kind) {
+    const ModelKindInfo& k = model_kind(kind);
+    return PlannedModel{model_name(base, kind), std::move(r), k.law, k.cut};
+  };
   std::vector<PlannedModel> plan;
   if (names.empty()) {
     const condensation::Reduction static_condensation;
-    std::vector<PlannedModel> linear_models{{"full", std::nullopt, linear}};
+    std::vector<PlannedModel> linear_models{planned("full", std::nullopt, ModelKind::linear)};
     if (scenario.roi)
-      for (const auto& r : live_reductions(scenario)) linear_models.push_back({r.label(), r, linear});
+      for (const auto& r : live_reductions(scenario)) linear_models.push_back(planned(r.label(), r, ModelKind::linear));
     if (scenario.roi)
-      linear_models.push_back({static_condensation.label() + kCutSuffix, static_condensation, linear, true});
+      linear_models.push_back(planned(static_condensation.label(), static_condensation, ModelKind::cut));
     else
-      linear_models.push_back({std::string("full") + kCutSuffix, std::nullopt, linear, true});
-    const PlannedModel hybrid{static_condensation.label() + suffix, static_condensation, neo_hookean};
+      linear_models.push_back(planned("full", std::nullopt, ModelKind::cut));
+    const PlannedModel hybrid = planned(static_condensation.label(), static_condensation, ModelKind::neo_hookean);
     if (!is_neo_hookean(scenario)) {  // the linear models, then the hybrid ROI
       plan = linear_models;
       if (scenario.roi) plan.push_back(hybrid);
       return plan;
     }
-    plan.push_back({"full" + suffix, std::nullopt, neo_hookean});  // the scenario's own law first
+    plan.push_back(planned("full", std::nullopt, ModelKind::neo_hookean));  // the scenario's own law first
     if (scenario.roi) plan.push_back(hybrid);
     plan.insert(plan.end(), linear_models.begin(), linear_models.end());
     return plan;
   }
-  const std::string cut_suffix = kCutSuffix;
+  const std::string cut_suffix(model_kind(ModelKind::cut).suffix);
+  const std::string neo_suffix(model_kind(ModelKind::neo_hookean).suffix);
   for (const std::string& name : names) {
-    const bool cut = name.size() > cut_suffix.size() && name.ends_with(cut_suffix);
-    const std::string uncut = cut ? name.substr(0, name.size() - cut_suffix.size()) : name;
-    const bool neo = uncut.size() > suffix.size() && uncut.ends_with(suffix);
-    const std::string base = neo ? uncut.substr(0, uncut.size() - suffix.size()) : uncut;
-    const fem::MaterialModel law = neo ? neo_hookean : linear;
-    if (cut && (neo || (base != "full" && base != condensation::Reduction{}.label())))
-      throw InputError(
-          format("serve: --models: %s: the page's scalpel cuts the linear full model (full%s) or static condensation (static%s): "
-                 "%s",
-                 name.c_str(), kCutSuffix, kCutSuffix,
-                 neo ? "cuts are built for the linear material"
-                     : "a reduction by modes keeps the uncut mesh's modes, and the haptic loop takes a cut on a lumped mass"));
+    const auto [kind, base] = kind_of_name(name);
+    if (kind->cut && base != "full" && base != condensation::Reduction{}.label())
+      throw InputError(format(
+          "serve: --models: %s: the page's scalpel cuts the linear full model (full%s) or static condensation (static%s): %s",
+          name.c_str(), cut_suffix.c_str(), cut_suffix.c_str(),
+          kind_of_name(base).first->law != fem::MaterialModel::linear
+              ? "cuts are built for the linear material"
+              : "a reduction by modes keeps the uncut mesh's modes, and the haptic loop takes a cut on a lumped mass"));
+    const bool neo = kind->law != fem::MaterialModel::linear;
     if (base == "full") {
-      plan.push_back({name, std::nullopt, law, cut});
+      plan.push_back(planned("full", std::nullopt, kind->kind));
       continue;
     }
     condensation::Reduction r;
@@ -120,7 +133,7 @@ std::vector<PlannedModel> model_plan(const scenario::Scenario& scenario, const s
       r = condensation::parse_reduction(base);
     } catch (const InputError& e) {
       throw InputError(format("serve: --models: '%s' is neither full nor a reduction (either with %s or not): %s", name.c_str(),
-                              kNeoHookeanSuffix, e.what()));
+                              neo_suffix.c_str(), e.what()));
     }
     if (r.info().learns_from_loads)
       throw InputError("serve: --models: " + name + " learns its basis from the scenario's loads, not from a hand");
@@ -130,8 +143,8 @@ std::vector<PlannedModel> model_plan(const scenario::Scenario& scenario, const s
       throw InputError(
           format("serve: --models: %s: a reduction by modes linearizes the ROI's motion; the neo-Hookean "
                  "ROI takes static condensation (static%s)",
-                 name.c_str(), kNeoHookeanSuffix));
-    plan.push_back({r.label() + (neo ? suffix : "") + (cut ? cut_suffix : ""), r, law, cut});
+                 name.c_str(), neo_suffix.c_str()));
+    plan.push_back(planned(r.label(), r, kind->kind));
   }
   return plan;
 }
@@ -284,6 +297,58 @@ std::optional<std::size_t> LiveScene::reference_of(std::size_t k) const {
   for (std::size_t j = 0; j < models_.size(); ++j)
     if (!models_[j].condensed() && !models_[j].cuttable() && models_[j].law == live.law) return j;
   return std::nullopt;
+}
+
+LiveCutResult LiveModel::cut(const std::vector<Index>& crossed, model::State* grab, const std::vector<int>& hand) {
+  LiveCutResult result;
+  if (!cuttable()) {
+    result.why_not = format("the %s model is not cut by the scalpel (choose a model whose name ends in %s)", name.c_str(),
+                            std::string(model_kind(ModelKind::cut).suffix).c_str());
+    result.refused = true;
+    return result;
+  }
+  const std::vector<bool>& there = cuts->still_there();
+  std::vector<Index> elements;
+  for (const Index e : crossed)
+    if (there[static_cast<std::size_t>(e)]) elements.push_back(e);
+  if (elements.empty()) {
+    result.why_not = crossed.empty() ? std::string("the stroke's blade crosses no tetrahedron")
+                                     : format("the %zu tetrahedra the stroke crosses are already removed", crossed.size());
+    return result;
+  }
+  const mesh::TetMesh& mesh = model->mesh;
+  for (const Index e : elements)
+    if (const auto why = cuts->refusal_to_remove(mesh, e, hand)) {
+      result.why_not = "it reaches tetrahedron " + std::to_string(e) + ", " + *why;
+      result.refused = true;
+      return result;
+    }
+  if (const auto why = cuts->refusal_to_empty(mesh, elements.size(), condensed())) {
+    result.why_not = "it " + *why;
+    result.refused = true;
+    return result;
+  }
+  model::State at_rest = grab ? model::State{} : model::State::at_rest(model->system().size());
+  model::State& state = grab ? *grab : at_rest;
+  try {
+    result.taken = cuts->remove(elements, *model, state);
+  } catch (const Error& e) {  // nothing removed
+    result.why_not = e.what();
+    result.refused = true;
+    return result;
+  }
+  // Between grabs the next pick factors the cut model afresh; during one the grab goes on with the
+  // corrected factor, and the next pick after it factors afresh too (a factor with a correction
+  // takes no new hand: HapticTrapezoid::attach).
+  haptic_stale = true;
+  if (grab) try {
+      haptic->take_change(result.taken->change, *grab);
+    } catch (const Error& e) {
+      result.grab_ended_because = e.what();
+    }
+  for (const Index e : result.taken->elements)
+    for (const int n : mesh.tets[static_cast<std::size_t>(e)]) on_cut[static_cast<std::size_t>(n)] = 1;
+  return result;
 }
 
 std::size_t LiveScene::default_model() const {

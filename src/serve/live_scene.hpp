@@ -10,7 +10,7 @@
 ///   neo-Hookean over the linear condensed remainder, model/hyperelastic_force.hpp), ticked by
 ///   modified Newton on the linear K_eff with a stated budget (integrators/haptic_trapezoid.hpp);
 ///   and models the page's scalpel cuts (a name's "-cut": full-cut, static-cut), each its own copy
-///   of the linear full model or static condensation, cut in place (simulation/element_cuts.hpp)
+///   of the linear full model or static condensation, cut in place (simulation/cuts/element_cuts.hpp)
 ///   while the others stay whole.
 /// A model's name states its law, whatever the scenario's [material] model says; the scenario's
 /// moduli are the law's small-strain moduli.
@@ -22,12 +22,14 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <variant>
 #include <vector>
 
 #include "integrators/haptic_trapezoid.hpp"
 #include "scenario/scenario.hpp"
-#include "simulation/element_cuts.hpp"
+#include "simulation/cuts/element_cuts.hpp"
 #include "simulation/scenario_model.hpp"
 
 namespace roifem::serve {
@@ -39,14 +41,41 @@ struct SurfaceView {
   std::vector<std::uint8_t> flags;            ///< per vertex: bit 0 fixed, bit 1 + k in model k's ROI
 };
 
-/// The suffix of a model's name that takes the neo-Hookean law.
-inline constexpr const char* kNeoHookeanSuffix = "-neo-hookean";
-/// The suffix of a model's name that the page's scalpel cuts.
-inline constexpr const char* kCutSuffix = "-cut";
+/// The kinds of a served model, one table that the plan, --models, the page's names and the
+/// messages read: a model's name is its base (full, or a reduction's label) and its kind's suffix.
+enum class ModelKind { linear, neo_hookean, cut };
+struct ModelKindInfo {
+  ModelKind kind;
+  std::string_view suffix;  ///< after the base ("" for the linear kind)
+  fem::MaterialModel law;
+  bool cut;  ///< the page's scalpel cuts it (a copy of the linear model, cut in place)
+};
+inline constexpr std::array<ModelKindInfo, 3> model_kinds{
+    {{ModelKind::linear, "", fem::MaterialModel::linear, false},
+     {ModelKind::neo_hookean, "-neo-hookean", fem::MaterialModel::neo_hookean, false},
+     {ModelKind::cut, "-cut", fem::MaterialModel::linear, true}}};
+constexpr const ModelKindInfo& model_kind(ModelKind kind) {
+  for (const ModelKindInfo& k : model_kinds)
+    if (k.kind == kind) return k;
+  return model_kinds[0];
+}
+/// The kind a model's name states (its suffix, the table's; no suffix: linear) and its base.
+std::pair<const ModelKindInfo*, std::string> kind_of_name(std::string_view name);
+/// A model's name: its base and its kind's suffix.
+std::string model_name(std::string_view base, ModelKind kind);
+
+/// What a stroke did to a cut model (LiveModel::cut): the tetrahedra it removed, or why it took
+/// nothing; and whether the grab it was taken during had to end.
+struct LiveCutResult {
+  std::optional<simulation::CutEvent> taken;
+  std::string why_not;             ///< set when nothing was taken: the page says it
+  bool refused = false;            ///< the rule or the model refused it (else there was nothing to take)
+  std::string grab_ended_because;  ///< the haptic loop's correction failed: the grab ends (empty: it goes on)
+};
 
 struct LiveModel {
-  /// "full", or the reduction's label ("static", "guyan", "craig-bampton-10"), with
-  /// kNeoHookeanSuffix for the neo-Hookean law
+  /// "full", or the reduction's label ("static", "guyan", "craig-bampton-10"), with its kind's
+  /// suffix (model_kinds)
   std::string name;
   std::string description;
   fem::MaterialModel law = fem::MaterialModel::linear;
@@ -60,7 +89,7 @@ struct LiveModel {
   Index unknowns = 0;
   std::size_t roi_size = 0;  ///< the ROI's nodes (0: a full model)
   std::vector<char> in_roi;  ///< per mesh node: an unknown of this model's ROI (the full model: every free node)
-  /// A cut model's (kCutSuffix): the mesh as the cuts left it and what a removal changes (the
+  /// A cut model's (ModelKind::cut): the mesh as the cuts left it and what a removal changes (the
   /// physics thread's, with the nodes of removed tetrahedra and whether the haptic loop's factor
   /// predates a cut taken while no grab held the model).
   std::unique_ptr<simulation::ElementCuts> cuts;
@@ -77,6 +106,12 @@ struct LiveModel {
   bool condensed() const { return roi_size > 0; }
   bool nonlinear() const { return law != fem::MaterialModel::linear; }
   bool cuttable() const { return cut_model; }
+  /// The physics thread: cuts the tetrahedra `crossed` (ascending: what a stroke's blade crosses)
+  /// out of this cut model, live, by the element cuts' one rule (the static part, the hand's nodes
+  /// `hand`, the last of the ROI: simulation/cuts/element_cuts.hpp) and removal. During a grab
+  /// (`grab`: its state) the haptic loop's factor takes the change by its correction; between grabs
+  /// the state is at rest; either way the next pick factors the cut model afresh.
+  LiveCutResult cut(const std::vector<Index>& crossed, model::State* grab, const std::vector<int>& hand);
 };
 
 /// A footprint the hand may hold in a model: its mesh nodes and their dofs in the model's system.
@@ -105,7 +140,7 @@ class LiveScene {
  public:
   /// Reads the mesh, builds and condenses each model and factors its haptic loop at `rate_hz`.
   /// `radius_mm`: the hand's footprint. `models`: "full" and reduction labels ("static", "guyan",
-  /// "craig-bampton-10"), each with kNeoHookeanSuffix or not; empty: full, static, guyan,
+  /// "craig-bampton-10"), each with a kind's suffix (model_kinds) or none; empty: full, static, guyan,
   /// craig-bampton-10, static-neo-hookean and static-cut (a neo-Hookean scenario's: full-neo-hookean
   /// and static-neo-hookean first; without an [roi], full and full-cut). InputError for an unknown
   /// name, POD, a reduction without an [roi], the neo-Hookean law with a reduction by modes, or a

@@ -11,7 +11,7 @@
 #include "common/errors.hpp"
 #include "common/format.hpp"
 #include "common/timer.hpp"
-#include "simulation/cut_event.hpp"
+#include "simulation/cuts/cut_event.hpp"
 
 namespace roifem::serve {
 
@@ -233,71 +233,18 @@ void PhysicsLoop::make_whole() {
 
 void PhysicsLoop::cut(const HandMessage& event) {
   LiveModel& live = scene_.models()[model_];
-  if (!live.cuttable()) {
-    say(format("refused cut: the %s model is not cut by the scalpel (choose a model whose name ends in %s)", live.name.c_str(),
-               kCutSuffix));
-    return;
-  }
   const Stopwatch clock;
-  const std::vector<bool>& there = live.cuts->still_there();
-  const simulation::CutSupports& at = live.cuts->supports();
-  const mesh::TetMesh& mesh = live.model->mesh;
-  std::vector<Index> elements;
-  for (const Index e : event.crossed)
-    if (there[static_cast<std::size_t>(e)]) elements.push_back(e);
-  if (elements.empty()) {
-    say(event.crossed.empty() ? std::string("cut: the stroke's blade crosses no tetrahedron")
-                              : format("cut: the %zu tetrahedra the stroke crosses are already removed", event.crossed.size()));
+  const LiveCutResult result =
+      live.cut(event.crossed, attached_ ? &state_ : nullptr, attached_ ? grip_.nodes : std::vector<int>{});
+  if (!result.taken) {
+    say((result.refused ? "refused cut: " : "cut: ") + result.why_not);
     return;
   }
-  for (const Index e : elements)
-    for (const int n : mesh.tets[static_cast<std::size_t>(e)]) {
-      if (at.in_static_part[static_cast<std::size_t>(n)]) {
-        say(
-            format("refused cut: it reaches tetrahedron %ld, which touches node %d of the static part: a cut stays inside "
-                   "the ROI (cut nearer the target, or serve a larger [roi])",
-                   static_cast<long>(e), n));
-        return;
-      }
-      if (attached_ && std::binary_search(grip_.nodes.begin(), grip_.nodes.end(), n)) {
-        say(
-            format("refused cut: it reaches tetrahedron %ld, which holds node %d of the hand: a cut stays clear of the "
-                   "hand (release, or cut farther from it)",
-                   static_cast<long>(e), n));
-        return;
-      }
-    }
-  std::size_t left = 0;
-  for (std::size_t e = 0; e < there.size(); ++e)
-    if (there[e] && std::none_of(mesh.tets[e].begin(), mesh.tets[e].end(),
-                                 [&](int n) { return at.in_static_part[static_cast<std::size_t>(n)]; }))
-      ++left;
-  if (left == elements.size()) {
-    say(format("refused cut: it would remove the last %zu tetrahedra of the %s: nothing would be left to move", left,
-               live.condensed() ? "ROI" : "mesh"));
-    return;
+  const simulation::CutEvent& taken = *result.taken;
+  if (!result.grab_ended_because.empty()) {
+    attached_ = holding_ = false;
+    say("the cut's correction failed, the grab ends: " + result.grab_ended_because);
   }
-  model::State between = attached_ ? model::State{} : model::State::at_rest(live.model->system().size());
-  model::State& state = attached_ ? state_ : between;
-  simulation::CutEvent taken;
-  try {
-    taken = live.cuts->remove(elements, *live.model, state);
-  } catch (const Error& e) {  // nothing removed
-    say(std::string("refused cut: ") + e.what());
-    return;
-  }
-  // Between grabs the next pick factors the cut model afresh; during one the grab goes on with the
-  // corrected factor, and the next pick after it factors afresh too (a factor with a correction
-  // takes no new hand: HapticTrapezoid::attach).
-  live.haptic_stale = true;
-  if (attached_) try {
-      live.haptic->take_change(taken.change, state_);
-    } catch (const Error& e) {  // the model is cut: the next pick factors it afresh
-      attached_ = holding_ = false;
-      say(std::string("the cut's correction failed, the grab ends: ") + e.what());
-    }
-  for (const Index e : taken.elements)
-    for (const int n : mesh.tets[static_cast<std::size_t>(e)]) live.on_cut[static_cast<std::size_t>(n)] = 1;
   std::string said =
       format("cut: %zu tetrahedra removed from the %s model %s in %.1f ms", taken.elements.size(), live.name.c_str(),
              attached_ ? format("at t = %.3f s of grab %u", state_.t, grab_).c_str() : "between grabs", 1e3 * clock.seconds());

@@ -565,7 +565,8 @@ void Server::Impl::follow_grab() {
                    live.name.c_str()));
       else if (compare_ && !reference && live.condensed())
         say(format("compare: no full model with the %s model's law is prepared (--models: full%s): nothing to compare",
-                   live.name.c_str(), live.nonlinear() ? kNeoHookeanSuffix : ""));
+                   live.name.c_str(),
+                   std::string(model_kind(live.nonlinear() ? ModelKind::neo_hookean : ModelKind::linear).suffix).c_str()));
     }
     grab_.samples.push_back(s);
     if (compare_ && s.grab != compare_lost_grab_ && !compare_->feed(s)) {

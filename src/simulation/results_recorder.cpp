@@ -216,10 +216,7 @@ void ResultsRecorder::write_cuts() {
 std::vector<std::filesystem::path> ResultsRecorder::finish(const integrators::Stats& st, const RunCheckpoint& last) {
   record_checkpoint(last);  // a finished run can be made longer from its last step
   write_cuts();
-  h5_.attribute("counters",
-                format("steps=%ld rhs_evals=%ld jac_evals=%ld lin_setups=%ld lin_solves=%ld lin_iterations=%ld failed_steps=%ld",
-                       st.steps, st.rhs_evals, st.jac_evals, st.lin_setups, st.lin_solves, st.lin_iterations, st.failed_steps) +
-                    (st.nonlinear_iterations > 0 ? format(" nonlinear_iterations=%ld", st.nonlinear_iterations) : std::string()));
+  h5_.attribute("counters", integrators::stats_line(st));
   h5_.attribute("status", "complete");
   h5_.close();
   file_.commit();

@@ -24,9 +24,9 @@
 #include "io/xdmf.hpp"
 #include "model/energy.hpp"
 #include "scenario/scenario.hpp"
+#include "simulation/cuts/scenario_cuts.hpp"
 #include "simulation/earlier_run.hpp"
 #include "simulation/run_checkpoint.hpp"
-#include "simulation/scenario_cuts.hpp"
 #include "simulation/scenario_model.hpp"
 
 namespace roifem::simulation {

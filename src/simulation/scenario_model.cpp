@@ -5,13 +5,13 @@
 #include <utility>
 
 #include "common/errors.hpp"
+#include "cutting/split_copies.hpp"
 #include "integrators/factory.hpp"
 #include "mesh/gmsh_reader.hpp"
 #include "mesh/mesh_checks.hpp"
 #include "model/hyperelastic_force.hpp"
 #include "model/prescribed_motion.hpp"
 #include "model/uncondensed_form.hpp"
-#include "simulation/scenario_splits.hpp"
 
 namespace roifem::simulation {
 
@@ -112,7 +112,7 @@ std::unique_ptr<ScenarioModel> build_scenario_model(const scenario::Scenario& sc
   }
   m->full = model::build_fem_model(m->mesh, fem::MaterialMap(m->mesh, sc.material, sc.material_regions), sc.fixed_sets, sc.loads,
                                    sc.tools, sc.element);
-  if (m->split_plan) hold_copies(m->full, *m->split_plan);
+  if (m->split_plan) cutting::hold_copies(m->full, *m->split_plan);
   const fem::DofMap& dofs = *m->full.dofs;
   if (sc.roi) {
     m->roi_nodes = roi::select_roi_nodes(m->split_plan ? unsplit : m->mesh, dofs, *sc.roi);

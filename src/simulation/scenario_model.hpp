@@ -21,11 +21,11 @@ struct ScenarioModel {
   std::vector<int> roi_nodes;  ///< empty for the full model
   model::ToolSet tools;        ///< the scenario's tools, in system()'s numbering
   /// Cuts in split mode: their plan, whose copies are the mesh's last nodes (held until a split
-  /// brings them in: simulation/scenario_splits.hpp); null otherwise.
+  /// brings them in: simulation/cuts/scenario_splits.hpp); null otherwise.
   std::shared_ptr<const cutting::SplitPlan> split_plan;
 
   const model::SecondOrderSystem& system() const { return condensation ? condensation->system() : full.system; }
-  /// Changes system() in place (a cut: simulation/scenario_cuts.hpp).
+  /// Changes system() in place (a cut: simulation/cuts/scenario_cuts.hpp).
   void change_system(model::SystemChange& change) {
     if (condensation)
       condensation->change_system(change);

@@ -255,6 +255,7 @@ ScenarioRunSummary run_scenario(const scenario::Scenario& sc, const std::filesys
   log << format("done: %ld steps, median %.4f ms per step; final kinetic %.3e J, strain %.3e J, work %.3e J, dissipated %.3e J\n",
                 summary.steps, summary.step_s_median * 1e3, ledger.kinetic(), ledger.strain(), ledger.external_work(),
                 ledger.dissipated());
+  log << sc.integrator << "'s counters: " << integrators::stats_line(summary.stats) << '\n';
   if (!sc.cuts.empty()) {
     const double scale = std::max({std::abs(ledger.external_work()), std::abs(ledger.tool_work()), std::abs(ledger.cut())});
     const std::string what = stepper.cuts().split_plan() ? format("%zu faces separated, %zu nodes split",

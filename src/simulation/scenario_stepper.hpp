@@ -6,7 +6,7 @@
 /// reads the state (u and v keep their storage for the stepper's life: views of them stay valid),
 /// the ROI displacement, the whole field, the energies, the supports' reactions and the tools' forces.
 /// A scenario's cuts take effect at the start of the step during which a blade reaches their
-/// tetrahedra (simulation/scenario_cuts.hpp): the system changes in place, the integrator takes
+/// tetrahedra (simulation/cuts/scenario_cuts.hpp): the system changes in place, the integrator takes
 /// the change, the ledger books what was removed, and each listener hears of it.
 #include <functional>
 #include <memory>
@@ -17,9 +17,9 @@
 #include "model/energy.hpp"
 #include "model/reaction_forces.hpp"
 #include "scenario/scenario.hpp"
+#include "simulation/cuts/scenario_cuts.hpp"
 #include "simulation/run_checkpoint.hpp"
 #include "simulation/run_loop.hpp"
-#include "simulation/scenario_cuts.hpp"
 #include "simulation/scenario_model.hpp"
 
 namespace roifem::simulation {

@@ -15,20 +15,11 @@
 #include "cutting/split_plan.hpp"
 #include "fem/material_map.hpp"
 #include "model/fem_model.hpp"
-#include "simulation/cut_event.hpp"
+#include "simulation/cuts/cut_event.hpp"
 
 namespace roifem::simulation {
 
 struct ScenarioModel;
-
-/// Per copy of `plan` (node plan.num_nodes + k of `mesh`), its stand-in mass while it is held:
-/// its original's lumped mass in the uncut mesh (kg).
-std::vector<double> copy_stand_in_mass(const mesh::TetMesh& mesh, const fem::MaterialMap& materials,
-                                       const cutting::SplitPlan& plan);
-
-/// Holds the copies of `full` (built on the mesh with_copies(plan)): their stand-in mass in M
-/// (and C = alpha M), no stiffness, no load. InputError unless C is mass-proportional.
-void hold_copies(model::FemModel& full, const cutting::SplitPlan& plan);
 
 class ScenarioSplits {
  public:

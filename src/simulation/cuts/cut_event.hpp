@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-/// What one step's cut did to a scenario's model (simulation/scenario_cuts.hpp), and what the
+/// What one step's cut did to a scenario's model (simulation/cuts/scenario_cuts.hpp), and what the
 /// cuts of either mode share: where the tissue is held, and the pieces a cut sets loose.
 #include <string>
 #include <utility>

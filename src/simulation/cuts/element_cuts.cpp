@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "simulation/element_cuts.hpp"
+#include "simulation/cuts/element_cuts.hpp"
 
 #include <algorithm>
 #include <numeric>
@@ -44,6 +44,56 @@ ElementCuts::ElementCuts(const scenario::Scenario& sc, const ScenarioModel& m)
   }
   for (std::size_t k = 0; k < sc.loads.size(); ++k)
     if (sc.loads[k].gravity) gravity_.emplace_back(k, *sc.loads[k].gravity);
+}
+
+std::optional<std::string> ElementCuts::refusal_to_remove(const mesh::TetMesh& mesh, Index e,
+                                                          const std::vector<int>& hand) const {
+  for (const int n : mesh.tets[static_cast<std::size_t>(e)]) {
+    const auto i = static_cast<std::size_t>(n);
+    if (supports_.in_static_part[i])
+      return "which touches node " + std::to_string(n) +
+             " of the static part: a cut stays inside the ROI, whose condensation it changes in place (a larger [roi], or "
+             "cut nearer its target)";
+    if (!supports_.tool_at[i].empty())
+      return "which holds node " + std::to_string(n) + " of tool '" + supports_.tool_at[i] +
+             "': a cut stays clear of the tools' nodes";
+    if (std::binary_search(hand.begin(), hand.end(), n))
+      return "which holds node " + std::to_string(n) +
+             " of the hand: a cut stays clear of the hand (release, or cut farther from it)";
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> ElementCuts::refusal_to_split(const mesh::TetMesh& mesh, int node, Index moved) const {
+  const auto i = static_cast<std::size_t>(node);
+  if (!supports_.tool_at[i].empty())
+    return "which tool '" + supports_.tool_at[i] + "' holds: a cut stays clear of the tools' nodes";
+  if (supports_.fixed_somewhere[i])
+    return std::string(
+        "a fixed node: split mode keeps clear of the supports (move the blade off them, or use mode = \"remove\")");
+  for (const int n : mesh.tets[static_cast<std::size_t>(moved)]) {
+    const auto j = static_cast<std::size_t>(n);
+    if (supports_.in_static_part[j])
+      return "moving tetrahedron " + std::to_string(moved) + " which touches node " + std::to_string(n) +
+             " of the static part: a cut stays inside the ROI, whose condensation it changes in place (a larger [roi], or "
+             "move the blade)";
+    if (!supports_.tool_at[j].empty())
+      return "moving tetrahedron " + std::to_string(moved) + " which holds node " + std::to_string(n) + " of tool '" +
+             supports_.tool_at[j] + "': a cut stays clear of the tools' nodes";
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> ElementCuts::refusal_to_empty(const mesh::TetMesh& mesh, std::size_t removing, bool condensed) const {
+  const std::vector<bool>& there = remover_.still_there();
+  std::size_t left = 0;
+  for (std::size_t e = 0; e < there.size(); ++e)
+    if (there[e] && std::none_of(mesh.tets[e].begin(), mesh.tets[e].end(),
+                                 [&](int n) { return supports_.in_static_part[static_cast<std::size_t>(n)]; }))
+      ++left;
+  if (removing < left) return std::nullopt;
+  return "would remove the last " + std::to_string(left) + " tetrahedra of the " + (condensed ? "ROI" : "mesh") +
+         ": nothing would be left to move";
 }
 
 CutEvent ElementCuts::remove(std::vector<Index> elements, ScenarioModel& m, model::State& state) {

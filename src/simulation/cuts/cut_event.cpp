@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "simulation/cut_event.hpp"
+#include "simulation/cuts/cut_event.hpp"
 
 #include <algorithm>
 #include <numeric>

@@ -5,12 +5,14 @@
 /// the mesh as the cuts leave it (fem::ElementRemover), each free dof's unknown in the integrated
 /// system, the gravity load terms and where the tissue is held, and forms each removal's change
 /// (model/system_change.hpp), applying it to the model in place.
+#include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include "fem/element_removal.hpp"
 #include "scenario/scenario.hpp"
-#include "simulation/cut_event.hpp"
+#include "simulation/cuts/cut_event.hpp"
 #include "simulation/scenario_model.hpp"
 
 namespace roifem::simulation {
@@ -30,6 +32,20 @@ class ElementCuts {
   CutEvent remove(std::vector<Index> elements, ScenarioModel& model, model::State& state);
   /// Per tetrahedron, whether it is still in the mesh.
   const std::vector<bool>& still_there() const { return remover_.still_there(); }
+
+  /// The one rule for what a cut may take, whichever path asks (a scenario's blades in either mode,
+  /// the page's scalpel): why it is refused, in words that follow "... reaches tetrahedron E[ at t],
+  /// " (or "... splits node N, "), or nothing where it is admitted. The batch path throws it, naming
+  /// the blade and the time; the live path says it. Removing tetrahedron `e` of `mesh` is refused
+  /// at a node of the static part (a cut stays inside the ROI, whose condensation it changes in
+  /// place), at a tool's node, or at a node of `hand` (the nodes a hand holds now, ascending).
+  std::optional<std::string> refusal_to_remove(const mesh::TetMesh& mesh, Index e, const std::vector<int>& hand = {}) const;
+  /// Splitting `node` and moving tetrahedron `moved` to its copy: refused at a tool's node or a
+  /// fixed one, and where `moved` touches the static part or a tool's node.
+  std::optional<std::string> refusal_to_split(const mesh::TetMesh& mesh, int node, Index moved) const;
+  /// Removing `removing` of the tetrahedra still there (none touching the static part): refused
+  /// where nothing of the ROI (`condensed`; else of the mesh) would be left to move.
+  std::optional<std::string> refusal_to_empty(const mesh::TetMesh& mesh, std::size_t removing, bool condensed) const;
   const CutSupports& supports() const { return supports_; }
   /// Per free dof of the full model: its unknown in the integrated system (-1: the static part).
   const std::vector<Index>& system_dof() const { return system_dof_; }

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "simulation/scenario_cuts.hpp"
+#include "simulation/cuts/scenario_cuts.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -52,7 +52,7 @@ ScenarioCuts::ScenarioCuts(const scenario::Scenario& sc, const ScenarioModel& m)
     for (std::size_t e = 0; e < anchored.size(); ++e)
       anchored[e] =
           std::any_of(mesh.tets[e].begin(), mesh.tets[e].end(), [&](int n) { return at.supported[static_cast<std::size_t>(n)]; });
-    refuse_splits(m, at, anchored);
+    refuse_splits(m, anchored);
     no_cuts_.assign(static_cast<std::size_t>(mesh.num_tets()), true);
     splits_.emplace(m, cutter_->system_dof(), cutter_->gravity(), time_slack_, std::move(anchored));
     return;
@@ -82,54 +82,28 @@ ScenarioCuts::ScenarioCuts(const scenario::Scenario& sc, const ScenarioModel& m)
     if (by[e]) schedule_.push_back({static_cast<Index>(e), when[e]});
   std::stable_sort(schedule_.begin(), schedule_.end(), [](const auto& a, const auto& b) { return a.time < b.time; });
 
-  for (const auto& c : schedule_) {
-    const cutting::Blade& blade = *by[static_cast<std::size_t>(c.element)];
-    for (const int n : mesh.tets[static_cast<std::size_t>(c.element)]) {
-      const std::string where = blade.where + ": " + blade.describe() + " reaches tetrahedron " + std::to_string(c.element) +
-                                " at t = " + number_text(c.time) + " s, ";
-      if (!at.tool_at[static_cast<std::size_t>(n)].empty())
-        throw InputError(where + "which holds node " + std::to_string(n) + " of tool '" +
-                         at.tool_at[static_cast<std::size_t>(n)] + "': a cut stays clear of the tools' nodes");
-      if (at.in_static_part[static_cast<std::size_t>(n)])
-        throw InputError(where + "which touches node " + std::to_string(n) +
-                         " of the static part: a cut stays inside the ROI, whose condensation it changes in place (a larger "
-                         "[roi], or move the blade)");
+  // What the cuts may take: the element cuts' one rule, each refusal named with its blade and time.
+  for (const auto& c : schedule_)
+    if (const auto why = cutter_->refusal_to_remove(mesh, c.element)) {
+      const cutting::Blade& blade = *by[static_cast<std::size_t>(c.element)];
+      throw InputError(blade.where + ": " + blade.describe() + " reaches tetrahedron " + std::to_string(c.element) +
+                       " at t = " + number_text(c.time) + " s, " + *why);
     }
-  }
-  Index inside = 0;
-  for (const auto& tet : mesh.tets)
-    inside += std::none_of(tet.begin(), tet.end(), [&](int n) { return at.in_static_part[static_cast<std::size_t>(n)]; }) ? 1 : 0;
-  if (static_cast<Index>(schedule_.size()) == inside)
-    throw InputError(sc.cuts.front().where + ": the cuts remove all " + std::to_string(inside) + " tetrahedra of the " +
-                     (m.roi_nodes.empty() ? "mesh" : "ROI") + ": nothing would be left to move");
+  if (const auto why = cutter_->refusal_to_empty(mesh, schedule_.size(), !m.roi_nodes.empty()))
+    throw InputError(sc.cuts.front().where + ": the cuts " + *why);
 }
 
-void ScenarioCuts::refuse_splits(const ScenarioModel& m, const CutSupports& at, const std::vector<bool>& anchored) const {
+void ScenarioCuts::refuse_splits(const ScenarioModel& m, const std::vector<bool>& anchored) const {
   const cutting::SplitPlan& plan = *split_plan_;
   for (const auto& [move, face] : cutting::rehearse(plan, m.mesh.tets, anchored)) {
-    const cutting::SeparatedFace& f = plan.faces[face];
-    const cutting::Blade& blade = *plan.blade_of[face];
     const mesh::Tet& tet = m.mesh.tets[static_cast<std::size_t>(move.element)];
-    const auto node = static_cast<std::size_t>(tet[static_cast<std::size_t>(move.corner)]);
-    const std::string where = blade.where + ": " + blade.describe() + " separates tetrahedra " + std::to_string(f.a) + " and " +
-                              std::to_string(f.b) + " at t = " + number_text(f.time) + " s, which splits node " +
-                              std::to_string(node);
-    if (!at.tool_at[node].empty())
-      throw InputError(where + ", which tool '" + at.tool_at[node] + "' holds: a cut stays clear of the tools' nodes");
-    if (at.fixed_somewhere[node])
-      throw InputError(where +
-                       ", a fixed node: split mode keeps clear of the supports (move the blade off them, or use "
-                       "mode = \"remove\")");
-    for (const int n : tet) {
-      if (at.in_static_part[static_cast<std::size_t>(n)])
-        throw InputError(where + ", moving tetrahedron " + std::to_string(move.element) + " which touches node " +
-                         std::to_string(n) +
-                         " of the static part: a cut stays inside the ROI, whose condensation it changes in place (a larger "
-                         "[roi], or move the blade)");
-      if (!at.tool_at[static_cast<std::size_t>(n)].empty())
-        throw InputError(where + ", moving tetrahedron " + std::to_string(move.element) + " which holds node " +
-                         std::to_string(n) + " of tool '" + at.tool_at[static_cast<std::size_t>(n)] +
-                         "': a cut stays clear of the tools' nodes");
+    const int node = tet[static_cast<std::size_t>(move.corner)];
+    if (const auto why = cutter_->refusal_to_split(m.mesh, node, move.element)) {
+      const cutting::SeparatedFace& f = plan.faces[face];
+      const cutting::Blade& blade = *plan.blade_of[face];
+      throw InputError(blade.where + ": " + blade.describe() + " separates tetrahedra " + std::to_string(f.a) + " and " +
+                       std::to_string(f.b) + " at t = " + number_text(f.time) + " s, which splits node " + std::to_string(node) +
+                       ", " + *why);
     }
   }
 }

@@ -3,9 +3,9 @@
 /// A scenario's cuts ([[cut]]) on its model. Remove mode: which tetrahedra the blades cross and
 /// when (cutting/blade.hpp), and at each step the change removing the due ones makes to the
 /// integrated system (model/system_change.hpp), in place. Split mode: the faces the blades
-/// separate, the nodes that split (simulation/scenario_splits.hpp), and the change of each step. Inside an ROI only the condensed
-/// operators' ROI part changes (K_dd, the lumped M, f_d): the static part, its factor and the
-/// interface Schur block stay exactly as they were, which is why a cut needs no re-condensation.
+/// separate, the nodes that split (simulation/cuts/scenario_splits.hpp), and the change of each step. Inside an ROI only the
+/// condensed operators' ROI part changes (K_dd, the lumped M, f_d): the static part, its factor and the interface Schur block
+/// stay exactly as they were, which is why a cut needs no re-condensation.
 ///
 /// What is refused, before any step (InputError naming the cut, the tetrahedron, the node and the
 /// time): a blade that meets no tetrahedron, or none before the run ends; a tetrahedron at a node of
@@ -23,10 +23,10 @@
 #include "fem/element_removal.hpp"
 #include "model/system_change.hpp"
 #include "scenario/scenario.hpp"
-#include "simulation/cut_event.hpp"
-#include "simulation/element_cuts.hpp"
+#include "simulation/cuts/cut_event.hpp"
+#include "simulation/cuts/element_cuts.hpp"
+#include "simulation/cuts/scenario_splits.hpp"
 #include "simulation/scenario_model.hpp"
-#include "simulation/scenario_splits.hpp"
 
 namespace roifem::simulation {
 
@@ -61,7 +61,7 @@ class ScenarioCuts {
   CutEvent remove_due(double t, ScenarioModel& model, model::State& state);
   /// InputError for a split the run would make at a fixed node or a tool's, or moving a
   /// tetrahedron at the static part or a tool (rehearsed with `anchored`, as the run splits).
-  void refuse_splits(const ScenarioModel& model, const CutSupports& at, const std::vector<bool>& anchored) const;
+  void refuse_splits(const ScenarioModel& model, const std::vector<bool>& anchored) const;
 
   std::vector<cutting::Crossing> schedule_;
   std::size_t next_ = 0;

@@ -1,49 +1,21 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "simulation/scenario_splits.hpp"
+#include "simulation/cuts/scenario_splits.hpp"
 
 #include <algorithm>
 #include <map>
 
 #include "common/errors.hpp"
+#include "cutting/split_copies.hpp"
 #include "fem/tet4.hpp"
 #include "simulation/scenario_model.hpp"
 
 namespace roifem::simulation {
 
-std::vector<double> copy_stand_in_mass(const mesh::TetMesh& mesh, const fem::MaterialMap& materials,
-                                       const cutting::SplitPlan& plan) {
-  std::vector<double> lumped(static_cast<std::size_t>(plan.num_nodes), 0.0);
-  for (Index e = 0; e < mesh.num_tets(); ++e)
-    for (const int n : mesh.tets[static_cast<std::size_t>(e)])
-      if (n < plan.num_nodes) lumped[static_cast<std::size_t>(n)] += materials.of(e).rho * mesh::signed_volume(mesh, e) / 4;
-  std::vector<double> stand_in;
-  for (const int original : plan.copy_of) stand_in.push_back(lumped[static_cast<std::size_t>(original)]);
-  return stand_in;
-}
-
-void hold_copies(model::FemModel& full, const cutting::SplitPlan& plan) {
-  const std::vector<double> stand_in = copy_stand_in_mass(*full.mesh, full.materials, plan);
-  model::SystemChange hold;
-  std::vector<double> mass;
-  for (Index k = 0; k < plan.num_copies(); ++k)
-    for (int i = 0; i < 3; ++i) {
-      const int d = full.dofs->free_dof(plan.num_nodes + k, i);
-      if (d < 0) throw Error("internal: a split's copy is fixed");
-      hold.dofs.push_back(d);
-      mass.push_back(stand_in[static_cast<std::size_t>(k)]);
-    }
-  hold.held = hold.dofs;  // ascending: copies come last, a node's dofs in order
-  hold.stiffness = DenseMatrix::Zero(static_cast<Index>(mass.size()), static_cast<Index>(mass.size()));
-  hold.mass = Eigen::Map<const Vector>(mass.data(), static_cast<Index>(mass.size()));
-  hold.loads.assign(full.system.load.terms().size(), Vector());
-  hold.apply(full.system);
-}
-
 ScenarioSplits::ScenarioSplits(const ScenarioModel& m, std::vector<Index> system_dof,
                                std::vector<std::pair<std::size_t, Vec3>> gravity, double time_slack, std::vector<bool> anchored)
     : plan_(m.split_plan.get()),
       splitter_(std::vector<mesh::Tet>(m.mesh.tets), plan_->neighbours, plan_->num_nodes, plan_->copies, std::move(anchored)),
-      stand_in_(copy_stand_in_mass(m.mesh, m.full.materials, *plan_)),
+      stand_in_(cutting::copy_stand_in_mass(m.mesh, m.full.materials, *plan_)),
       system_dof_(std::move(system_dof)),
       gravity_(std::move(gravity)),
       time_slack_(time_slack) {}
