@@ -4,8 +4,9 @@
 # clang-tidy 14 (.clang-tidy: the checks and why) on every source of src/ and integrators/, zero
 # findings allowed. Needs the release build's compile_commands.json (scripts/run-tests.sh makes it).
 #   --fix       apply the formatter instead of checking
-#   --unity     clang-tidy on the asan build's unity units instead (what CI runs, after the
-#               sanitized tests: the same sources and checks in a quarter of the time)
+#   --unity     clang-tidy on the asan build's unity units instead. Without it, the release
+#               build's units when it is a unity build (the release preset is; what CI runs): the
+#               same sources and checks in a quarter of the time of one unit per source
 #   --analyzer  also the Clang static analyzer checks of .clang-tidy (core, C++): three times the
 #               time per unit, 9.3 min in all on 2 cores against 6.5), so CI leaves them out; run it before a release
 #               or after touching memory handling (it found a possible null BLAS setter call)

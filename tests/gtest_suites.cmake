@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-# roifem_gtest_suites(TARGET [ALONE test...] [TIMEOUT seconds])
+# roifem_gtest_suites(TARGET [ALONE test...] [SLOW test...] [TIMEOUT seconds])
 #
 # One ctest entry per gtest suite of TARGET, named after the suite, each one process that runs the
 # whole suite: a test binary linked with some 150 shared libraries (Gmsh, OpenCASCADE, PETSc) takes
@@ -9,10 +9,10 @@
 # The suites are read from TARGET's sources: TEST(Suite, ...), TEST_F(Suite, ...) and TEST_P(Suite,
 # ...) at the start of a line (a parameterized suite's tests are Prefix/Suite.Name/Param). A test
 # named in ALONE (Suite.Name) gets an entry of its own under that name, and its suite's entry leaves
-# it out: a long test that the sanitized phase leaves to Release (label "slow", tests/CMakeLists.txt),
-# or one that must not share a process.
+# it out: one that must not share a process, or a long one. A test named in SLOW is such an entry
+# with the label "slow": the sanitized phase leaves it to Release (docs/testing.md).
 function(roifem_gtest_suites target)
-  cmake_parse_arguments(PARSE_ARGV 1 arg "" "TIMEOUT" "ALONE")
+  cmake_parse_arguments(PARSE_ARGV 1 arg "" "TIMEOUT" "ALONE;SLOW")
   if(NOT arg_TIMEOUT)
     set(arg_TIMEOUT 600)
   endif()
@@ -46,7 +46,7 @@ function(roifem_gtest_suites target)
       set(filter "${suite}.*")
     endif()
     set(left_out "")
-    foreach(test IN LISTS arg_ALONE)
+    foreach(test IN LISTS arg_ALONE arg_SLOW)
       if(test MATCHES "^${suite}\\.")
         list(APPEND left_out ${test})
       endif()
@@ -62,13 +62,23 @@ function(roifem_gtest_suites target)
     add_test(NAME ${test} COMMAND ${target} --gtest_filter=${test})
     set_tests_properties(${test} PROPERTIES TIMEOUT ${arg_TIMEOUT} LABELS gtest)
   endforeach()
+  foreach(test IN LISTS arg_SLOW)
+    add_test(NAME ${test} COMMAND ${target} --gtest_filter=${test})
+    set_tests_properties(${test} PROPERTIES TIMEOUT ${arg_TIMEOUT} LABELS "gtest;slow")
+  endforeach()
   # The check that no suite was missed (a declaration this reading did not see would never run):
-  # the binary's own list of suites against the entries'.
+  # the binary's own list of suites against the entries'; and that each test named alone exists (a
+  # filter that matches nothing runs nothing, and passes).
   list(JOIN plain " " plain_words)
   list(JOIN parameterized " " parameterized_words)
+  list(JOIN arg_ALONE " " alone_words)
+  list(JOIN arg_SLOW " " slow_words)
   add_test(NAME ${target}.every_suite_has_an_entry
            COMMAND sh -c "$<TARGET_FILE:${target}> --gtest_list_tests | grep -E '^[A-Za-z0-9_/]+[.]$' | sed -e 's/\\.$//' -e 's#.*/##' | sort -u > \"$1\" && \
-                          for s in ${plain_words} ${parameterized_words}; do echo $s; done | sort -u | diff \"$1\" - && echo 'every suite has an entry'"
+                          for s in ${plain_words} ${parameterized_words}; do echo $s; done | sort -u | diff \"$1\" - && \
+                          for t in ${alone_words} ${slow_words}; do \
+                            $<TARGET_FILE:${target}> --gtest_list_tests --gtest_filter=$t | grep -q '^  ' || { echo \"no test $t\"; exit 1; }; \
+                          done && echo 'every suite has an entry'"
                    sh ${CMAKE_CURRENT_BINARY_DIR}/${target}_suites.txt)
   set_tests_properties(${target}.every_suite_has_an_entry PROPERTIES PASS_REGULAR_EXPRESSION "every suite has an entry" LABELS gtest)
 endfunction()
