@@ -20,8 +20,8 @@
 namespace roifem::integrators {
 
 /// The wall-clock limit of the advance_to running on this thread (Integrator::set_time_limit), heard
-/// in every callback as a signal is: a library's one call can take many steps (GSL's implicit
-/// Gauss-Legendre took 96 s of one output interval against a limit of 20). Set for the span of an
+/// in every callback as a signal is: a library's one call can take many steps, and GSL's implicit
+/// Gauss-Legendre overran a limit fivefold within one output interval (docs/design-figures.md). Set for the span of an
 /// advance_to by a TimeLimitScope; none outside one.
 class TimeLimitScope {
  public:

@@ -19,11 +19,10 @@
 /// which is not symmetric: KLU (solvers/sparse_lu.hpp), the pattern analysed once, with a
 /// backtracking line search (solvers/newton.hpp); from the predictor u_n + dt v_n, and once more
 /// from u_n where that fails. The tangent at the midpoint, symmetric, is O(|u - u_n|) off the
-/// exact Jacobian: on the paper brain at dt = 0.05 s (lambda = 333 mu) Newton then converged by a
-/// factor 0.6 per iteration and gave up at step 2. With the exact one and Gonzalez's projection of
-/// the whole law it failed at step 23 (t = 1.15 s, the slit held open); with the volumetric part's
-/// own discrete gradient (fem/discrete_gradient.hpp) it takes 4 iterations a step there, 3 at
-/// dt = 0.01 s.
+/// exact Jacobian, and on the paper brain (lambda = 333 mu) Newton on it converged too slowly to
+/// go on. With the exact one and Gonzalez's projection of the whole law it failed when the slit
+/// was held open; with the volumetric part's own discrete gradient (fem/discrete_gradient.hpp) it
+/// takes a few iterations a step (the figures: docs/design-figures.md).
 #include <memory>
 #include <vector>
 

@@ -13,7 +13,7 @@
 /// or, where its factor does not fit in memory, Jacobi-preconditioned conjugate gradients to a
 /// relative residual of 1e-10 ("trapezoid-cg", started from the predictor u_n + dt v_n +
 /// dt^2/2 a_n). Both give the same answer to ~1e-9 relative over hundreds of steps; the direct
-/// solve is ~20x faster where it fits. With C = alpha M (SecondOrderSystem::damping) the history
+/// solve is much faster where it fits (docs/design-figures.md). With C = alpha M (SecondOrderSystem::damping) the history
 /// term folds C into M's product; a general C adds its own product to f.
 ///
 /// A nonlinear system (model/internal_force.hpp) takes the same history and solves its implicit

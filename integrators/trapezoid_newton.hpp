@@ -43,8 +43,8 @@ class TrapezoidNewton {
   SparseMatrix K_t_;                      ///< the tangent, in K's pattern
   solvers::PatternSum jacobian_pattern_;  ///< K_t + inertia, in the union of their patterns
   solvers::NewtonOptions options_;
-  /// CHOLMOD's choice (supernodal on the brains): on the paper brain it took 3.35 Newton iterations
-  /// per step and 63 ms, where a simplicial factor took 6.04 and 110 ms.
+  /// CHOLMOD's choice (supernodal on the brains): fewer Newton iterations and less time than a
+  /// simplicial factor (docs/design-figures.md).
   solvers::Cholesky jacobian_;
   solvers::SparseLu indefinite_jacobian_;
   /// The step's equation: R(u) = inertia u + f_int(t, u) - b, and its Jacobian.

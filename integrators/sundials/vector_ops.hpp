@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 /// Vectorized kernels for NVECTOR_SERIAL. Debian's SUNDIALS 6.4 builds its serial vector loops
-/// without SIMD: a weighted RMS norm of 1,368 entries takes about 9 us (7 ns per entry, one
-/// dependent add at a time), and ARKODE takes one every step. N_Vector operations are a table of
+/// without SIMD (one dependent add at a time: docs/design-figures.md), and ARKODE takes a weighted
+/// RMS norm every step. N_Vector operations are a table of
 /// function pointers meant to be replaced, and clones inherit it, so the integrators hand SUNDIALS
 /// vectors whose hot operations run through Eigen instead (same results to rounding; a test checks
 /// each against the library's own).

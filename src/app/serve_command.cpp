@@ -35,7 +35,7 @@ void serve(const std::string& scenario_file, const serve::ServeOptions& options,
   const serve::HapticSettings settings =
       serve::haptic_settings(scenario, haptic.rate_hz, haptic.newton_iterations, haptic.newton_tolerance);
   // One BLAS thread: the physics thread takes a core, and OpenBLAS's threads spinning beside it
-  // would slow every other solve (a recovery of the static part: 0.25 s with two, against ms).
+  // would slow every other solve, a recovery of the static part a hundredfold (docs/design-figures.md).
   const solvers::BlasThreadsScope blas(1);
   if (!options.record.empty()) check_output_directory(options.record);
   std::cout << "roifem serve: preparing the models of " << scenario_file << "\n" << std::flush;

@@ -2,8 +2,8 @@
 #pragma once
 /// Asks the kernel to back a large, not yet touched allocation with transparent huge pages
 /// (2 MiB instead of 4 KiB: 512 times fewer page faults on first touch). On a virtual machine a
-/// fault costs microseconds, so first-touching the 150 MB of a 100k-node stiffness matrix took as
-/// long as assembling it. A hint only: where THP is off it changes nothing.
+/// fault costs microseconds, so first-touching a 100k-node stiffness matrix took as long as
+/// assembling it (docs/design-figures.md). A hint only: where THP is off it changes nothing.
 #include <sys/mman.h>
 
 #include <cstddef>

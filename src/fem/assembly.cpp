@@ -99,7 +99,8 @@ SparseMatrix StiffnessAssembler::stiffness(const MaterialMap& materials) const {
     for (int cb = 0; cb < 3; ++cb) any_free |= (column[cb] = dofs_.free_dof(b, cb)) >= 0;
     if (!any_free) continue;
     // First touch of this node's columns happens here, on this thread: copy the row indices and
-    // zero the values (a separate memset of the 100 MB array cost as much as the assembly).
+    // zero the values (a separate memset of the array cost as much as the assembly:
+    // docs/design-figures.md).
     for (int cb = 0; cb < 3; ++cb)
       if (column[cb] >= 0) {
         const int begin = column_start_[u(column[cb])], end = column_start_[u(column[cb]) + 1];

@@ -15,8 +15,8 @@
 ///    S_vol,alg : dE = kappa (J_mid - 1) (J_b - J_a) = [(J_b - 1)^2 - (J_a - 1)^2] / D1, with no
 ///    difference of energies. At a = b it is S_vol = kappa (J - 1) J C^-1.
 /// Gonzalez's projection of the whole law (the first form alone) put the volumetric stiffness,
-/// 333 times the shear's on the brain, into a correction along dE: Newton on the paper brain at
-/// dt = 0.05 s failed at step 23. A tetrahedron's algorithmic force is then f_a = int F_mid S_alg
+/// 333 times the shear's on the brain, into a correction along dE, and Newton on the paper brain
+/// failed (docs/design-figures.md). A tetrahedron's algorithmic force is then f_a = int F_mid S_alg
 /// g_a dV with F_mid = (F_a + F_b)/2: because E_b - E_a = sym(F_mid^T (F_b - F_a)) exactly, its
 /// work on the nodal increment is the element's energy increment, and, S_alg being symmetric and
 /// F_mid a mean, it conserves angular momentum too (fem/hyperelastic_element.hpp,

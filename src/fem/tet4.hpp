@@ -22,8 +22,7 @@ Tet4Geometry tet4_geometry(const Vec3& x0, const Vec3& x1, const Vec3& x2, const
 ElementMatrix tet4_stiffness(const Tet4Geometry& g, const Material& m);
 /// The 3x3 block K_ab of tet4_stiffness (rows: node a's components, columns: node b's):
 ///   K_ab(i, j) = V (lambda ga_i gb_j + mu ga_j gb_i + mu (ga . gb) delta_ij).
-/// The assembly's hot loop calls it (the 20k brain's 55k dofs assemble in 58 ms: fem benchmark's
-/// assemble_values), written out entry by entry.
+/// The assembly's hot loop calls it, so it is written out entry by entry (docs/design-figures.md).
 inline Mat3 tet4_stiffness_block(const Tet4Geometry& g, const Material& m, int a, int b) {
   const double V = std::abs(g.volume), lambda = m.lambda, mu = m.mu;
   const double ga[3] = {g.grad(a, 0), g.grad(a, 1), g.grad(a, 2)};

@@ -419,8 +419,9 @@ bool Server::Impl::mesh_for(std::size_t k) {
 }
 
 void Server::Impl::cut(HandMessage message) {
-  // The blade's geometry against the whole mesh here, not between two ticks (20 ms on the 100k
-  // brain); which of those tetrahedra are still there is the physics' to say.
+  // The blade's geometry against the whole mesh here, not between two ticks (on the 100k brain it
+  // takes some 20 ticks: docs/design-figures.md); which of those tetrahedra are still there is the
+  // physics' to say.
   const cutting::Blade blade = scalpel_blade("scalpel", message.point_mm, message.edge_to_mm, message.move_mm, 0, 1);
   try {
     message.crossed = crossed_tetrahedra(blade, scene_.mesh());
@@ -483,7 +484,7 @@ void Server::Impl::send_frame(double now) {
   if (snapshot_.u.size() > 0) {
     // The static part's surface is recovered (a solve with its factor) at most every 0.1 s and at
     // most 1/40 of the time: the solve reads the whole static factor, which pushes the haptic
-    // loop's factor out of the shared cache while it runs (0.25 s on the 20k brain: ticks late).
+    // loop's factor out of the shared cache while it runs, and ticks come late (docs/design-figures.md).
     // The ROI's surface moves every frame.
     const bool recover = snapshot_.grab != recovered_grab_ || snapshot_.model != recovered_model_ || now >= next_recovery_;
     scene_.surface_displacement(snapshot_.model, snapshot_.u, snapshot_.t, recover, displacement_);

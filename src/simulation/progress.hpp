@@ -3,8 +3,8 @@
 /// A progress line on a terminal for long runs (after `delay_s` seconds), redrawn at most every
 /// 0.2 s on stderr: "label  120/200 steps  60%  eta 3 s  detail". Silent when stderr is not a terminal.
 /// With a log, also a line there, terminal or not, once a phase has run ProgressLogged::after_s and then
-/// every ProgressLogged::every_s: "  label: 120 of 200 steps in 31.0 s; about 21 s to go" (a newcomer's
-/// compare sat 196 s without a word while it built its reference).
+/// every ProgressLogged::every_s: "  label: 120 of 200 steps in 31.0 s; about 21 s to go" (a run
+/// whose log says nothing for minutes looks hung).
 #include <iosfwd>
 #include <string>
 

@@ -4,8 +4,8 @@
 /// blocks (a cut's changes of K_eff) and solving with through Woodbury's correction of an older
 /// factor (low_rank_update.hpp), factored afresh by a second thread, so that the correction's rank,
 /// and with it every solve's O(n r) and every change's capacitance, stays small without the solving
-/// thread ever waiting on a factorization (a haptic loop's tick cannot afford one: 40-55 ms on a
-/// 1,000-node ROI). It is the shape of asynchronous-preconditioner simulators.
+/// thread ever waiting on a factorization (a haptic loop's tick cannot afford one: it takes some
+/// 50 ticks on a 1,000-node ROI, docs/design-figures.md). It is the shape of asynchronous-preconditioner simulators.
 ///
 /// The changes form a log: change i is A_{i+1} = A_i + U_i B_i U_i^T. Whenever the log has grown
 /// since its last factor, the worker

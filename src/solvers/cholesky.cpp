@@ -17,12 +17,8 @@ using detail::symmetric_view;
 namespace {
 // A single-vector solve with a supernodal factor of fewer entries than this (40 MB) runs the BLAS
 // on one thread (see blas_threads.hpp). OpenBLAS threads a dgemv above 9,216 entries, so a small
-// factor's solve pays a hand-off per supernode for little work: `roifem paper`'s pod-40 model on
-// setup 1 (a dense block of 316 rows) steps at 1.55x plain condensation with two threads and 1.38x
-// with one. The scale benchmark's ROI models from 800 to 20k nodes (factors up to 2.3e6 entries)
-// step alike either way, within the machine's noise; the 3% ROI of the 100k-node brain (1.0e7
-// entries) stepped in 4.3 ms on two threads against 6.2 ms on one (one pair of runs), so large
-// factors keep both.
+// factor's solve pays a hand-off per supernode for little work, while a large factor's solve
+// gains from the second thread (the measured threshold: docs/design-figures.md).
 constexpr double one_thread_solve_below = 5e6;
 }  // namespace
 

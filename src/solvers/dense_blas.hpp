@@ -3,10 +3,9 @@
 /// Dense matrix-vector products through the BLAS, on one thread.
 ///
 /// Why not Eigen's: roifem is compiled for baseline x86-64, so Eigen's products run on SSE2, while
-/// OpenBLAS picks its kernels for the CPU at run time (AVX2 and FMA here). On a 276 x 200 block
-/// (the paper's setup 1 with 200 Craig-Bampton modes) a product takes 3.9 us against Eigen's 5.6,
-/// and a symmetric 276 x 276 one 4.2 us against 8.6. One thread: at these sizes a threaded
-/// OpenBLAS spends more handing the work out than it saves.
+/// OpenBLAS picks its kernels for the CPU at run time (AVX2 and FMA), which at the reduced models'
+/// sizes run the products in about half the time (docs/design-figures.md). One thread: at these
+/// sizes a threaded OpenBLAS spends more handing the work out than it saves.
 #include "common/types.hpp"
 
 namespace roifem::solvers {

@@ -5,10 +5,10 @@
 /// 2^31 entries in L). It keeps A's lower triangle and five vectors, nothing else.
 ///
 /// Why Jacobi: on the brain's K + 2/dt C + 4/dt^2 M (nearly incompressible, nu = 0.4985) it was the
-/// fastest preconditioner measured at 20k nodes: 430 iterations of 1.5 ms, against 210 of 3.8 ms
-/// with Eigen's incomplete Cholesky, 60-90 of 14-20 ms with hypre's BoomerAMG, and the same
-/// iteration count with 3x3 node blocks. It is still ~20x slower than one CHOLMOD solve; use it
-/// where memory, not time, is the limit.
+/// fastest preconditioner measured at 20k nodes: its iterations are cheap enough to beat incomplete
+/// Cholesky's and BoomerAMG's fewer ones, and 3x3 node blocks did not cut their number
+/// (docs/design-figures.md). It is still far slower than one CHOLMOD solve; use it where memory,
+/// not time, is the limit.
 ///
 /// Stops when the true residual |b - A x| <= tolerance |b| (the recursive residual is checked
 /// against the true one before stopping); throws SolverError when max_iterations pass first.

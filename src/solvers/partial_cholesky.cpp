@@ -65,8 +65,8 @@ PartialCholesky::PartialCholesky(const SparseMatrix& A, const std::vector<Index>
   Stopwatch clock;
   // 1. CHOLMOD's fill-reducing ordering of all of A (its usual choice among AMD and METIS), the
   //    trailing indices then moved to the end, the others keeping their relative order. One
-  //    ordering instead of one for A_ll and one for A: on the 100k-node brain with a 3% ROI it
-  //    gives the same fill (3.7e8) and saves 2.4 s of METIS.
+  //    ordering instead of one for A_ll and one for A: the same fill, one METIS run fewer
+  //    (docs/design-figures.md).
   detail::LongSymmetricView a(A);
   std::vector<Long> perm;
   perm.reserve(static_cast<std::size_t>(m.n));
