@@ -16,7 +16,8 @@ pid=$!
 # SIGINT once the run is under way: a background job of a script starts with SIGINT ignored (POSIX),
 # so a signal sent before the run installs its handler is lost (under the sanitizers, on a loaded
 # machine, setting up took over the 1 s this test once waited, and the run went on for its million steps).
-for _ in $(seq 600); do [ -e "$work/stopped/results.incomplete.h5" ] && break; sleep 0.1; done
+# Under way: its results file (a temporary name until the run ends) is there.
+for _ in $(seq 600); do [ -n "$(ls -A "$work/stopped" 2>/dev/null)" ] && break; sleep 0.1; done
 sleep 1
 kill -INT "$pid"
 wait "$pid" || true
