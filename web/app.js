@@ -4,7 +4,9 @@
 import * as THREE from '/three/build/three.module.js';
 import { OrbitControls } from '/three/examples/jsm/controls/OrbitControls.js';
 
-const HAND = { pick: 1, target: 2, release: 3, model: 4, save: 5, compare: 6, cut: 7, whole: 8 };
+// The hand's message kinds, their codes, sizes and payloads: the server's one table
+// (src/serve/hand_message.cpp), as its hello sends it. Nothing is sent before the hello.
+let HAND = null;
 
 // What the tests (and a curious user's console) read: window.roifem.
 const live = {
@@ -163,15 +165,17 @@ let sequence = 0;
 const sentAt = new Map();  // target sequence -> performance.now()
 let pendingFrame = null, frameShows = 0;
 
-function send(kind, point, model) {
-  if (socket.readyState !== WebSocket.OPEN) return;
-  const size = kind === HAND.pick || kind === HAND.target ? 32 : kind === HAND.model || kind === HAND.compare ? 12 : 8;
-  const buffer = new ArrayBuffer(size), view = new DataView(buffer);
-  view.setUint8(0, kind);
+// A hand message of kind `name` ('pick', 'target', ...): `numbers` are its float64s (a point, a
+// stroke), `index` its uint32 (a model, compare on or off), as the kind's payload says.
+function send(name, numbers, index) {
+  if (socket.readyState !== WebSocket.OPEN || !HAND) return;
+  const kind = HAND.kinds[name], at = HAND.header_bytes;
+  const buffer = new ArrayBuffer(kind.bytes), view = new DataView(buffer);
+  view.setUint8(0, kind.code);
   view.setUint32(4, ++sequence, true);
-  if (point) point.forEach((x, c) => view.setFloat64(8 + 8 * c, x, true));
-  if (kind === HAND.model || kind === HAND.compare) view.setUint32(8, model, true);
-  if (kind === HAND.target) sentAt.set(sequence, performance.now());
+  if (kind.payload === 'point' || kind.payload === 'stroke') numbers.forEach((x, k) => view.setFloat64(at + 8 * k, x, true));
+  if (kind.payload === 'index') view.setUint32(at, index, true);
+  if (name === 'target') sentAt.set(sequence, performance.now());
   socket.send(buffer);
 }
 
@@ -186,6 +190,7 @@ socket.onclose = () => note('the server closed the connection');
 function onJson(m) {
   if (m.type === 'hello') {
     live.hello = m;
+    HAND = m.hand;
     live.role = m.role;
     document.getElementById('scenario').textContent = `${m.scenario}: ${m.vertices} surface nodes, ${m.rate_hz} Hz`;
     document.getElementById('loads').textContent = `loads beside the hand: ${m.loads}`;
@@ -194,7 +199,7 @@ function onJson(m) {
       const b = document.createElement('button');
       b.textContent = model.nonlinear ? `${model.name} (NL)` : model.cut ? `${model.name} (cut)` : model.name;
       b.title = `${model.description} (${model.unknowns} unknowns)`;
-      b.onclick = () => send(HAND.model, null, k);
+      b.onclick = () => send('model', null, k);
       models.appendChild(b);
     });
     showRole();
@@ -285,7 +290,7 @@ function drawForcePlot() {
 
 // ---- Compare: the live model's force error against the full model on the same hand ----
 const errorHistory = [];
-document.getElementById('compare').onchange = (event) => send(HAND.compare, null, event.target.checked ? 1 : 0);
+document.getElementById('compare').onchange = (event) => send('compare', null, event.target.checked ? 1 : 0);
 function showComparison(m) {
   const text = document.getElementById('compare-text'), c = m.compare;
   if (!c) { text.textContent = ''; return; }
@@ -329,8 +334,8 @@ function showRoi() {
   dirty = true;
 }
 document.getElementById('show-roi').onchange = showRoi;
-document.getElementById('save').onclick = () => send(HAND.save);
-document.getElementById('whole').onclick = () => send(HAND.whole);
+document.getElementById('save').onclick = () => send('save');
+document.getElementById('whole').onclick = () => send('whole');
 
 // ---- The hand ----
 const raycaster = new THREE.Raycaster();
@@ -376,12 +381,7 @@ function endStroke() {
   dirty = true;
 }
 function sendCut(edgeFrom, edgeTo, move) {
-  if (socket.readyState !== WebSocket.OPEN) return;
-  const buffer = new ArrayBuffer(80), view = new DataView(buffer);
-  view.setUint8(0, HAND.cut);
-  view.setUint32(4, ++sequence, true);
-  [...edgeFrom, ...edgeTo, ...move].forEach((x, k) => view.setFloat64(8 + 8 * k, x, true));
-  socket.send(buffer);
+  send('cut', [...edgeFrom, ...edgeTo, ...move]);
 }
 renderer.domElement.addEventListener('pointerdown', (event) => {
   if (!brain || event.button !== 0) return;
@@ -393,7 +393,7 @@ renderer.domElement.addEventListener('pointerdown', (event) => {
   const restPoint = restPointOf(hit), normal = camera.getWorldDirection(new THREE.Vector3());
   drag = { restPoint, hitPoint: hit.point.clone(), plane: new THREE.Plane().setFromNormalAndCoplanarPoint(normal, hit.point),
            depth: 0, lastY: event.clientY, along: hit.point.clone() };
-  send(HAND.pick, restPoint.toArray());
+  send('pick', restPoint.toArray());
 });
 window.addEventListener('pointermove', (event) => {
   if (stroke) {
@@ -415,7 +415,7 @@ window.addEventListener('pointermove', (event) => {
   }
   drag.lastY = event.clientY;
   const target = drag.restPoint.clone().add(drag.along.clone().sub(drag.hitPoint)).add(view.multiplyScalar(drag.depth));
-  send(HAND.target, target.toArray());
+  send('target', target.toArray());
 });
 window.addEventListener('pointerup', () => {
   if (stroke) {
@@ -425,7 +425,7 @@ window.addEventListener('pointerup', () => {
   if (!drag) return;
   drag = null;
   controls.enabled = true;
-  send(HAND.release);
+  send('release');
 });
 
 // The share of the view's pixels that differ from its empty background, read right after a render

@@ -51,7 +51,7 @@ void CompareLoop::run() {
           const auto grip = scene_.grip(*reference, s.center_mm);
           if (!std::holds_alternative<Grip>(grip)) continue;
           auto& made = references[*reference];
-          const model::SecondOrderSystem& system = scene_.models()[*reference].model->system();
+          const model::SecondOrderSystem& system = scene_.models()[*reference].physics.model->system();
           if (!made)
             made = std::make_unique<integrators::HapticTrapezoid>(
                 system, scene_.dt(), integrators::HapticNewton{.iterations = 200, .tolerance = 1e-12});

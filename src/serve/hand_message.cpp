@@ -14,6 +14,20 @@ constexpr std::size_t header_bytes = 8;
 /// What follows a kind's header.
 enum class Payload { none, point, index, stroke };
 
+const char* payload_name(Payload payload) {
+  switch (payload) {
+    case Payload::point:
+      return "point";
+    case Payload::index:
+      return "index";
+    case Payload::stroke:
+      return "stroke";
+    case Payload::none:
+      return "none";
+  }
+  return "none";
+}
+
 struct KindInfo {
   HandKind kind;
   const char* name;
@@ -99,6 +113,15 @@ std::variant<HandMessage, std::string> decode_hand_message(std::span<const std::
     if (m.move_mm.isZero(0.0)) return std::string("a cut whose blade does not move (it sweeps nothing)");
   }
   return m;
+}
+
+std::string hand_protocol_json() {
+  std::string kinds_json;
+  for (const KindInfo& k : kinds)
+    kinds_json += std::string(kinds_json.empty() ? "" : ",") + "\"" + k.name +
+                  "\":{\"code\":" + std::to_string(static_cast<int>(k.kind)) +
+                  ",\"bytes\":" + std::to_string(size_of(k.payload)) + ",\"payload\":\"" + payload_name(k.payload) + "\"}";
+  return "{\"header_bytes\":" + std::to_string(header_bytes) + ",\"kinds\":{" + kinds_json + "}}";
 }
 
 std::string encode_hand_message(const HandMessage& message) {

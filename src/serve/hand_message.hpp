@@ -11,8 +11,9 @@
 ///               cut: nine float64, a scalpel's stroke as a [[cut]] states it (mm): the blade's edge
 ///               from, its edge to, and the straight move it sweeps (80 bytes in all)
 /// Anything else (another size, kind or padding, a point that is not finite, a blade with no edge
-/// or no move) is refused with the
-/// reason, before it reaches the physics.
+/// or no move) is refused with the reason, before it reaches the physics. The table of kinds in
+/// hand_message.cpp is the protocol's one source: the page builds its frames from the table the
+/// server sends in its hello (hand_protocol_json), not from a copy of its own.
 #include <cstdint>
 #include <span>
 #include <string>
@@ -39,5 +40,9 @@ struct HandMessage {
 std::variant<HandMessage, std::string> decode_hand_message(std::span<const std::uint8_t> bytes);
 /// The frame decode_hand_message reads back (the page's encoding; tests).
 std::string encode_hand_message(const HandMessage& message);
+/// The kinds as the page builds them, from the same table: {"header_bytes":8,"kinds":{"pick":
+/// {"code":1,"bytes":32,"payload":"point"}, ...}}; payloads: "point" (three float64 from byte 8),
+/// "index" (a uint32 at byte 8), "stroke" (nine float64 from byte 8), "none".
+std::string hand_protocol_json();
 
 }  // namespace roifem::serve

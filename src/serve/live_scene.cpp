@@ -89,7 +89,7 @@ bool is_neo_hookean(const scenario::Scenario& scenario) {
 std::vector<PlannedModel> model_plan(const scenario::Scenario& scenario, const std::vector<std::string>& names) {
   const auto planned = [](std::string_view base, std::optional<condensation::Reduction> r, ModelKind kind) {
     const ModelKindInfo& k = model_kind(kind);
-    return PlannedModel{model_name(base, kind), std::move(r), k.law, k.cut};
+    return PlannedModel{model_name(base, kind), r, k.law, k.cut};
   };
   std::vector<PlannedModel> plan;
   if (names.empty()) {
@@ -190,10 +190,10 @@ LiveScene::LiveScene(const scenario::Scenario& scenario, double rate_hz, double 
     LiveModel live;
     live.name = name;
     live.law = law;
-    live.model = simulation::build_scenario_model(variant);
-    live.shown_model = live.model;
-    live.unknowns = live.model->system().size();
-    live.roi_size = live.model->condensation ? live.model->roi_nodes.size() : 0;
+    live.physics.model = simulation::build_scenario_model(variant);
+    live.display.model = live.physics.model;
+    live.unknowns = live.physics.model->system().size();
+    live.roi_size = live.physics.model->condensation ? live.physics.model->roi_nodes.size() : 0;
     if (reduction) {
       live.reduction = *reduction;
       live.description = live.nonlinear()
@@ -206,25 +206,25 @@ LiveScene::LiveScene(const scenario::Scenario& scenario, double rate_hz, double 
     live.built_from = variant;
     live.cut_model = cut;
     if (cut) {
-      live.cuts = std::make_unique<simulation::ElementCuts>(variant, *live.model);
-      live.on_cut.assign(static_cast<std::size_t>(live.model->mesh.num_nodes()), 0);
+      live.physics.cuts = std::make_unique<simulation::ElementCuts>(variant, *live.physics.model);
+      live.physics.on_cut.assign(static_cast<std::size_t>(live.physics.model->mesh.num_nodes()), 0);
       live.description += ", cut by the page's scalpel";
     }
-    live.haptic = std::make_unique<integrators::HapticTrapezoid>(live.model->system(), dt_,
-                                                                 live.nonlinear() ? newton_ : integrators::HapticNewton{});
-    const auto& mesh = live.model->mesh;
+    live.physics.haptic = std::make_unique<integrators::HapticTrapezoid>(
+        live.physics.model->system(), dt_, live.nonlinear() ? newton_ : integrators::HapticNewton{});
+    const auto& mesh = live.physics.model->mesh;
     live.in_roi.assign(static_cast<std::size_t>(mesh.num_nodes()), 0);
-    const fem::DofMap& dofs = *live.model->full.dofs;
+    const fem::DofMap& dofs = *live.physics.model->full.dofs;
     if (live.condensed())
-      for (const int n : live.model->roi_nodes) live.in_roi[static_cast<std::size_t>(n)] = 1;
+      for (const int n : live.physics.model->roi_nodes) live.in_roi[static_cast<std::size_t>(n)] = 1;
     else
       for (Index n = 0; n < mesh.num_nodes(); ++n) live.in_roi[static_cast<std::size_t>(n)] = dofs.free_dof(n, 0) >= 0 ? 1 : 0;
     log << format("serve: model %-18s %7ld unknowns, prepared in %.2f s\n", name.c_str(),
-                  static_cast<long>(live.model->system().size()), clock.seconds())
+                  static_cast<long>(live.physics.model->system().size()), clock.seconds())
         << std::flush;
     models_.push_back(std::move(live));
   }
-  first_ = models_.front().model;
+  first_ = models_.front().physics.model;
   const mesh::TetMesh& m = mesh();
   auto surface = std::make_shared<SurfaceView>(surface_of(m));
   flag_vertices(*surface);
@@ -232,8 +232,8 @@ LiveScene::LiveScene(const scenario::Scenario& scenario, double rate_hz, double 
   neighbours_ = node_neighbours(m);
   for (Index n = 0; n < m.num_nodes(); ++n) box_.extend(m.node(static_cast<int>(n)));
   for (LiveModel& live : models_) {
-    live.view = surface_;
-    if (live.cuttable()) live.shown_tets.assign(m.tets.size(), true);
+    live.display.view = surface_;
+    if (live.cuttable()) live.display.shown_tets.assign(m.tets.size(), true);
     map_surface(live);
   }
 }
@@ -252,33 +252,33 @@ std::shared_ptr<simulation::ScenarioModel> LiveScene::make_whole(std::size_t k) 
   LiveModel& live = models_.at(k);
   if (!live.cuttable()) throw Error("internal: serve: " + live.name + " is not a cut model");
   std::shared_ptr<simulation::ScenarioModel> fresh = simulation::build_scenario_model(live.built_from);
-  live.cuts = std::make_unique<simulation::ElementCuts>(live.built_from, *fresh);
-  live.haptic = std::make_unique<integrators::HapticTrapezoid>(fresh->system(), dt_);
-  live.on_cut.assign(live.on_cut.size(), 0);
-  live.haptic_stale = false;
-  live.model = fresh;
+  live.physics.cuts = std::make_unique<simulation::ElementCuts>(live.built_from, *fresh);
+  live.physics.haptic = std::make_unique<integrators::HapticTrapezoid>(fresh->system(), dt_);
+  live.physics.on_cut.assign(live.physics.on_cut.size(), 0);
+  live.physics.haptic_stale = false;
+  live.physics.model = fresh;
   return fresh;
 }
 
 void LiveScene::show_whole(std::size_t k, std::shared_ptr<simulation::ScenarioModel> fresh) {
   LiveModel& live = models_.at(k);
-  live.shown_model = std::move(fresh);
-  live.shown_tets.assign(live.shown_tets.size(), true);
-  live.view = surface_;
+  live.display.model = std::move(fresh);
+  live.display.shown_tets.assign(live.display.shown_tets.size(), true);
+  live.display.view = surface_;
   map_surface(live);
 }
 
 void LiveScene::cut_surface(std::size_t k, const std::vector<Index>& removed) {
   LiveModel& live = models_.at(k);
   if (!live.cuttable()) throw Error("internal: serve: the display cut the uncut model " + live.name);
-  for (const Index e : removed) live.shown_tets.at(static_cast<std::size_t>(e)) = false;
+  for (const Index e : removed) live.display.shown_tets.at(static_cast<std::size_t>(e)) = false;
   mesh::TetMesh left;
   left.nodes = mesh().nodes;
-  for (std::size_t e = 0; e < live.shown_tets.size(); ++e)
-    if (live.shown_tets[e]) left.tets.push_back(mesh().tets[e]);
+  for (std::size_t e = 0; e < live.display.shown_tets.size(); ++e)
+    if (live.display.shown_tets[e]) left.tets.push_back(mesh().tets[e]);
   auto view = std::make_shared<SurfaceView>(surface_of(left));
   flag_vertices(*view);
-  live.view = std::move(view);
+  live.display.view = std::move(view);
   map_surface(live);
 }
 
@@ -307,7 +307,7 @@ LiveCutResult LiveModel::cut(const std::vector<Index>& crossed, model::State* gr
     result.refused = true;
     return result;
   }
-  const std::vector<bool>& there = cuts->still_there();
+  const std::vector<bool>& there = physics.cuts->still_there();
   std::vector<Index> elements;
   for (const Index e : crossed)
     if (there[static_cast<std::size_t>(e)]) elements.push_back(e);
@@ -316,22 +316,22 @@ LiveCutResult LiveModel::cut(const std::vector<Index>& crossed, model::State* gr
                                      : format("the %zu tetrahedra the stroke crosses are already removed", crossed.size());
     return result;
   }
-  const mesh::TetMesh& mesh = model->mesh;
+  const mesh::TetMesh& mesh = physics.model->mesh;
   for (const Index e : elements)
-    if (const auto why = cuts->refusal_to_remove(mesh, e, hand)) {
+    if (const auto why = physics.cuts->refusal_to_remove(mesh, e, hand)) {
       result.why_not = "it reaches tetrahedron " + std::to_string(e) + ", " + *why;
       result.refused = true;
       return result;
     }
-  if (const auto why = cuts->refusal_to_empty(mesh, elements.size(), condensed())) {
+  if (const auto why = physics.cuts->refusal_to_empty(mesh, elements.size(), condensed())) {
     result.why_not = "it " + *why;
     result.refused = true;
     return result;
   }
-  model::State at_rest = grab ? model::State{} : model::State::at_rest(model->system().size());
+  model::State at_rest = grab ? model::State{} : model::State::at_rest(physics.model->system().size());
   model::State& state = grab ? *grab : at_rest;
   try {
-    result.taken = cuts->remove(elements, *model, state);
+    result.taken = physics.cuts->remove(elements, *physics.model, state);
   } catch (const Error& e) {  // nothing removed
     result.why_not = e.what();
     result.refused = true;
@@ -340,14 +340,14 @@ LiveCutResult LiveModel::cut(const std::vector<Index>& crossed, model::State* gr
   // Between grabs the next pick factors the cut model afresh; during one the grab goes on with the
   // corrected factor, and the next pick after it factors afresh too (a factor with a correction
   // takes no new hand: HapticTrapezoid::attach).
-  haptic_stale = true;
+  physics.haptic_stale = true;
   if (grab) try {
-      haptic->take_change(result.taken->change, *grab);
+      physics.haptic->take_change(result.taken->change, *grab);
     } catch (const Error& e) {
       result.grab_ended_because = e.what();
     }
   for (const Index e : result.taken->elements)
-    for (const int n : mesh.tets[static_cast<std::size_t>(e)]) on_cut[static_cast<std::size_t>(n)] = 1;
+    for (const int n : mesh.tets[static_cast<std::size_t>(e)]) physics.on_cut[static_cast<std::size_t>(n)] = 1;
   return result;
 }
 
@@ -370,7 +370,7 @@ std::variant<Grip, std::string> LiveScene::grip(std::size_t k, const Vec3& cente
   if (grip.nodes.empty())
     return format("no boundary node within %g mm of (%.1f, %.1f, %.1f) mm", radius_mm_, center_mm.x(), center_mm.y(),
                   center_mm.z());
-  const fem::DofMap& dofs = *live.model->full.dofs;
+  const fem::DofMap& dofs = *live.physics.model->full.dofs;
   for (const int n : grip.nodes) {
     if (dofs.free_dof(n, 0) < 0 || dofs.free_dof(n, 1) < 0 || dofs.free_dof(n, 2) < 0)
       return format("node %d there is fixed: a tool moves free nodes only", n);
@@ -383,7 +383,7 @@ std::variant<Grip, std::string> LiveScene::grip(std::size_t k, const Vec3& cente
             "and their neighbours",
             n, neighbour);
   }
-  grip.dofs = live.condensed() ? roi::node_dofs_in_reduced(grip.nodes, live.model->condensation->partition(), dofs)
+  grip.dofs = live.condensed() ? roi::node_dofs_in_reduced(grip.nodes, live.physics.model->condensation->partition(), dofs)
                                : roi::node_dofs_in_full(grip.nodes, dofs);
   return grip;
 }
@@ -391,36 +391,38 @@ std::variant<Grip, std::string> LiveScene::grip(std::size_t k, const Vec3& cente
 void LiveScene::surface_displacement(std::size_t k, const Vector& u, double t, bool recover_static, std::vector<float>& out_mm) {
   LiveModel& live = models_.at(k);
   if (live.condensed() && recover_static) {
-    const Vector u_s = live.shown_model->condensation->recover_static(u, t);
-    for (std::size_t i = 0; i < live.surface_static.size(); ++i)
-      if (live.surface_static[i] >= 0) live.static_surface_mm[i] = static_cast<float>(u_s[live.surface_static[i]] / mm);
+    const Vector u_s = live.display.model->condensation->recover_static(u, t);
+    for (std::size_t i = 0; i < live.display.surface_static.size(); ++i)
+      if (live.display.surface_static[i] >= 0)
+        live.display.static_surface_mm[i] = static_cast<float>(u_s[live.display.surface_static[i]] / mm);
   }
-  out_mm.resize(live.surface_unknown.size());
+  out_mm.resize(live.display.surface_unknown.size());
   for (std::size_t i = 0; i < out_mm.size(); ++i)
-    out_mm[i] = live.surface_unknown[i] >= 0 ? static_cast<float>(u[live.surface_unknown[i]] / mm) : live.static_surface_mm[i];
+    out_mm[i] = live.display.surface_unknown[i] >= 0 ? static_cast<float>(u[live.display.surface_unknown[i]] / mm)
+                                                     : live.display.static_surface_mm[i];
 }
 
 void LiveScene::map_surface(LiveModel& live) const {
-  const fem::DofMap& dofs = *live.shown_model->full.dofs;
+  const fem::DofMap& dofs = *live.display.model->full.dofs;
   std::vector<Index> unknown(static_cast<std::size_t>(dofs.num_free()), -1), in_static(unknown.size(), -1);
   if (live.condensed()) {
-    const roi::Partition& p = live.shown_model->condensation->partition();
+    const roi::Partition& p = live.display.model->condensation->partition();
     for (std::size_t a = 0; a < p.d.size(); ++a) unknown[static_cast<std::size_t>(p.d[a])] = static_cast<Index>(a);
     for (std::size_t a = 0; a < p.s.size(); ++a) in_static[static_cast<std::size_t>(p.s[a])] = static_cast<Index>(a);
   } else {
     for (std::size_t a = 0; a < unknown.size(); ++a) unknown[a] = static_cast<Index>(a);
   }
-  const SurfaceView& view = *live.view;
+  const SurfaceView& view = *live.display.view;
   const std::size_t n = 3 * view.nodes.size();
-  live.surface_unknown.assign(n, -1);
-  live.surface_static.assign(n, -1);
-  live.static_surface_mm.assign(n, 0.0F);
+  live.display.surface_unknown.assign(n, -1);
+  live.display.surface_static.assign(n, -1);
+  live.display.static_surface_mm.assign(n, 0.0F);
   for (std::size_t v = 0; v < view.nodes.size(); ++v)
     for (int c = 0; c < 3; ++c) {
       const int dof = dofs.free_dof(view.nodes[v], c);
       if (dof < 0) continue;
-      live.surface_unknown[3 * v + static_cast<std::size_t>(c)] = unknown[static_cast<std::size_t>(dof)];
-      live.surface_static[3 * v + static_cast<std::size_t>(c)] = in_static[static_cast<std::size_t>(dof)];
+      live.display.surface_unknown[3 * v + static_cast<std::size_t>(c)] = unknown[static_cast<std::size_t>(dof)];
+      live.display.surface_static[3 * v + static_cast<std::size_t>(c)] = in_static[static_cast<std::size_t>(dof)];
     }
 }
 

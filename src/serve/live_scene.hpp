@@ -73,6 +73,35 @@ struct LiveCutResult {
   std::string grab_ended_because;  ///< the haptic loop's correction failed: the grab ends (empty: it goes on)
 };
 
+/// What the physics thread alone touches once the server runs (built before it starts). A cut
+/// model's system is cut in place here, and made whole again by a fresh one; another model's never
+/// changes after it is built, and the comparison's thread reads it as its reference.
+struct LivePhysics {
+  std::shared_ptr<simulation::ScenarioModel> model;
+  std::unique_ptr<integrators::HapticTrapezoid> haptic;
+  /// A cut model's (ModelKind::cut): the mesh as the cuts left it and what a removal changes, the
+  /// nodes of removed tetrahedra, and whether the haptic loop's factor predates a cut taken while
+  /// no grab held the model.
+  std::unique_ptr<simulation::ElementCuts> cuts;
+  std::vector<char> on_cut;
+  bool haptic_stale = false;
+};
+
+/// What the display (the server's network thread) alone touches: the model it draws (the physics'
+/// own object until the model is made whole: then the display takes the fresh one when it learns
+/// of it, the old one kept alive while it still draws from it), the surface drawn, the tetrahedra
+/// it bounds, and per vertex and component its place among the unknowns u (-1: none), for the
+/// static part its place in u_s (-1: none), with the static part's last recovered values.
+struct LiveDisplay {
+  std::shared_ptr<simulation::ScenarioModel> model;
+  std::shared_ptr<const SurfaceView> view;
+  std::vector<bool> shown_tets;
+  std::vector<Index> surface_unknown, surface_static;
+  std::vector<float> static_surface_mm;
+};
+
+/// One model of the page: what it is (set once when built, read by every thread), its physics
+/// and its display, each one thread's.
 struct LiveModel {
   /// "full", or the reduction's label ("static", "guyan", "craig-bampton-10"), with its kind's
   /// suffix (model_kinds)
@@ -81,28 +110,12 @@ struct LiveModel {
   fem::MaterialModel law = fem::MaterialModel::linear;
   condensation::Reduction reduction;  ///< with an ROI
   scenario::Scenario built_from;      ///< the served scenario as this model is built from it
-  /// The physics thread's (a cut model's: cut in place, and made whole again by a fresh one), and
-  /// the display's (the same object until the model is made whole: then the display takes the
-  /// fresh one when it learns of it, the old one kept alive while it still draws from it).
-  std::shared_ptr<simulation::ScenarioModel> model, shown_model;
-  std::unique_ptr<integrators::HapticTrapezoid> haptic;
   Index unknowns = 0;
   std::size_t roi_size = 0;  ///< the ROI's nodes (0: a full model)
   std::vector<char> in_roi;  ///< per mesh node: an unknown of this model's ROI (the full model: every free node)
-  /// A cut model's (ModelKind::cut): the mesh as the cuts left it and what a removal changes (the
-  /// physics thread's, with the nodes of removed tetrahedra and whether the haptic loop's factor
-  /// predates a cut taken while no grab held the model).
-  std::unique_ptr<simulation::ElementCuts> cuts;
-  std::vector<char> on_cut;
-  bool cut_model = false;  ///< (set once built: every thread may ask)
-  bool haptic_stale = false;
-  /// The display's (its thread's alone): the surface drawn, the tetrahedra it bounds, and per
-  /// vertex and component its place among the unknowns u (-1: none), for the static part its
-  /// place in u_s (-1: none), with the static part's last recovered values.
-  std::shared_ptr<const SurfaceView> view;
-  std::vector<bool> shown_tets;
-  std::vector<Index> surface_unknown, surface_static;
-  std::vector<float> static_surface_mm;
+  bool cut_model = false;
+  LivePhysics physics;
+  LiveDisplay display;
   bool condensed() const { return roi_size > 0; }
   bool nonlinear() const { return law != fem::MaterialModel::linear; }
   bool cuttable() const { return cut_model; }
@@ -159,8 +172,8 @@ class LiveScene {
   /// The uncut mesh's surface (where the hand may pick), and model k's as the display draws it
   /// (a cut model's as its cuts left it: the display's thread alone).
   const SurfaceView& surface() const { return *surface_; }
-  const SurfaceView& surface(std::size_t k) const { return *models_.at(k).view; }
-  std::shared_ptr<const SurfaceView> view_of(std::size_t k) const { return models_.at(k).view; }
+  const SurfaceView& surface(std::size_t k) const { return *models_.at(k).display.view; }
+  std::shared_ptr<const SurfaceView> view_of(std::size_t k) const { return models_.at(k).display.view; }
   /// The display's thread: model k's surface without the tetrahedra `removed` (ascending), as
   /// the physics thread cut them (its vertices' places follow).
   void cut_surface(std::size_t k, const std::vector<Index>& removed);
@@ -208,7 +221,7 @@ class LiveScene {
   double dt_, radius_mm_;
   integrators::HapticNewton newton_;
   std::string loads_said_;
-  /// live's surface_unknown and surface_static, for live.view.
+  /// live's surface_unknown and surface_static, for live.display.view.
   void map_surface(LiveModel& live) const;
   /// The vertices' flags (fixed, each model's ROI).
   void flag_vertices(SurfaceView& view) const;

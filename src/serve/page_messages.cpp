@@ -89,10 +89,10 @@ std::string hello_message(const LiveScene& scene, std::size_t model, bool driver
   const auto& box = scene.box();
   return format(
       "{\"type\":\"hello\",\"scenario\":%s,\"models\":[%s],\"model\":%zu,\"role\":\"%s\",\"rate_hz\":%.6g,\"radius_mm\":%.6g,"
-      "\"box_mm\":[%s,%s],\"vertices\":%zu,\"loads\":%s}",
+      "\"box_mm\":[%s,%s],\"vertices\":%zu,\"loads\":%s,\"hand\":%s}",
       json_string(scene.scenario().file.filename().string()).c_str(), models.c_str(), model, driver ? "driver" : "watcher",
       1.0 / scene.dt(), scene.radius_mm(), vec3(box.min() / mm).c_str(), vec3(box.max() / mm).c_str(),
-      scene.surface().nodes.size(), json_string(scene.loads_said()).c_str());
+      scene.surface().nodes.size(), json_string(scene.loads_said()).c_str(), hand_protocol_json().c_str());
 }
 
 std::string state_message(const LiveScene& scene, const PhysicsSnapshot& s, const TickFigures& ticks, const FrameFigures& frame,

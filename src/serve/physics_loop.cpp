@@ -177,7 +177,7 @@ void PhysicsLoop::pick(const HandMessage& event) {
   LiveModel& live = scene_.models()[model_];
   if (live.cuttable())
     for (const int n : std::get<Grip>(grip).nodes)
-      if (live.on_cut[static_cast<std::size_t>(n)]) {
+      if (live.physics.on_cut[static_cast<std::size_t>(n)]) {
         say(
             format("refused pick: node %d there lies on a cut (a tetrahedron at it was removed): the hand holds whole "
                    "tissue, pick beside the cut",
@@ -185,12 +185,12 @@ void PhysicsLoop::pick(const HandMessage& event) {
         return;
       }
   std::string refactored;
-  if (live.haptic_stale) {  // cut between grabs: a fresh factor of the cut model
-    live.haptic = std::make_unique<integrators::HapticTrapezoid>(live.model->system(), scene_.dt());
-    live.haptic_stale = false;
+  if (live.physics.haptic_stale) {  // cut between grabs: a fresh factor of the cut model
+    live.physics.haptic = std::make_unique<integrators::HapticTrapezoid>(live.physics.model->system(), scene_.dt());
+    live.physics.haptic_stale = false;
     refactored = format(" (its factor made afresh after the cuts: %.1f ms)", 1e3 * clock.seconds());
   }
-  integrators::HapticTrapezoid& haptic = *live.haptic;
+  integrators::HapticTrapezoid& haptic = *live.physics.haptic;
   try {
     haptic.attach(std::get<Grip>(grip).dofs);
   } catch (const Error& e) {
@@ -199,7 +199,7 @@ void PhysicsLoop::pick(const HandMessage& event) {
     return;
   }
   grip_ = std::move(std::get<Grip>(grip));
-  state_ = model::State::at_rest(scene_.models()[model_].model->system().size());
+  state_ = model::State::at_rest(scene_.models()[model_].physics.model->system().size());
   haptic.reset(state_);
   attached_ = holding_ = true;
   failure_.clear();
@@ -308,8 +308,8 @@ void PhysicsLoop::publish() {
   snapshot_.hand_sequence = hand_sequence_;
   snapshot_.ticks = ticks_;
   const LiveModel& live = scene_.models()[model_];
-  snapshot_.newton_iterations = live.nonlinear() && attached_ ? live.haptic->last_iterations() : 0;
-  snapshot_.newton_residual = live.nonlinear() && attached_ ? live.haptic->last_residual() : 0;
+  snapshot_.newton_iterations = live.nonlinear() && attached_ ? live.physics.haptic->last_iterations() : 0;
+  snapshot_.newton_residual = live.nonlinear() && attached_ ? live.physics.haptic->last_residual() : 0;
   snapshot_.failure = failure_;
   snapshot_fresh_ = true;
   snapshot_wanted_.store(false, std::memory_order_release);
@@ -342,7 +342,7 @@ void PhysicsLoop::run() {
     try {
       const Stopwatch clock;
       g_ = next_g();
-      force_ = scene_.models()[model_].haptic->tick(g_, state_);
+      force_ = scene_.models()[model_].physics.haptic->tick(g_, state_);
       tick_seconds_.push(static_cast<float>(clock.seconds()));
     } catch (const Error& e) {
       failure_ = format("the tick at t = %.4f s failed, the grab ended: %s", state_.t + dt, e.what());

@@ -340,7 +340,7 @@ TEST(ServeCut, TheDisplayDrawsTheSurfaceTheCutLeaves) {
     EXPECT_EQ(expected.count(f), 1U);
   }
   // The frame follows the new surface: a vertex per node, its unknowns the model's.
-  const Vector u = Vector::LinSpaced(scene->models()[1].model->system().size(), 0.0, 1e-3);
+  const Vector u = Vector::LinSpaced(scene->models()[1].physics.model->system().size(), 0.0, 1e-3);
   std::vector<float> shown;
   scene->surface_displacement(1, u, 0.0, true, shown);
   EXPECT_EQ(shown.size(), 3 * cut.nodes.size());

@@ -3,8 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <regex>
 
 namespace roifem::serve {
 namespace {
@@ -82,6 +85,51 @@ TEST(HandMessage, MalformedFramesAreRefusedWithTheReason) {
   EXPECT_EQ(
       refused(encode_hand_message({.kind = HandKind::release, .sequence = 1, .point_mm = Vec3::Zero(), .model = 0}) + "abcd"),
       "a release message of 12 bytes (it has 8)");
+}
+
+// The page builds its frames from the table the hello carries (web/app.js's send): frames built so,
+// as a page would, for every kind of the protocol's documented codes, decode to that kind with
+// the numbers written.
+TEST(HandMessage, FramesBuiltFromTheHellosTableAreTheKindsTheyName) {
+  const std::string json = hand_protocol_json();
+  const std::regex header(R"re("header_bytes":(\d+))re");
+  std::smatch h;
+  ASSERT_TRUE(std::regex_search(json, h, header)) << json;
+  const std::size_t at = std::stoul(h[1]);
+  const std::vector<std::pair<std::string, HandKind>> documented{
+      {"pick", HandKind::pick}, {"target", HandKind::target},   {"release", HandKind::release}, {"model", HandKind::model},
+      {"save", HandKind::save}, {"compare", HandKind::compare}, {"cut", HandKind::cut},         {"whole", HandKind::whole}};
+  for (const auto& [name, expected] : documented) {
+    const std::regex entry("\"" + name + R"re(":\{"code":(\d+),"bytes":(\d+),"payload":"(\w+)"\})re");
+    std::smatch e;
+    ASSERT_TRUE(std::regex_search(json, e, entry)) << name << " is not in " << json;
+    std::string frame(std::stoul(e[2]), '\0');
+    frame[0] = static_cast<char>(std::stoi(e[1]));
+    const std::uint32_t sequence = 17;
+    std::memcpy(frame.data() + 4, &sequence, 4);
+    const std::string payload = e[3];
+    const std::vector<double> numbers{1.5, -2.25, 3, 4, 5.5, 6, 7, 8.75, -9};
+    if (payload == "point" || payload == "stroke")
+      for (std::size_t k = 0; k < (payload == "point" ? 3U : 9U); ++k) std::memcpy(frame.data() + at + 8 * k, &numbers[k], 8);
+    const std::uint32_t index = 2;
+    if (payload == "index") std::memcpy(frame.data() + at, &index, 4);
+    const auto got = decode(frame);
+    ASSERT_TRUE(std::holds_alternative<HandMessage>(got)) << name << ": " << std::get<std::string>(got);
+    const HandMessage& m = std::get<HandMessage>(got);
+    EXPECT_EQ(m.kind, expected) << name;
+    EXPECT_EQ(m.sequence, sequence) << name;
+    if (payload != "none" && payload != "index") {
+      EXPECT_EQ(m.point_mm, Vec3(1.5, -2.25, 3)) << name;
+    }
+    if (payload == "stroke") {
+      EXPECT_EQ(m.move_mm, Vec3(7, 8.75, -9)) << name;
+    }
+    if (payload == "index") {
+      EXPECT_EQ(m.model, index) << name;
+    }
+  }
+  EXPECT_EQ(std::count(json.begin(), json.end(), '{'), 2 + static_cast<long>(documented.size()))
+      << "a kind the test does not know: " << json;
 }
 
 }  // namespace
