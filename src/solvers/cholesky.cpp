@@ -8,6 +8,7 @@
 #include "common/number_text.hpp"
 #include "solvers/blas_threads.hpp"
 #include "solvers/cholmod_views.hpp"
+#include "solvers/serial_openmp.hpp"
 
 namespace roifem::solvers {
 
@@ -97,7 +98,13 @@ void Cholesky::analyze(const SparseMatrix& A, const std::vector<Index>& last) {
 void Cholesky::factorize(const SparseMatrix& A) {
   if (!impl_->factor || static_cast<Index>(impl_->factor->n) != A.rows()) analyze(A);
   cholmod_sparse a = symmetric_view(A);
-  const int ok = cholmod_factorize(&a, impl_->factor, &impl_->common);
+  // A small supernodal factor: CHOLMOD's OpenMP regions on one thread (serial_openmp.hpp).
+  const bool small = impl_->factor->is_super && static_cast<double>(impl_->factor->xsize) < one_thread_solve_below;
+  int ok = 0;
+  {
+    const SerialOpenMpScope serial(small);
+    ok = cholmod_factorize(&a, impl_->factor, &impl_->common);
+  }
   if (impl_->common.status == CHOLMOD_NOT_POSDEF) {
     // CHOLMOD's `minor` counts columns of the permuted matrix; name the column of A.
     const auto* perm = static_cast<const int*>(impl_->factor->Perm);

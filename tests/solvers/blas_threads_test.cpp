@@ -2,10 +2,12 @@
 #include "solvers/blas_threads.hpp"
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include "mesh/gmsh_reader.hpp"
 #include "model/fem_model.hpp"
 #include "solvers/cholesky.hpp"
+#include "solvers/serial_openmp.hpp"
 
 namespace roifem::solvers {
 namespace {
@@ -41,6 +43,30 @@ TEST(BlasThreadsScope, ASmallSupernodalSolveLeavesTheCountAsItFoundIt) {
   // The one-thread solve is the same solve: it matches the simplicial factor's (no BLAS) answer.
   EXPECT_LT((x - simplicial.solve(b)).norm(), 1e-10 * x.norm());
   EXPECT_LT((K * x - b).norm(), 1e-10 * b.norm());
+}
+
+// CHOLMOD's fixed 4-thread regions run on one thread inside the scope, and the levels come back.
+TEST(SerialOpenMpScope, RegionsRunOnOneThreadInsideAndAsBeforeAfter) {
+  const int levels = omp_get_max_active_levels();
+  auto threads_in_a_region_of_four = [] {
+    int seen = 0;
+#pragma omp parallel num_threads(4)
+    {
+#pragma omp single
+      seen = omp_get_num_threads();
+    }
+    return seen;
+  };
+  {
+    const SerialOpenMpScope serial(true);
+    EXPECT_EQ(threads_in_a_region_of_four(), 1);
+  }
+  EXPECT_EQ(omp_get_max_active_levels(), levels);
+  {
+    const SerialOpenMpScope unchanged(false);
+    EXPECT_EQ(omp_get_max_active_levels(), levels);
+  }
+  if (levels > 0) EXPECT_EQ(threads_in_a_region_of_four(), 4);
 }
 
 }  // namespace
