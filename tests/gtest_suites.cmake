@@ -26,6 +26,8 @@ function(roifem_gtest_suites target)
     if(NOT source MATCHES "\\.cpp$")
       continue()
     endif()
+    # A suite added to a source must reach its entry: the build re-runs CMake when a source changes.
+    set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${source})
     file(STRINGS ${source} declarations REGEX "^TEST(_F|_P)?\\(")
     foreach(line IN LISTS declarations)
       if(line MATCHES "^TEST(_F|_P)?\\(([A-Za-z0-9_]+),")
