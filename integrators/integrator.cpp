@@ -13,6 +13,20 @@
 
 namespace roifem::integrators {
 
+IntegratorCheckpoint IntegratorCheckpoint::on_grid(const Vector& vector, double t0, long k, const Stats& stats) {
+  IntegratorCheckpoint saved{.vectors = {vector}, .numbers = {t0, static_cast<double>(k)}};
+  const std::vector<double> counters = stats.counters();
+  saved.numbers.insert(saved.numbers.end(), counters.begin(), counters.end());
+  return saved;
+}
+
+IntegratorCheckpoint::OnGrid IntegratorCheckpoint::read_on_grid(std::string_view method, Index unknowns) const {
+  if (vectors.size() != 1 || vectors[0].size() != unknowns || numbers.size() != 2 + stats_fields().size())
+    throw InputError(std::string(method) + ": the checkpoint does not fit this model (" + std::to_string(vectors.size()) +
+                     " vectors, " + std::to_string(numbers.size()) + " numbers)");
+  return {.vector = vectors[0], .t0 = numbers[0], .k = static_cast<long>(numbers[1]), .stats = Stats::from_counters(numbers, 2)};
+}
+
 Integrator::Integrator() = default;
 Integrator::~Integrator() = default;
 Integrator::Integrator(Integrator&&) noexcept = default;

@@ -34,6 +34,19 @@ class StabilityWatch;
 struct IntegratorCheckpoint {
   std::vector<Vector> vectors;
   std::vector<double> numbers;
+
+  /// A method on a fixed time grid (the trapezoidal rule, energy-momentum): its one vector, the
+  /// grid's origin t0 and step index k, its counters.
+  struct OnGrid {
+    Vector vector;
+    double t0 = 0;
+    long k = 0;
+    Stats stats;
+  };
+  static IntegratorCheckpoint on_grid(const Vector& vector, double t0, long k, const Stats& stats);
+  /// Reads an on_grid point back; InputError naming `method` unless it holds one vector of
+  /// `unknowns` entries, the grid and every counter.
+  OnGrid read_on_grid(std::string_view method, Index unknowns) const;
 };
 
 /// What a method that holds the tools' constraints itself (the DAE forms) says of them now.

@@ -42,6 +42,7 @@ Stats& Stats::operator+=(const Stats& o) {
 
 std::vector<double> Stats::counters() const {
   std::vector<double> numbers;
+  numbers.reserve(fields.size());
   for (const StatsField& f : fields) numbers.push_back(static_cast<double>(this->*f.member));
   return numbers;
 }

@@ -130,22 +130,16 @@ void Trapezoid::advance(double t_out, model::State& state) {
 }
 
 std::optional<IntegratorCheckpoint> Trapezoid::checkpoint() const {
-  IntegratorCheckpoint saved{.vectors = {a_}, .numbers = {grid_.t0(), static_cast<double>(k_)}};
-  const std::vector<double> counters = stats_.counters();
-  saved.numbers.insert(saved.numbers.end(), counters.begin(), counters.end());
-  return saved;
+  return IntegratorCheckpoint::on_grid(a_, grid_.t0(), k_, stats_);
 }
 
 void Trapezoid::restore(const model::State& state, const IntegratorCheckpoint& saved) {
-  if (saved.vectors.size() != 1 || saved.vectors[0].size() != state.u.size() || saved.numbers.size() != 2 + stats_fields().size())
-    throw InputError(std::string(name()) + ": the checkpoint does not fit this model (" + std::to_string(saved.vectors.size()) +
-                     " vectors, " + std::to_string(saved.numbers.size()) + " numbers)");
-  a_ = saved.vectors[0];
-  grid_ = model::TimeGrid(saved.numbers[0], rule_.dt(), name());
-  k_ = static_cast<long>(saved.numbers[1]);
-  const double factorization_s = stats_.factorization_s;
-  stats_ = Stats::from_counters(saved.numbers, 2);
-  stats_.factorization_s = factorization_s;
+  IntegratorCheckpoint::OnGrid point = saved.read_on_grid(name(), state.u.size());
+  a_ = std::move(point.vector);
+  grid_ = model::TimeGrid(point.t0, rule_.dt(), name());
+  k_ = point.k;
+  point.stats.factorization_s = stats_.factorization_s;  // this run's own factorization
+  stats_ = point.stats;
   if (K_eff_) iterations_before_ = stats_.lin_iterations - K_eff_->iterations();  // an iterative solver's count goes on
 }
 

@@ -44,10 +44,10 @@ EarlierRun::EarlierRun(const std::filesystem::path& file, const scenario::Scenar
   for (std::size_t i = 0; i < std::max(was.size(), is.size()); ++i) {
     const std::string a = i < was.size() ? was[i] : "(nothing)", b = i < is.size() ? is[i] : "(nothing)";
     if (a != b)
-      throw InputError(scenario.file.string() +
-                       ": a restart goes on the run of the same scenario (its steps and integrator apart), and " + file_.path() +
-                       " was run with another: its resolved scenario's line " + std::to_string(i + 1) + " is '" + a +
-                       "', this one's '" + b + "'");
+      throw InputError(
+          format("%s: a restart goes on the run of the same scenario (its steps and integrator apart), and %s was "
+                 "run with another: its resolved scenario's line %zu is '%s', this one's '%s'",
+                 scenario.file.string().c_str(), file_.path().c_str(), i + 1, a.c_str(), b.c_str()));
   }
 }
 
