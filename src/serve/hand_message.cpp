@@ -11,22 +11,22 @@ namespace {
 
 constexpr std::size_t header_bytes = 8;
 
-/// What follows a kind's header.
+/// What follows a kind's header, and per payload (in the enum's order) its name in the hello and
+/// the message's size with it.
 enum class Payload { none, point, index, stroke };
 
-const char* payload_name(Payload payload) {
-  switch (payload) {
-    case Payload::point:
-      return "point";
-    case Payload::index:
-      return "index";
-    case Payload::stroke:
-      return "stroke";
-    case Payload::none:
-      return "none";
-  }
-  return "none";
-}
+struct PayloadInfo {
+  const char* name;
+  std::size_t bytes;
+};
+
+constexpr std::array<PayloadInfo, 4> payloads{{{"none", header_bytes},
+                                               {"point", header_bytes + 3 * sizeof(double)},
+                                               {"index", header_bytes + sizeof(std::uint32_t)},
+                                               {"stroke", header_bytes + 9 * sizeof(double)}}};
+
+const char* payload_name(Payload payload) { return payloads[static_cast<std::size_t>(payload)].name; }
+std::size_t size_of(Payload payload) { return payloads[static_cast<std::size_t>(payload)].bytes; }
 
 struct KindInfo {
   HandKind kind;
@@ -52,20 +52,6 @@ constexpr bool in_code_order() {
 static_assert(in_code_order(), "the kinds' table is indexed by code - 1");
 
 const KindInfo& info(HandKind kind) { return kinds[static_cast<std::size_t>(kind) - 1]; }
-
-std::size_t size_of(Payload payload) {
-  switch (payload) {
-    case Payload::point:
-      return header_bytes + 3 * sizeof(double);
-    case Payload::index:
-      return header_bytes + sizeof(std::uint32_t);
-    case Payload::stroke:
-      return header_bytes + 9 * sizeof(double);
-    case Payload::none:
-      return header_bytes;
-  }
-  return header_bytes;
-}
 
 /// "1 pick, 2 target, ...".
 std::string kind_list() {
