@@ -96,7 +96,11 @@ void add_paper_command(CLI::App& app, Action& action) {
       o->drive = *drive == "spatulas" ? experiments::PaperDrive::spatulas : experiments::PaperDrive::forces;
       o->reductions.clear();
       for (const auto& label : *reductions) o->reductions.push_back(condensation::parse_reduction(label));
-      if (fem::parse_material_model(*law) == fem::MaterialModel::neo_hookean) {
+      const fem::MaterialModel model = fem::parse_material_model(*law);
+      if (model == fem::MaterialModel::ogden)
+        throw InputError("--material-model ogden: the paper's experiment takes 'linear' or 'neo-hookean'; run an Ogden "
+                         "scenario by `roifem run` (its [material] model = \"ogden\")");
+      if (model == fem::MaterialModel::neo_hookean) {
         std::vector<experiments::PaperDrive> drives{experiments::PaperDrive::forces, experiments::PaperDrive::spatulas};
         if (drive_named) drives = {o->drive};
         const auto results = experiments::run_paper_large_deformation(*o, drives, std::cout);

@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "app/commands.hpp"
+#include "fem/material_model.hpp"
 #include "integrators/integrator_table.hpp"
 #include "scenario/scenario.hpp"
 #include "simulation/scenario_run.hpp"
@@ -22,7 +23,7 @@ void add_run_command(CLI::App& app, Action& action) {
                                  "scenarios/README.md) and write DIR/results.h5 and DIR/results.xdmf; prints the peak "
                                  "displacement and warns when it makes no physical sense");
   cmd->add_option("SCENARIO", o->scenario, "Scenario file (.toml)")->required();
-  cmd->footer(integrators::integrator_table_text());
+  cmd->footer(integrators::integrator_table_text() + "\n" + fem::material_model_table_text());
   cmd->add_option("--out", o->out, "Output directory")->required();
   auto* from = cmd->add_option("--from", o->from,
                                "Go on from a restart point of an earlier run of the same scenario (its results.h5 or "

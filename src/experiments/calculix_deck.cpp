@@ -56,6 +56,14 @@ void write_model(const CalculixProblem& p, std::ostream& out, const std::string&
   if (p.material.model == fem::MaterialModel::neo_hookean) {
     const double kappa = p.material.lambda + 2 * p.material.mu / 3;  // Pa
     out << "*HYPERELASTIC, NEO HOOKE\n" << format("%.13g, %.13g\n", p.material.mu / 2 * 1e-6, 2 / (kappa * 1e-6));
+  } else if (p.material.model == fem::MaterialModel::ogden) {
+    // CalculiX's OGDEN, N=1: mu_1 (MPa), alpha_1, D1 (1/MPa); more terms would need its D2.. too.
+    if (p.material.ogden.size() != 1)
+      throw InputError("the CalculiX deck takes a one-term Ogden law; this material has " +
+                       std::to_string(p.material.ogden.size()) + " terms");
+    const double kappa = p.material.lambda + 2 * p.material.mu / 3;  // Pa
+    out << "*HYPERELASTIC, OGDEN, N=1\n"
+        << format("%.13g, %.13g, %.13g\n", p.material.ogden[0].mu * 1e-6, p.material.ogden[0].alpha, 2 / (kappa * 1e-6));
   } else {
     out << "*ELASTIC\n" << format("%.13g, %.13g\n", p.material.young() * 1e-6, p.material.poisson());
   }

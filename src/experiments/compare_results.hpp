@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "integrators/stats.hpp"
 #include "io/result_table.hpp"
 
 namespace roifem::experiments {

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "fem/discrete_gradient.hpp"
 
+#include "fem/ogden.hpp"
+
 #include <cmath>
-#include <limits>
 
 namespace roifem::fem {
 
@@ -19,7 +20,8 @@ Eigen::Map<const Eigen::Matrix<double, 9, 1>> flat(const Mat3& X) {
 ///   D = C_mid/2 + c/|dE|^2 1 + vec(dE) (vec(g) - 2 c/|dE|^2 vec(dE))^T / |dE|^2,   dc = g : dE_b.
 /// Flattened row-major (Mat3 is column-major: X.data() is X^T's rows; every tensor here is
 /// symmetric, so the two flattenings agree).
-Mat3 projected_discrete_gradient(const NeoHookean& law, const Mat3& H_a, const Mat3& H_b, Mat9* D) {
+template <class Law>
+Mat3 projected_discrete_gradient(const Law& law, const Mat3& H_a, const Mat3& H_b, Mat9* D) {
   const Mat3 E_a = green_lagrange(H_a), E_b = green_lagrange(H_b);
   const Mat3 dE = E_b - E_a;
   const Mat3 E_mid = 0.5 * (E_a + E_b);
@@ -87,7 +89,8 @@ Mat9 cofactor_derivative(const Mat3& C) {
 /// The volumetric part's discrete gradient, added to S (and its derivative to D):
 ///   S_vol,alg = kappa (J_mid - 1) / J_mid G,   G = (cof C_a + 4 cof C_mid + cof C_b) / 6,
 /// J_mid = (J_a + J_b)/2, C_mid = (C_a + C_b)/2 (see the header).
-void add_volumetric_discrete_gradient(const NeoHookean& law, const Mat3& H_a, const Mat3& H_b, Mat3& S, Mat9* D) {
+template <class Law>
+void add_volumetric_discrete_gradient(const Law& law, const Mat3& H_a, const Mat3& H_b, Mat3& S, Mat9* D) {
   const double kappa = law.kappa();
   const Mat3 F_a = Mat3::Identity() + H_a, F_b = Mat3::Identity() + H_b;
   const Mat3 C_a = F_a.transpose() * F_a, C_b = F_b.transpose() * F_b, C_mid = 0.5 * (C_a + C_b);
@@ -104,21 +107,28 @@ void add_volumetric_discrete_gradient(const NeoHookean& law, const Mat3& H_a, co
 }
 
 /// S_alg: the deviatoric part by Gonzalez's projection, the volumetric part by its own.
-Mat3 discrete_gradient(const NeoHookean& law, const Mat3& H_a, const Mat3& H_b, Mat9* D) {
-  const NeoHookean deviatoric{.C10 = law.C10, .D1 = std::numeric_limits<double>::infinity()};  // kappa = 0
-  Mat3 S = projected_discrete_gradient(deviatoric, H_a, H_b, D);
+template <class Law>
+Mat3 discrete_gradient(const Law& law, const Mat3& H_a, const Mat3& H_b, Mat9* D) {
+  Mat3 S = projected_discrete_gradient(law.deviatoric_part(), H_a, H_b, D);  // kappa = 0
   add_volumetric_discrete_gradient(law, H_a, H_b, S, D);
   return S;
 }
 
 }  // namespace
 
-Mat3 discrete_gradient_stress(const NeoHookean& law, const Mat3& H_a, const Mat3& H_b) {
+template <class Law>
+Mat3 discrete_gradient_stress(const Law& law, const Mat3& H_a, const Mat3& H_b) {
   return discrete_gradient(law, H_a, H_b, nullptr);
 }
 
-Mat3 discrete_gradient_stress(const NeoHookean& law, const Mat3& H_a, const Mat3& H_b, Mat9& D) {
+template <class Law>
+Mat3 discrete_gradient_stress(const Law& law, const Mat3& H_a, const Mat3& H_b, Mat9& D) {
   return discrete_gradient(law, H_a, H_b, &D);
 }
+
+template Mat3 discrete_gradient_stress(const NeoHookean&, const Mat3&, const Mat3&);
+template Mat3 discrete_gradient_stress(const NeoHookean&, const Mat3&, const Mat3&, Mat9&);
+template Mat3 discrete_gradient_stress(const Ogden&, const Mat3&, const Mat3&);
+template Mat3 discrete_gradient_stress(const Ogden&, const Mat3&, const Mat3&, Mat9&);
 
 }  // namespace roifem::fem

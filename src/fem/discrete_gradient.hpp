@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-/// A discrete gradient of the neo-Hookean law (O. Gonzalez, "Exact energy and momentum conserving
+/// A discrete gradient of a hyperelastic law (fem/hyperelastic_law.hpp: neo-Hookean, Ogden) (O. Gonzalez, "Exact energy and momentum conserving
 /// algorithms for general models in nonlinear elasticity", CMAME 190, 2000): the stress between two
 /// states a and b whose work on the strain increment is exactly the energy increment,
-/// S_alg : dE = W(b) - W(a) for any two states, dE = E_b - E_a. The law's two parts,
-/// W = C10 (I1bar - 3) + (J - 1)^2 / D1, take one each:
+/// S_alg : dE = W(b) - W(a) for any two states, dE = E_b - E_a. The law's two parts, its
+/// deviatoric energy (neo-Hookean's C10 (I1bar - 3), Ogden's sum over its terms) and the volumetric
+/// (J - 1)^2 / D1 that both share, take one each:
 ///  - the deviatoric part, Gonzalez's projection:
 ///      S_dev,alg = S_dev(E_mid) + [W_dev(b) - W_dev(a) - S_dev(E_mid) : dE] dE / (dE : dE),
 ///    E_mid = (E_a + E_b)/2;
@@ -49,10 +50,13 @@ inline constexpr double negligible_increment = 1e-7;
 /// The Green-Lagrange strain E = (H + H^T + H^T H)/2 of a displacement gradient H.
 Mat3 green_lagrange(const Mat3& H);
 
-/// S_alg between displacement gradients H_a and H_b (both with det F > 0), symmetric (Pa).
-Mat3 discrete_gradient_stress(const NeoHookean& law, const Mat3& H_a, const Mat3& H_b);
+/// S_alg between displacement gradients H_a and H_b (both with det F > 0), symmetric (Pa), for
+/// Law NeoHookean or Ogden.
+template <class Law>
+Mat3 discrete_gradient_stress(const Law& law, const Mat3& H_a, const Mat3& H_b);
 /// The same, and its derivative in the second state's strain: dS_alg = D . vec(dE_b) (9x9 over
-/// the flattened strain, as NeoHookean::strain_tangent; not symmetric).
-Mat3 discrete_gradient_stress(const NeoHookean& law, const Mat3& H_a, const Mat3& H_b, Mat9& D);
+/// the flattened strain, as the law's strain_tangent; not symmetric).
+template <class Law>
+Mat3 discrete_gradient_stress(const Law& law, const Mat3& H_a, const Mat3& H_b, Mat9& D);
 
 }  // namespace roifem::fem

@@ -6,6 +6,7 @@
 #include <numeric>
 #include <span>
 #include <type_traits>
+#include <variant>
 
 #include "common/errors.hpp"
 #include "common/format.hpp"
@@ -39,15 +40,20 @@ HyperelasticAssembler::HyperelasticAssembler(const mesh::TetMesh& mesh, const Do
   pattern_ = StiffnessAssembler(mesh, dofs).stiffness(materials);
   std::fill(pattern_.valuePtr(), pattern_.valuePtr() + pattern_.nonZeros(), 0.0);
   cache_positions();
-  laws_.reserve(elements_.size());
-  for (const Index e : elements_) laws_.push_back(NeoHookean::of(materials_.of(e)));
+  for (const Material& m : materials_.materials()) laws_.push_back(hyperelastic_law(m));
+  law_of_.reserve(elements_.size());
+  bool all_neo_hookean = true;
+  for (const Index e : elements_) {
+    law_of_.push_back(static_cast<std::uint16_t>(materials_.index_of(e)));
+    all_neo_hookean = all_neo_hookean && std::holds_alternative<NeoHookean>(laws_[law_of_.back()]);
+  }
   if (!mesh.is_quadratic()) {
     tet4_geometry_.reserve(elements_.size());
     for (const Index e : elements_) {
       const auto& c = mesh.tets[as_size(e)];
       tet4_geometry_.push_back(tet4_geometry(mesh.node(c[0]), mesh.node(c[1]), mesh.node(c[2]), mesh.node(c[3])));
     }
-    batch_excess();
+    if (all_neo_hookean) batch_excess();
   }
 }
 
@@ -94,33 +100,36 @@ void HyperelasticAssembler::for_each_element(Evaluator&& evaluate, Visit&& visit
   for (std::size_t slot = 0; slot < elements_.size(); ++slot) {
     const Index e = elements_[slot];
     const auto& c = mesh_.tets[as_size(e)];
-    const NeoHookean& law = laws_[slot];
     const auto nodes = nodes_of(slot, buffer);
     auto check = [&](const auto& r) {
       if (!(r.min_J > 0))
         throw ModelError(format("tetrahedron %lld (nodes %d %d %d %d) has inverted: det F = %.4g <= 0", static_cast<long long>(e),
                                 c[0], c[1], c[2], c[3], r.min_J));
     };
-    if (nodes.size() == 4) {
-      auto gather = [&](const Vector& u_full) {
-        Eigen::Matrix<double, 12, 1> ue;
-        for (int a = 0; a < 4; ++a) ue.segment<3>(3 * a) = u_full.segment<3>(3 * nodes[as_size(a)]);
-        return ue;
-      };
-      const auto r = evaluate(tet4_geometry_[slot], law, gather);
-      check(r);
-      visit(slot, nodes, r);
-    } else {
-      auto gather = [&](const Vector& u_full) {
-        Eigen::Matrix<double, 30, 1> ue;
-        for (int a = 0; a < 10; ++a) ue.segment<3>(3 * a) = u_full.segment<3>(3 * nodes[as_size(a)]);
-        return ue;
-      };
-      const auto r =
-          evaluate(tet10_geometry(mesh_.node(c[0]), mesh_.node(c[1]), mesh_.node(c[2]), mesh_.node(c[3])), law, gather);
-      check(r);
-      visit(slot, nodes, r);
-    }
+    std::visit(
+        [&](const auto& law) {
+          if (nodes.size() == 4) {
+            auto gather = [&](const Vector& u_full) {
+              Eigen::Matrix<double, 12, 1> ue;
+              for (int a = 0; a < 4; ++a) ue.segment<3>(3 * a) = u_full.segment<3>(3 * nodes[as_size(a)]);
+              return ue;
+            };
+            const auto r = evaluate(tet4_geometry_[slot], law, gather);
+            check(r);
+            visit(slot, nodes, r);
+          } else {
+            auto gather = [&](const Vector& u_full) {
+              Eigen::Matrix<double, 30, 1> ue;
+              for (int a = 0; a < 10; ++a) ue.segment<3>(3 * a) = u_full.segment<3>(3 * nodes[as_size(a)]);
+              return ue;
+            };
+            const auto r =
+                evaluate(tet10_geometry(mesh_.node(c[0]), mesh_.node(c[1]), mesh_.node(c[2]), mesh_.node(c[3])), law, gather);
+            check(r);
+            visit(slot, nodes, r);
+          }
+        },
+        laws_[law_of_[slot]]);
   }
 }
 
@@ -128,7 +137,7 @@ template <class Visit>
 void HyperelasticAssembler::for_each_element(const Vector& u_full, Evaluate what, Visit&& visit) const {
   check_size(u_full);
   for_each_element(
-      [&](const auto& geometry, const NeoHookean& law, const auto& gather) {
+      [&](const auto& geometry, const auto& law, const auto& gather) {
         if constexpr (std::is_same_v<std::decay_t<decltype(geometry)>, Tet4Geometry>)
           return tet4_hyperelastic(geometry, law, gather(u_full), what);
         else
@@ -185,7 +194,7 @@ void HyperelasticAssembler::excess_force_free(const Vector& u_free, Eigen::Ref<V
   if (u_free.size() != dofs_.num_free())
     throw InputError(format("hyperelastic assembly: %lld free displacement values for %lld free dofs",
                             static_cast<long long>(u_free.size()), static_cast<long long>(dofs_.num_free())));
-  if (mesh_.is_quadratic()) {
+  if (excess_batches_.empty() && !elements_.empty()) {  // tet10, or a law other than neo-Hookean
     add_forces(dofs_.prescribed() + dofs_.expand_homogeneous(u_free), Evaluate::excess, g);
     return;
   }
@@ -233,7 +242,7 @@ void HyperelasticAssembler::batch_excess() {
     for (int a = 0; a < 4; ++a)
       for (int i = 0; i < 3; ++i) b.law.grad[a][i][l] = geometry.grad(a, i);
     b.law.volume[l] = std::abs(geometry.volume);
-    const NeoHookean& law = laws_[slot];
+    const auto& law = std::get<NeoHookean>(laws_[law_of_[slot]]);
     b.law.mu[l] = law.mu();
     b.law.kappa[l] = law.kappa();
     b.law.lambda[l] = law.kappa() - 2.0 / 3.0 * law.mu();
@@ -272,7 +281,7 @@ void HyperelasticAssembler::discrete_gradient(const Vector& u_a_full, const Vect
   }
   f_alg.setZero();
   for_each_element(
-      [&](const auto& geometry, const NeoHookean& law, const auto& gather) {
+      [&](const auto& geometry, const auto& law, const auto& gather) {
         if constexpr (std::is_same_v<std::decay_t<decltype(geometry)>, Tet4Geometry>)
           return tet4_discrete_gradient(geometry, law, gather(u_a_full), gather(u_b_full), what);
         else

@@ -1,19 +1,22 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-/// The internal force f_int(u) and tangent K_t(u) = df_int/du of the neo-Hookean tetrahedra
-/// (fem/hyperelastic_element.hpp) over the free dofs of a DofMap:
+/// The internal force f_int(u) and tangent K_t(u) = df_int/du of hyperelastic tetrahedra
+/// (fem/hyperelastic_element.hpp), each by its material's law (fem/hyperelastic_law.hpp), over the
+/// free dofs of a DofMap:
 ///   f_int(u) = sum_e A_e^T f_e(u_e),   K_t(u) = sum_e A_e^T K_e(u_e) A_e,
 /// at the full displacement u (3 per node, the prescribed values included, so a prescribed motion
 /// strains the elements it touches as it does in the linear model's f_D = -K_fp u_p).
 /// K_t has the linear stiffness's pattern (fem/assembly.hpp), whatever the subset of elements, so a
 /// sparse factorization analysed once on K serves every K_t.
 #include <array>
+#include <cstdint>
 #include <span>
 #include <vector>
 
 #include "common/types.hpp"
 #include "fem/dof_map.hpp"
 #include "fem/hyperelastic_element.hpp"
+#include "fem/hyperelastic_law.hpp"
 #include "fem/material_map.hpp"
 #include "fem/neo_hookean.hpp"
 #include "fem/tet4.hpp"
@@ -25,7 +28,7 @@ namespace roifem::fem {
 class HyperelasticAssembler {
  public:
   /// Every tetrahedron of `mesh` (tet4, or tet10 on a quadratic mesh), each with its material's
-  /// lambda and mu. Keeps references to mesh and dofs, which must outlive it (materials: a copy).
+  /// law and moduli. Keeps references to mesh and dofs, which must outlive it (materials: a copy).
   HyperelasticAssembler(const mesh::TetMesh& mesh, const DofMap& dofs, const MaterialMap& materials);
   /// Only the tetrahedra listed (the hybrid ROI's nonlinear elements).
   HyperelasticAssembler(const mesh::TetMesh& mesh, const DofMap& dofs, const MaterialMap& materials, std::vector<Index> elements);
@@ -36,9 +39,10 @@ class HyperelasticAssembler {
   /// What the law's force exceeds the linear elements' by, f_int(u) - K_lin u with K_lin the same
   /// elements' linear stiffness (the law's tangent at rest), element by element
   /// (fem/hyperelastic_element.hpp's Evaluate::excess): no product by K_lin. From the free
-  /// displacement alone (the prescribed values the DofMap's); the tet4's inner loop is written for
-  /// a haptic tick: eight elements at a time in vector instructions (fem/tet4_excess_batch.hpp;
-  /// equal to the element-by-element excess to rounding). Inverted elements as in force().
+  /// displacement alone (the prescribed values the DofMap's); where every element is a neo-Hookean
+  /// tet4, the inner loop is written for a haptic tick: eight elements at a time in vector
+  /// instructions (fem/tet4_excess_batch.hpp; equal to the element-by-element excess to rounding).
+  /// Inverted elements as in force().
   void excess_force_free(const Vector& u_free, Eigen::Ref<Vector> g) const;
   /// f_int and K_t at u_full; K_t's values are overwritten in pattern()'s pattern.
   void force_and_tangent(const Vector& u_full, Eigen::Ref<Vector> f_int, SparseMatrix& K_t) const;
@@ -80,10 +84,12 @@ class HyperelasticAssembler {
   /// Per element, its matrix's (3 n)^2 positions (cache_positions); empty where they would pass
   /// 32M entries (128 MB: the 20k-node brain's tet4 take 16M), and scatter() then searches.
   std::vector<int> positions_;
-  /// Per element of a linear mesh, its geometry and law, formed once (a haptic tick evaluates the
-  /// force several times a millisecond): 120 bytes an element.
+  /// Per element of a linear mesh, its geometry, formed once (a haptic tick evaluates the force
+  /// several times a millisecond): 104 bytes an element.
   std::vector<Tet4Geometry> tet4_geometry_;
-  std::vector<NeoHookean> laws_;
+  /// The law of each of materials_'s materials, and per element which it takes.
+  std::vector<HyperelasticLaw> laws_;
+  std::vector<std::uint16_t> law_of_;
   /// A linear mesh's elements, kTet4Lanes at a time, for excess_force_free: their geometry and law
   /// lane by lane, and each dof's free row (-1: prescribed or no element) and full index (-1: no
   /// element).

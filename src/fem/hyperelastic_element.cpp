@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 namespace roifem::fem {
 
@@ -26,9 +27,9 @@ void add_tangent(const Mat9& A, const Eigen::Matrix<double, Nodes, 3>& g, double
 }
 
 /// The quadrature over `points` points, each with its gradients (Nodes x 3) and weight.
-template <int Nodes, int Points>
+template <int Nodes, int Points, class Law>
 HyperelasticResponse<Nodes> integrate_element(const std::array<Eigen::Matrix<double, Nodes, 3>, Points>& grads, double weight,
-                                              const NeoHookean& law, const Eigen::Matrix<double, 3 * Nodes, 1>& u_e,
+                                              const Law& law, const Eigen::Matrix<double, 3 * Nodes, 1>& u_e,
                                               Evaluate what) {
   HyperelasticResponse<Nodes> r;
   // The displacement gradients H = F - I first (the law takes H: neo_hookean.hpp), so that an
@@ -96,9 +97,9 @@ Mat9 discrete_gradient_tangent(const Mat3& F_mid, const Mat3& F_b, const Mat3& S
   return A;
 }
 
-template <int Nodes, int Points>
+template <int Nodes, int Points, class Law>
 HyperelasticResponse<Nodes> integrate_discrete_gradient(const std::array<Eigen::Matrix<double, Nodes, 3>, Points>& grads,
-                                                        double weight, const NeoHookean& law,
+                                                        double weight, const Law& law,
                                                         const Eigen::Matrix<double, 3 * Nodes, 1>& u_a,
                                                         const Eigen::Matrix<double, 3 * Nodes, 1>& u_b, Evaluate what) {
   HyperelasticResponse<Nodes> r;
@@ -127,26 +128,28 @@ HyperelasticResponse<Nodes> integrate_discrete_gradient(const std::array<Eigen::
 
 }  // namespace
 
-HyperelasticResponse<4> tet4_discrete_gradient(const Tet4Geometry& g, const NeoHookean& law,
-                                               const Eigen::Matrix<double, 12, 1>& u_a, const Eigen::Matrix<double, 12, 1>& u_b,
-                                               Evaluate what) {
+template <class Law>
+HyperelasticResponse<4> tet4_discrete_gradient(const Tet4Geometry& g, const Law& law, const Eigen::Matrix<double, 12, 1>& u_a,
+                                               const Eigen::Matrix<double, 12, 1>& u_b, Evaluate what) {
   return integrate_discrete_gradient<4, 1>({g.grad}, std::abs(g.volume), law, u_a, u_b, what);
 }
 
-HyperelasticResponse<10> tet10_discrete_gradient(const Tet10Geometry& g, const NeoHookean& law,
-                                                 const Eigen::Matrix<double, 30, 1>& u_a, const Eigen::Matrix<double, 30, 1>& u_b,
-                                                 Evaluate what) {
+template <class Law>
+HyperelasticResponse<10> tet10_discrete_gradient(const Tet10Geometry& g, const Law& law, const Eigen::Matrix<double, 30, 1>& u_a,
+                                                 const Eigen::Matrix<double, 30, 1>& u_b, Evaluate what) {
   return integrate_discrete_gradient<10, 4>(g.grad, std::abs(g.volume) / 4, law, u_a, u_b, what);
 }
 
-HyperelasticResponse<4> tet4_hyperelastic(const Tet4Geometry& g, const NeoHookean& law, const Eigen::Matrix<double, 12, 1>& u_e,
+template <class Law>
+HyperelasticResponse<4> tet4_hyperelastic(const Tet4Geometry& g, const Law& law, const Eigen::Matrix<double, 12, 1>& u_e,
                                           Evaluate what) {
-  if (what == Evaluate::excess) {
-    HyperelasticResponse<4> r;
-    r.force.setZero();
-    r.min_J = tet4_excess_force(g, law, u_e, r.force);
-    return r;
-  }
+  if constexpr (std::is_same_v<Law, NeoHookean>)
+    if (what == Evaluate::excess) {
+      HyperelasticResponse<4> r;
+      r.force.setZero();
+      r.min_J = tet4_excess_force(g, law, u_e, r.force);
+      return r;
+    }
   return integrate_element<4, 1>({g.grad}, std::abs(g.volume), law, u_e, what);
 }
 
@@ -177,9 +180,24 @@ double tet4_excess_force(const Tet4Geometry& g, const NeoHookean& law, const Eig
   return J;
 }
 
-HyperelasticResponse<10> tet10_hyperelastic(const Tet10Geometry& g, const NeoHookean& law,
-                                            const Eigen::Matrix<double, 30, 1>& u_e, Evaluate what) {
+template <class Law>
+HyperelasticResponse<10> tet10_hyperelastic(const Tet10Geometry& g, const Law& law, const Eigen::Matrix<double, 30, 1>& u_e,
+                                            Evaluate what) {
   return integrate_element<10, 4>(g.grad, std::abs(g.volume) / 4, law, u_e, what);
 }
+
+// Each law's elements, compiled here once.
+#define ROIFEM_HYPERELASTIC_ELEMENTS(Law)                                                                                        \
+  template HyperelasticResponse<4> tet4_hyperelastic(const Tet4Geometry&, const Law&, const Eigen::Matrix<double, 12, 1>&,       \
+                                                     Evaluate);                                                                  \
+  template HyperelasticResponse<10> tet10_hyperelastic(const Tet10Geometry&, const Law&, const Eigen::Matrix<double, 30, 1>&,    \
+                                                       Evaluate);                                                                \
+  template HyperelasticResponse<4> tet4_discrete_gradient(const Tet4Geometry&, const Law&, const Eigen::Matrix<double, 12, 1>&,  \
+                                                          const Eigen::Matrix<double, 12, 1>&, Evaluate);                        \
+  template HyperelasticResponse<10> tet10_discrete_gradient(const Tet10Geometry&, const Law&, const Eigen::Matrix<double, 30, 1>&, \
+                                                            const Eigen::Matrix<double, 30, 1>&, Evaluate);
+ROIFEM_HYPERELASTIC_ELEMENTS(NeoHookean)
+ROIFEM_HYPERELASTIC_ELEMENTS(Ogden)
+#undef ROIFEM_HYPERELASTIC_ELEMENTS
 
 }  // namespace roifem::fem

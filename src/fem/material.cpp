@@ -6,6 +6,7 @@
 
 #include "common/did_you_mean.hpp"
 #include "common/errors.hpp"
+#include "fem/ogden.hpp"
 
 namespace {
 std::string str(double v) {
@@ -46,6 +47,20 @@ void Material::validate() const {
                      " Pa is too negative)");
   if (!(rho > 0)) throw InputError("material: density rho = " + str(rho) + " kg/m^3 must be positive");
   if (!(alpha >= 0)) throw InputError("material: damping alpha = " + str(alpha) + " 1/s must be >= 0");
+  validate_law();
+}
+
+void Material::validate_law() const {
+  if (model != MaterialModel::ogden) {
+    if (!ogden.empty())
+      throw InputError("material: Ogden terms (ogden_alpha) given to the " + std::string(material_model_name(model)) +
+                       " law; they are the ogden law's (model = \"ogden\")");
+    return;
+  }
+  const Ogden law = Ogden::of(*this);  // names a term outside its domain
+  if (std::abs(law.mu() - mu) > 1e-12 * mu)
+    throw InputError("material: the Ogden terms' mu_i sum to " + str(law.mu()) + " Pa, not to the shear modulus mu = " + str(mu) +
+                     " Pa");
 }
 
 Material material_preset(std::string_view name) {

@@ -5,8 +5,10 @@
 /// SI units: lambda, mu in Pa; rho in kg/m^3; alpha in 1/s.
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "fem/material_model.hpp"
+#include "fem/ogden_term.hpp"
 
 namespace roifem::fem {
 
@@ -17,13 +19,20 @@ struct Material {
   double alpha = 0;   ///< 1/s, C = alpha M
   /// The constitutive law (fem/material_model.hpp); lambda and mu are its small-strain moduli.
   MaterialModel model = MaterialModel::linear;
+  /// The Ogden law's terms (model ogden only): their mu_i sum to mu, the small-strain shear modulus.
+  std::vector<OgdenTerm> ogden;
 
   static Material from_young_poisson(double young, double poisson, double rho, double alpha);
   double young() const { return mu * (3 * lambda + 2 * mu) / (lambda + mu); }
   double poisson() const { return lambda / (2 * (lambda + mu)); }
 
-  /// Throws InputError naming the parameter: E <= 0, nu outside (-1, 0.5), rho <= 0, alpha < 0, NaN.
+  /// Throws InputError naming the parameter: E <= 0, nu outside (-1, 0.5), rho <= 0, alpha < 0, NaN;
+  /// for the Ogden law a term's mu_i <= 0 or alpha_i = 0, or terms whose mu_i do not sum to mu; Ogden
+  /// terms given to another law.
   void validate() const;
+
+ private:
+  void validate_law() const;
 };
 
 /// Named presets:

@@ -32,6 +32,8 @@ class MaterialMap {
   MaterialMap(const mesh::TetMesh& mesh, const Material& base, const std::vector<RegionMaterial>& regions);
 
   const Material& of(Index tet) const { return materials_[index_.empty() ? 0 : index_[static_cast<std::size_t>(tet)]]; }
+  /// Which of materials() tetrahedron `tet` takes.
+  std::size_t index_of(Index tet) const { return index_.empty() ? 0 : index_[static_cast<std::size_t>(tet)]; }
   const Material& base() const { return materials_.front(); }
   bool uniform() const { return index_.empty(); }
   double alpha() const { return materials_.front().alpha; }

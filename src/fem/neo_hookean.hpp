@@ -12,6 +12,8 @@
 /// formed from H without cancellation, so P and W keep their digits at any strain (the tests check
 /// them at 1e-9 against the linear law).
 /// W, P and A are finite only for J > 0; callers check J first (an inverted element).
+#include <limits>
+
 #include "common/types.hpp"
 #include "fem/material.hpp"
 
@@ -27,6 +29,8 @@ struct NeoHookean {
   static NeoHookean of(const Material& material);
   double mu() const { return 2 * C10; }
   double kappa() const { return 2 / D1; }
+  /// The same C10 with no volumetric part (kappa = 0), as the discrete gradient projects it.
+  NeoHookean deviatoric_part() const { return {.C10 = C10, .D1 = std::numeric_limits<double>::infinity()}; }
 
   /// J - 1 = det(I + H) - 1, without cancellation.
   static double J_minus_1(const Mat3& H);

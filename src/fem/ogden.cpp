@@ -3,6 +3,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <utility>
 
@@ -107,6 +108,16 @@ Ogden::Ogden(std::vector<OgdenTerm> terms, double D1) : terms_(std::move(terms))
   }
   if (!(D1_ > 0) || !std::isfinite(D1_))
     throw InputError("Ogden law: D1 = " + number_text(D1_) + " 1/Pa (it must be positive and finite)");
+}
+
+Ogden Ogden::of(const Material& material) {
+  return {material.ogden, 2 / (material.lambda + 2 * material.mu / 3)};
+}
+
+Ogden Ogden::deviatoric_part() const {
+  Ogden deviatoric = *this;
+  deviatoric.D1_ = std::numeric_limits<double>::infinity();
+  return deviatoric;
 }
 
 double Ogden::mu() const {

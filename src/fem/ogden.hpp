@@ -25,25 +25,26 @@
 
 #include "common/types.hpp"
 #include "fem/neo_hookean.hpp"
+#include "fem/ogden_term.hpp"
 
 namespace roifem::fem {
-
-struct OgdenTerm {
-  double mu = 0;     ///< Pa, > 0
-  double alpha = 0;  ///< dimensionless, != 0
-};
 
 class Ogden {
  public:
   /// InputError naming the term and the parameter outside its domain (mu_i <= 0, alpha_i = 0 or not
   /// finite, D1 <= 0, no term).
   Ogden(std::vector<OgdenTerm> terms, double D1);
+  /// A material's law (model ogden): its terms, D1 = 2/kappa with kappa = lambda + 2 mu / 3.
+  static Ogden of(const Material& material);
 
   const std::vector<OgdenTerm>& terms() const { return terms_; }
   double D1() const { return D1_; }
   /// The small-strain shear modulus, sum_i mu_i (Pa).
   double mu() const;
   double kappa() const { return 2 / D1_; }
+  /// The same terms with no volumetric part (kappa = 0): the deviatoric energy and stress, which
+  /// the discrete gradient projects (fem/discrete_gradient.hpp).
+  Ogden deviatoric_part() const;
 
   /// Strain energy density (J/m^3).
   double energy(const Mat3& H) const;

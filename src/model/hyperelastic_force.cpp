@@ -10,7 +10,8 @@ namespace roifem::model {
 
 namespace {
 
-bool follows_the_law(const fem::Material& m) { return m.model == fem::MaterialModel::neo_hookean; }
+/// Whether a material's elements take a hyperelastic law (fem/material_model.hpp's table).
+bool follows_the_law(const fem::Material& m) { return fem::material_model_info(m.model).hyperelastic; }
 
 /// The same regions with the neo-Hookean ones at zero moduli: the linear elements' K alone.
 fem::MaterialMap linear_part(const fem::MaterialMap& materials) {
@@ -20,10 +21,16 @@ fem::MaterialMap linear_part(const fem::MaterialMap& materials) {
   });
 }
 
-std::string description_of(std::size_t nonlinear, Index all, const char* where) {
-  return std::string("neo-hookean, ") +
-         (static_cast<Index>(nonlinear) == all ? std::string("every element")
-                                               : std::to_string(nonlinear) + " of " + std::to_string(all) + " elements") +
+/// "LAW, every element" or "LAW, n of N elements", the laws of `elements` named in the table's order.
+std::string description_of(const fem::MaterialMap& materials, const std::vector<Index>& elements, Index all, const char* where) {
+  std::string laws;
+  for (const auto& row : fem::material_model_table()) {
+    const bool taken = std::any_of(elements.begin(), elements.end(), [&](Index e) { return materials.of(e).model == row.model; });
+    if (taken) laws += (laws.empty() ? "" : " and ") + std::string(row.name);
+  }
+  const auto nonlinear = static_cast<Index>(elements.size());
+  return (laws.empty() ? std::string("hyperelastic") : laws) + ", " +
+         (nonlinear == all ? std::string("every element") : std::to_string(nonlinear) + " of " + std::to_string(all) + " elements") +
          where;
 }
 
@@ -242,7 +249,7 @@ std::shared_ptr<const InternalForce> law_on(std::shared_ptr<const fem::DofMap> d
   K_lin.makeCompressed();
   const std::vector<int> at = solvers::positions_in(K_at_rest, K_lin);
   for (std::size_t i = 0; i < at.size(); ++i) K_lin.valuePtr()[at[i]] -= K_at_rest.valuePtr()[i];
-  std::string description = description_of(elements.size(), mesh.num_tets(), where);
+  std::string description = description_of(materials, elements, mesh.num_tets(), where);
   auto law = std::make_shared<HyperelasticForce>(std::move(dofs), mesh, materials, std::move(elements), std::move(K_lin), false,
                                                  std::move(description), tools);
   if (K_split && !K_split->empty()) law->use_split_products(*K_split, K_at_rest);
@@ -285,7 +292,7 @@ std::shared_ptr<const InternalForce> hyperelastic_force(const mesh::TetMesh& mes
   const bool every = static_cast<Index>(elements.size()) == mesh.num_tets();
   // K_lin: the linear elements alone (the others at zero moduli), in the linear K's pattern.
   SparseMatrix K_lin = fem::stiffness(mesh, dofs, linear_part(materials), element);
-  std::string description = description_of(elements.size(), mesh.num_tets(), "");
+  std::string description = description_of(materials, elements, mesh.num_tets(), "");
   return std::make_shared<const HyperelasticForce>(std::shared_ptr<const fem::DofMap>(std::shared_ptr<void>(), &dofs), mesh,
                                                    materials, std::move(elements), std::move(K_lin), every,
                                                    std::move(description), tools);

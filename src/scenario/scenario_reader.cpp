@@ -97,6 +97,21 @@ class StrictTable {
     }
     return v;
   }
+  /// An array of one or more finite numbers.
+  std::optional<std::vector<double>> numbers(const std::string& key) {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    const toml::array* a = node->as_array();
+    if (!a || a->empty()) wrong(*node, key, "must be an array of one or more numbers");
+    std::vector<double> out;
+    for (const auto& item : *a) {
+      const auto x = item.value<double>();
+      if (!item.is_number() || !x) wrong(*node, key, "must be an array of one or more numbers");
+      if (!std::isfinite(*x)) wrong(*node, key, "must hold finite numbers");
+      out.push_back(*x);
+    }
+    return out;
+  }
   std::vector<std::string> strings(const std::string& key) {
     const toml::node* node = find(key);
     if (!node) return {};
@@ -147,8 +162,9 @@ class StrictTable {
 struct MaterialKeys {
   std::optional<std::string> preset, model;
   std::optional<double> lambda, mu, young, poisson, rho, alpha;
-  bool elastic() const { return lambda || mu || young || poisson; }
-  bool any() const { return elastic() || rho || alpha; }
+  std::optional<std::vector<double>> ogden_mu, ogden_alpha;  ///< the Ogden law's terms
+  bool elastic() const { return lambda || mu || young || poisson || ogden_mu; }
+  bool any() const { return elastic() || rho || alpha || ogden_alpha; }
 };
 
 MaterialKeys read_material_keys(StrictTable& t) {
@@ -159,8 +175,46 @@ MaterialKeys read_material_keys(StrictTable& t) {
                  .young = t.number("young_Pa"),
                  .poisson = t.number("poisson"),
                  .rho = t.number("rho_kg_m3"),
-                 .alpha = t.number("alpha_per_s")};
+                 .alpha = t.number("alpha_per_s"),
+                 .ogden_mu = t.numbers("ogden_mu_Pa"),
+                 .ogden_alpha = t.numbers("ogden_alpha")};
   return k;
+}
+
+/// The Ogden keys merged into `m` (its model already merged): ogden_alpha gives the terms, and
+/// ogden_mu_Pa their moduli, whose sum replaces mu (lambda, or poisson, still gives the bulk
+/// modulus); one term without ogden_mu_Pa takes mu. A term's mu_i or alpha_i outside its domain,
+/// and terms given to another law, are refused by Material::validate.
+void merge_ogden_terms(fem::Material& m, const MaterialKeys& k) {
+  if (k.ogden_mu && !k.ogden_alpha) throw InputError("gives ogden_mu_Pa without ogden_alpha (the Ogden law's exponents)");
+  if (!k.ogden_alpha) {
+    if (m.model != fem::MaterialModel::ogden) m.ogden.clear();
+    if (m.ogden.size() == 1) m.ogden[0].mu = m.mu;  // one term follows the shear modulus a region gives
+    return;
+  }
+  if (k.ogden_mu && k.ogden_mu->size() != k.ogden_alpha->size())
+    throw InputError("gives " + std::to_string(k.ogden_mu->size()) + " ogden_mu_Pa value(s) and " +
+                     std::to_string(k.ogden_alpha->size()) + " ogden_alpha value(s); give one of each per term");
+  if (!k.ogden_mu && k.ogden_alpha->size() > 1)
+    throw InputError("gives " + std::to_string(k.ogden_alpha->size()) +
+                     " ogden_alpha values and no ogden_mu_Pa; give each term's mu_i (only one term takes mu)");
+  m.ogden.clear();
+  double sum = 0;
+  for (std::size_t i = 0; i < k.ogden_alpha->size(); ++i) {
+    const double mu_i = k.ogden_mu ? (*k.ogden_mu)[i] : m.mu;
+    m.ogden.push_back({.mu = mu_i, .alpha = (*k.ogden_alpha)[i]});
+    sum += mu_i;
+  }
+  if (!k.ogden_mu) return;
+  if (k.mu || k.young)
+    throw InputError("gives ogden_mu_Pa and " + std::string(k.mu ? "mu_Pa" : "young_Pa") +
+                     "; the Ogden law's shear modulus is the sum of ogden_mu_Pa (give lambda_Pa or poisson for its bulk modulus)");
+  if (k.poisson && !k.young) {
+    const double nu = *k.poisson;
+    if (!(nu > -1.0 && nu < 0.5)) throw InputError("material: Poisson's ratio nu = " + number_text(nu) + " must lie in (-1, 0.5)");
+    m.lambda = 2 * sum * nu / (1 - 2 * nu);
+  }
+  m.mu = sum;
 }
 
 /// `start` with the keys given merged in (the elastic pair given, lambda/mu or E/nu, replaces the
@@ -168,11 +222,13 @@ MaterialKeys read_material_keys(StrictTable& t) {
 fem::Material merged_material(fem::Material m, const MaterialKeys& k) {
   if ((k.lambda || k.mu) && (k.young || k.poisson))
     throw InputError("gives both lambda_Pa/mu_Pa and young_Pa/poisson; give one pair");
-  if (k.lambda || k.mu) {
+  if (k.ogden_mu) {  // the shear modulus is their sum: lambda_Pa or poisson alone give the bulk (merge_ogden_terms)
+    m.lambda = k.lambda.value_or(m.lambda);
+  } else if (k.lambda || k.mu) {
     m.lambda = k.lambda.value_or(m.lambda);
     m.mu = k.mu.value_or(m.mu);
   }
-  if (k.young || k.poisson) {
+  if (!k.ogden_mu && (k.young || k.poisson)) {
     const fem::Material elastic =
         fem::Material::from_young_poisson(k.young.value_or(m.young()), k.poisson.value_or(m.poisson()), 1.0, 0.0);
     m.lambda = elastic.lambda;
@@ -181,6 +237,10 @@ fem::Material merged_material(fem::Material m, const MaterialKeys& k) {
   m.rho = k.rho.value_or(m.rho);
   m.alpha = k.alpha.value_or(m.alpha);
   if (k.model) m.model = fem::parse_material_model(*k.model);
+  merge_ogden_terms(m, k);
+  if (m.model == fem::MaterialModel::ogden && m.ogden.empty())
+    throw InputError("model = \"ogden\" needs ogden_alpha (the exponents; brain tissue about -20) and, for more than one "
+                     "term, ogden_mu_Pa");
   m.validate();
   return m;
 }
@@ -194,8 +254,10 @@ fem::Material read_material_values(StrictTable& t, std::string& name) {
   }
   name = "custom";
   if ((k.lambda || k.mu) && (k.young || k.poisson)) return merged_material({}, k);  // names the clash
-  if (!((k.lambda && k.mu) || (k.young && k.poisson)))
-    throw InputError(t.source() + ": [material] needs 'preset', or lambda_Pa and mu_Pa, or young_Pa and poisson");
+  if (!((k.lambda && k.mu) || (k.young && k.poisson) || (k.ogden_mu && (k.lambda || k.poisson))))
+    throw InputError(t.source() +
+                     ": [material] needs 'preset', or lambda_Pa and mu_Pa, or young_Pa and poisson (the Ogden law: ogden_mu_Pa "
+                     "with lambda_Pa or poisson)");
   if (!k.rho) throw InputError(t.source() + ": missing required key 'material.rho_kg_m3'");
   if (!k.alpha) throw InputError(t.source() + ": missing required key 'material.alpha_per_s'");
   return merged_material({}, k);
@@ -223,6 +285,7 @@ fem::RegionMaterial read_region_material(StrictTable& t, const fem::Material& ba
     // Keys left out keep the brain's ([material]); a preset starts from the preset instead.
     fem::Material start = k.preset ? fem::material_preset(*k.preset) : base;
     start.model = base.model;  // a region keeps the brain's law unless it names its own
+    start.ogden = base.ogden;
     region.material = merged_material(start, k);
   } catch (const InputError& e) {
     throw InputError(t.source() + ": [[material_region]] '" + region.set + "': " + e.what());
@@ -606,18 +669,38 @@ Scenario read_scenario(const std::filesystem::path& file) {
   return parse_scenario(read_scenario_text(file), file.string(), file.parent_path());
 }
 
+namespace {
+
+std::string toml_numbers(const std::vector<fem::OgdenTerm>& terms, double fem::OgdenTerm::*field) {
+  std::string out = "[";
+  for (std::size_t i = 0; i < terms.size(); ++i) out += (i ? ", " : "") + toml_number(terms[i].*field);
+  return out + "]";
+}
+
+/// A material's keys, each line after a newline, as the reader reads them back to the same
+/// material (the model's line where `with_model`): one Ogden term takes mu_Pa; more give
+/// ogden_mu_Pa in its place.
+std::string material_toml(const fem::Material& m, bool with_model) {
+  std::ostringstream o;
+  o << "\nlambda_Pa = " << toml_number(m.lambda);
+  if (m.ogden.size() > 1)
+    o << "\nogden_mu_Pa = " << toml_numbers(m.ogden, &fem::OgdenTerm::mu);
+  else
+    o << "\nmu_Pa = " << toml_number(m.mu);
+  o << "\nrho_kg_m3 = " << toml_number(m.rho) << "\nalpha_per_s = " << toml_number(m.alpha) << "\n";
+  if (with_model) o << "model = \"" << fem::material_model_name(m.model) << "\"\n";
+  if (!m.ogden.empty()) o << "ogden_alpha = " << toml_numbers(m.ogden, &fem::OgdenTerm::alpha) << "\n";
+  return o.str();
+}
+
+}  // namespace
+
 std::string Scenario::resolved_toml() const {
   std::ostringstream o;
   o << "mesh = \"" << mesh.string() << "\"\nelement = \"" << fem::element_name(element) << "\"\n\n[material]  # " << material_name
-    << "\nlambda_Pa = " << toml_number(material.lambda) << "\nmu_Pa = " << toml_number(material.mu)
-    << "\nrho_kg_m3 = " << toml_number(material.rho) << "\nalpha_per_s = " << toml_number(material.alpha) << "\n";
-  if (material.model != fem::MaterialModel::linear) o << "model = \"" << fem::material_model_name(material.model) << "\"\n";
+    << material_toml(material, material.model != fem::MaterialModel::linear);
   for (const auto& r : material_regions)
-    o << "\n[[material_region]]  # " << r.name << "\nset = \"" << r.set << "\"\nlambda_Pa = " << toml_number(r.material.lambda)
-      << "\nmu_Pa = " << toml_number(r.material.mu) << "\nrho_kg_m3 = " << toml_number(r.material.rho)
-      << "\nalpha_per_s = " << toml_number(r.material.alpha) << "\n"
-      << (r.material.model != material.model ? "model = \"" + std::string(fem::material_model_name(r.material.model)) + "\"\n"
-                                             : std::string());
+    o << "\n[[material_region]]  # " << r.name << "\nset = \"" << r.set << "\"" << material_toml(r.material, r.material.model != material.model);
   o << "\n[boundary]\nfixed = [";
   for (std::size_t i = 0; i < fixed_sets.size(); ++i) o << (i ? ", " : "") << '"' << fixed_sets[i] << '"';
   o << "]\n";

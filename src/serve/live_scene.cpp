@@ -168,6 +168,12 @@ LiveScene::LiveScene(const scenario::Scenario& scenario, double rate_hz, double 
     throw InputError(format("serve: %d Newton iterations a tick within %g (1 to 1,000 iterations, a tolerance >= 0)",
                             newton.iterations, newton.tolerance));
   if (scenario.element != fem::Element::tet4) throw InputError(scenario.file.string() + ": serve takes tet4 elements only");
+  const auto ogden = [](const fem::Material& m) { return m.model == fem::MaterialModel::ogden; };
+  if (ogden(scenario.material) || std::any_of(scenario.material_regions.begin(), scenario.material_regions.end(),
+                                              [&](const fem::RegionMaterial& r) { return ogden(r.material); }))
+    throw InputError(scenario.file.string() +
+                     ": serve's models are linear and neo-Hookean, and this scenario's [material] is Ogden; `roifem run` "
+                     "runs it");
   if (!scenario_.tools.empty() || !scenario_.cuts.empty())
     log << "serve: the scenario's " << scenario_.tools.size() << " [[tool]](s) and " << scenario_.cuts.size()
         << " [[cut]](s) are left out: the page's hand is the tool\n";

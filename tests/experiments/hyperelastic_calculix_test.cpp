@@ -18,6 +18,7 @@
 #include "fem/hyperelastic_static.hpp"
 #include "fem/loads.hpp"
 #include "fem/static_solve.hpp"
+#include "mesh/box_mesh.hpp"
 #include "mesh/gmsh_reader.hpp"
 #include "mesh/quadratic_mesh.hpp"
 #include "test_support.hpp"
@@ -88,6 +89,61 @@ TEST_F(NeoHookeanAgainstCalculix, PaperBrainWithC3D4) {
 
 TEST_F(NeoHookeanAgainstCalculix, PaperBrainWithC3D10) {
   compare_with_calculix(mesh::with_midside_nodes(mesh::read_mesh(ROIFEM_MESH_DIR "/brain-800.msh")), "C3D10", {0.1, 0.2, 0.35});
+}
+
+/// A 10 mm cube of brain tissue (mu = 1 kPa, nu = 0.45) as one Ogden term with alpha = -20, its
+/// base held, pressed down or pulled up by `force` N on its top face, against CalculiX's
+/// *HYPERELASTIC, OGDEN, N=1 on the same nodes and elements: max |u - u_ccx| / max |u_ccx| at each
+/// fraction, and the largest displacement at full load (m).
+std::pair<double, double> ogden_cube_against_calculix(bool quadratic, double force, const char* name) {
+  const mesh::TetMesh linear = mesh::unstructured_box_mesh(0.01, 0.01, 0.01, 0.0025);
+  const mesh::TetMesh mesh = quadratic ? mesh::with_midside_nodes(linear) : linear;
+  fem::Material material = fem::material_preset("brain");
+  material.model = fem::MaterialModel::ogden;
+  material.ogden = {{material.mu, -20}};
+  material.validate();
+  const Vector forces = fem::set_force(mesh, "z1", Vec3(0, 0, force));
+  const std::vector<double> fractions{0.1, 0.5, 1.0};
+  CalculixProblem problem{.mesh = &mesh,
+                          .material = material,
+                          .fixed_nodes = mesh.set("z0").nodes,
+                          .forces = forces,
+                          .newton_tolerance = 1e-9,
+                          .step_per_fraction = true};
+  std::ostringstream log;
+  const test::TempDir scratch;
+  const auto ccx = solve_with_calculix(problem, fractions, true, scratch / (std::string("ogden_") + name), log);
+  EXPECT_EQ(ccx.size(), fractions.size()) << log.str();
+  if (ccx.size() != fractions.size()) return {1, 0};
+  fem::Constraints constraints(mesh.num_nodes());
+  constraints.fix_set(mesh, "z0");
+  const fem::DofMap dofs(constraints);
+  const fem::MaterialMap materials(material);
+  const fem::HyperelasticAssembler assembler(mesh, dofs, materials);
+  const auto ours = fem::solve_hyperelastic_static(assembler, dofs, dofs.restrict_to_free(forces), fractions);
+  double worst = 0;
+  for (std::size_t k = 0; k < fractions.size(); ++k) {
+    const Vector u = dofs.expand(ours[k].u_free);
+    const double scale = max_nodal_norm(ccx[k].u);
+    const double difference = max_nodal_norm(u - ccx[k].u) / scale;
+    std::printf("Ogden (alpha = -20) cube, %s, %3.0f%% load: max |u| %.4f mm; max |u - u_ccx| / max |u_ccx| = %.2e\n", name,
+                100 * fractions[k], scale / mm, difference);
+    worst = std::max(worst, difference);
+  }
+  return {worst, max_nodal_norm(ccx.back().u)};
+}
+
+TEST_F(NeoHookeanAgainstCalculix, OgdenCubeInCompressionAndTensionWithC3D4AndC3D10) {
+  // 80 mN on 1 cm^2: 800 Pa, about the cortex's stress at 10% compression (Budday et al. 2017).
+  const double force = 0.08;
+  const auto [c4, pressed4] = ogden_cube_against_calculix(false, -force, "C3D4 pressed");
+  const auto [t4, pulled4] = ogden_cube_against_calculix(false, force, "C3D4 pulled");
+  const auto [c10, pressed10] = ogden_cube_against_calculix(true, -force, "C3D10 pressed");
+  EXPECT_LT(c4, 1e-5);
+  EXPECT_LT(t4, 1e-5);
+  EXPECT_LT(c10, 1e-5);
+  // alpha = -20: the same force moves the top much less pressed than pulled.
+  EXPECT_LT(pressed4, 0.5 * pulled4);
 }
 
 }  // namespace

@@ -352,5 +352,36 @@ TEST(ScenarioReader, AMaterialRegionKeepsTheBrainsLawUnlessItNamesItsOwn) {
             fem::MaterialModel::linear);
 }
 
+TEST(ScenarioReader, OgdenTermsTakeTheShearModulusAndReadBackFromTheResolvedText) {
+  // One term: mu_1 is the material's mu (E = 3000, nu = 0.45).
+  auto with_material = [](const std::string& keys) {
+    std::string text = valid;
+    const std::string old = "alpha_per_s = 2.5\n";
+    return text.replace(text.find(old), old.size(), old + keys);
+  };
+  const Scenario one = parse_scenario(with_material("model = \"ogden\"\nogden_alpha = [-20.0]\n"), "s.toml", "/data");
+  ASSERT_EQ(one.material.ogden.size(), 1u);
+  EXPECT_EQ(one.material.ogden[0].mu, one.material.mu);
+  EXPECT_EQ(one.material.ogden[0].alpha, -20.0);
+  // Two terms with poisson: their sum is mu, and lambda = 2 mu nu / (1 - 2 nu).
+  std::string two_terms = with_material("model = \"ogden\"\nogden_alpha = [-20.0, 4.0]\nogden_mu_Pa = [700.0, 300.0]\n");
+  two_terms.replace(two_terms.find("young_Pa = 3000.0\n"), 18, "");
+  const Scenario two = parse_scenario(two_terms, "s.toml", "/data");
+  ASSERT_EQ(two.material.ogden.size(), 2u);
+  EXPECT_EQ(two.material.mu, 1000.0);
+  EXPECT_NEAR(two.material.lambda, 2 * 1000.0 * 0.45 / 0.1, 1e-9);
+  for (const Scenario* s : {&one, &two}) {
+    const Scenario again = parse_scenario(s->resolved_toml(), "resolved.toml", "/elsewhere");
+    EXPECT_EQ(again.material.model, fem::MaterialModel::ogden);
+    EXPECT_EQ(again.material.lambda, s->material.lambda);
+    EXPECT_EQ(again.material.mu, s->material.mu);
+    ASSERT_EQ(again.material.ogden.size(), s->material.ogden.size());
+    for (std::size_t i = 0; i < s->material.ogden.size(); ++i) {
+      EXPECT_EQ(again.material.ogden[i].mu, s->material.ogden[i].mu);
+      EXPECT_EQ(again.material.ogden[i].alpha, s->material.ogden[i].alpha);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace roifem::scenario

@@ -66,7 +66,9 @@ TEST(SerialOpenMpScope, RegionsRunOnOneThreadInsideAndAsBeforeAfter) {
     const SerialOpenMpScope unchanged(false);
     EXPECT_EQ(omp_get_max_active_levels(), levels);
   }
-  if (levels > 0) EXPECT_EQ(threads_in_a_region_of_four(), 4);
+  if (levels > 0) {
+    EXPECT_EQ(threads_in_a_region_of_four(), 4);
+  }
 }
 
 }  // namespace
