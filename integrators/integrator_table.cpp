@@ -54,7 +54,8 @@ std::string integrator_name_list() {
 
 std::string integrator_table_text() {
   std::string text =
-      "Integrators (scenario [time] integrator, --integrators; 'nonlinear': takes a hyperelastic [material] model too (neo-hookean, ogden)):\n";
+      "Integrators (scenario [time] integrator, --integrators; 'nonlinear': takes a hyperelastic [material] model too "
+      "(neo-hookean, ogden)):\n";
   for (const auto& info : integrator_table()) {
     std::string steps = info.fixed_step && info.adaptive ? "fixed or adaptive" : info.fixed_step ? "fixed step" : "adaptive";
     char line[160];

@@ -98,8 +98,9 @@ void add_paper_command(CLI::App& app, Action& action) {
       for (const auto& label : *reductions) o->reductions.push_back(condensation::parse_reduction(label));
       const fem::MaterialModel model = fem::parse_material_model(*law);
       if (model == fem::MaterialModel::ogden)
-        throw InputError("--material-model ogden: the paper's experiment takes 'linear' or 'neo-hookean'; run an Ogden "
-                         "scenario by `roifem run` (its [material] model = \"ogden\")");
+        throw InputError(
+            "--material-model ogden: the paper's experiment takes 'linear' or 'neo-hookean'; run an Ogden "
+            "scenario by `roifem run` (its [material] model = \"ogden\")");
       if (model == fem::MaterialModel::neo_hookean) {
         std::vector<experiments::PaperDrive> drives{experiments::PaperDrive::forces, experiments::PaperDrive::spatulas};
         if (drive_named) drives = {o->drive};

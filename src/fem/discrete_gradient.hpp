@@ -1,11 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-/// A discrete gradient of a hyperelastic law (fem/hyperelastic_law.hpp: neo-Hookean, Ogden) (O. Gonzalez, "Exact energy and momentum conserving
-/// algorithms for general models in nonlinear elasticity", CMAME 190, 2000): the stress between two
-/// states a and b whose work on the strain increment is exactly the energy increment,
-/// S_alg : dE = W(b) - W(a) for any two states, dE = E_b - E_a. The law's two parts, its
-/// deviatoric energy (neo-Hookean's C10 (I1bar - 3), Ogden's sum over its terms) and the volumetric
-/// (J - 1)^2 / D1 that both share, take one each:
+/// A discrete gradient of a hyperelastic law (fem/hyperelastic_law.hpp: neo-Hookean, Ogden) (O. Gonzalez, "Exact energy and
+/// momentum conserving algorithms for general models in nonlinear elasticity", CMAME 190, 2000): the stress between two states a
+/// and b whose work on the strain increment is exactly the energy increment, S_alg : dE = W(b) - W(a) for any two states, dE =
+/// E_b - E_a. The law's two parts, its deviatoric energy (neo-Hookean's C10 (I1bar - 3), Ogden's sum over its terms) and the
+/// volumetric (J - 1)^2 / D1 that both share, take one each:
 ///  - the deviatoric part, Gonzalez's projection:
 ///      S_dev,alg = S_dev(E_mid) + [W_dev(b) - W_dev(a) - S_dev(E_mid) : dE] dE / (dE : dE),
 ///    E_mid = (E_a + E_b)/2;

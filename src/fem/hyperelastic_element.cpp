@@ -29,8 +29,7 @@ void add_tangent(const Mat9& A, const Eigen::Matrix<double, Nodes, 3>& g, double
 /// The quadrature over `points` points, each with its gradients (Nodes x 3) and weight.
 template <int Nodes, int Points, class Law>
 HyperelasticResponse<Nodes> integrate_element(const std::array<Eigen::Matrix<double, Nodes, 3>, Points>& grads, double weight,
-                                              const Law& law, const Eigen::Matrix<double, 3 * Nodes, 1>& u_e,
-                                              Evaluate what) {
+                                              const Law& law, const Eigen::Matrix<double, 3 * Nodes, 1>& u_e, Evaluate what) {
   HyperelasticResponse<Nodes> r;
   // The displacement gradients H = F - I first (the law takes H: neo_hookean.hpp), so that an
   // inverted element computes nothing.
@@ -187,15 +186,15 @@ HyperelasticResponse<10> tet10_hyperelastic(const Tet10Geometry& g, const Law& l
 }
 
 // Each law's elements, compiled here once.
-#define ROIFEM_HYPERELASTIC_ELEMENTS(Law)                                                                                        \
-  template HyperelasticResponse<4> tet4_hyperelastic(const Tet4Geometry&, const Law&, const Eigen::Matrix<double, 12, 1>&,       \
-                                                     Evaluate);                                                                  \
-  template HyperelasticResponse<10> tet10_hyperelastic(const Tet10Geometry&, const Law&, const Eigen::Matrix<double, 30, 1>&,    \
-                                                       Evaluate);                                                                \
-  template HyperelasticResponse<4> tet4_discrete_gradient(const Tet4Geometry&, const Law&, const Eigen::Matrix<double, 12, 1>&,  \
-                                                          const Eigen::Matrix<double, 12, 1>&, Evaluate);                        \
-  template HyperelasticResponse<10> tet10_discrete_gradient(const Tet10Geometry&, const Law&, const Eigen::Matrix<double, 30, 1>&, \
-                                                            const Eigen::Matrix<double, 30, 1>&, Evaluate);
+#define ROIFEM_HYPERELASTIC_ELEMENTS(Law)                                                                                       \
+  template HyperelasticResponse<4> tet4_hyperelastic(const Tet4Geometry&, const Law&, const Eigen::Matrix<double, 12, 1>&,      \
+                                                     Evaluate);                                                                 \
+  template HyperelasticResponse<10> tet10_hyperelastic(const Tet10Geometry&, const Law&, const Eigen::Matrix<double, 30, 1>&,   \
+                                                       Evaluate);                                                               \
+  template HyperelasticResponse<4> tet4_discrete_gradient(const Tet4Geometry&, const Law&, const Eigen::Matrix<double, 12, 1>&, \
+                                                          const Eigen::Matrix<double, 12, 1>&, Evaluate);                       \
+  template HyperelasticResponse<10> tet10_discrete_gradient(                                                                    \
+      const Tet10Geometry&, const Law&, const Eigen::Matrix<double, 30, 1>&, const Eigen::Matrix<double, 30, 1>&, Evaluate);
 ROIFEM_HYPERELASTIC_ELEMENTS(NeoHookean)
 ROIFEM_HYPERELASTIC_ELEMENTS(Ogden)
 #undef ROIFEM_HYPERELASTIC_ELEMENTS

@@ -57,12 +57,10 @@ HyperelasticResponse<10> tet10_hyperelastic(const Tet10Geometry& g, const Law& l
 /// states (C_mid, a mean of two positive definite C, is one too); the tangent, when asked for, is
 /// df/du_b (not symmetric: fem/discrete_gradient.hpp's D, and dF_mid = dF_b/2 against dE_b's F_b).
 template <class Law>
-HyperelasticResponse<4> tet4_discrete_gradient(const Tet4Geometry& g, const Law& law,
-                                               const Eigen::Matrix<double, 12, 1>& u_a, const Eigen::Matrix<double, 12, 1>& u_b,
-                                               Evaluate what = Evaluate::force);
+HyperelasticResponse<4> tet4_discrete_gradient(const Tet4Geometry& g, const Law& law, const Eigen::Matrix<double, 12, 1>& u_a,
+                                               const Eigen::Matrix<double, 12, 1>& u_b, Evaluate what = Evaluate::force);
 template <class Law>
-HyperelasticResponse<10> tet10_discrete_gradient(const Tet10Geometry& g, const Law& law,
-                                                 const Eigen::Matrix<double, 30, 1>& u_a, const Eigen::Matrix<double, 30, 1>& u_b,
-                                                 Evaluate what = Evaluate::force);
+HyperelasticResponse<10> tet10_discrete_gradient(const Tet10Geometry& g, const Law& law, const Eigen::Matrix<double, 30, 1>& u_a,
+                                                 const Eigen::Matrix<double, 30, 1>& u_b, Evaluate what = Evaluate::force);
 
 }  // namespace roifem::fem

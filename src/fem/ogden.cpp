@@ -110,9 +110,7 @@ Ogden::Ogden(std::vector<OgdenTerm> terms, double D1) : terms_(std::move(terms))
     throw InputError("Ogden law: D1 = " + number_text(D1_) + " 1/Pa (it must be positive and finite)");
 }
 
-Ogden Ogden::of(const Material& material) {
-  return {material.ogden, 2 / (material.lambda + 2 * material.mu / 3)};
-}
+Ogden Ogden::of(const Material& material) { return {material.ogden, 2 / (material.lambda + 2 * material.mu / 3)}; }
 
 Ogden Ogden::deviatoric_part() const {
   Ogden deviatoric = *this;

@@ -30,7 +30,8 @@ std::string description_of(const fem::MaterialMap& materials, const std::vector<
   }
   const auto nonlinear = static_cast<Index>(elements.size());
   return (laws.empty() ? std::string("hyperelastic") : laws) + ", " +
-         (nonlinear == all ? std::string("every element") : std::to_string(nonlinear) + " of " + std::to_string(all) + " elements") +
+         (nonlinear == all ? std::string("every element")
+                           : std::to_string(nonlinear) + " of " + std::to_string(all) + " elements") +
          where;
 }
 

@@ -207,11 +207,13 @@ void merge_ogden_terms(fem::Material& m, const MaterialKeys& k) {
   }
   if (!k.ogden_mu) return;
   if (k.mu || k.young)
-    throw InputError("gives ogden_mu_Pa and " + std::string(k.mu ? "mu_Pa" : "young_Pa") +
-                     "; the Ogden law's shear modulus is the sum of ogden_mu_Pa (give lambda_Pa or poisson for its bulk modulus)");
+    throw InputError(
+        "gives ogden_mu_Pa and " + std::string(k.mu ? "mu_Pa" : "young_Pa") +
+        "; the Ogden law's shear modulus is the sum of ogden_mu_Pa (give lambda_Pa or poisson for its bulk modulus)");
   if (k.poisson && !k.young) {
     const double nu = *k.poisson;
-    if (!(nu > -1.0 && nu < 0.5)) throw InputError("material: Poisson's ratio nu = " + number_text(nu) + " must lie in (-1, 0.5)");
+    if (!(nu > -1.0 && nu < 0.5))
+      throw InputError("material: Poisson's ratio nu = " + number_text(nu) + " must lie in (-1, 0.5)");
     m.lambda = 2 * sum * nu / (1 - 2 * nu);
   }
   m.mu = sum;
@@ -239,8 +241,9 @@ fem::Material merged_material(fem::Material m, const MaterialKeys& k) {
   if (k.model) m.model = fem::parse_material_model(*k.model);
   merge_ogden_terms(m, k);
   if (m.model == fem::MaterialModel::ogden && m.ogden.empty())
-    throw InputError("model = \"ogden\" needs ogden_alpha (the exponents; brain tissue about -20) and, for more than one "
-                     "term, ogden_mu_Pa");
+    throw InputError(
+        "model = \"ogden\" needs ogden_alpha (the exponents; brain tissue about -20) and, for more than one "
+        "term, ogden_mu_Pa");
   m.validate();
   return m;
 }
@@ -700,7 +703,8 @@ std::string Scenario::resolved_toml() const {
   o << "mesh = \"" << mesh.string() << "\"\nelement = \"" << fem::element_name(element) << "\"\n\n[material]  # " << material_name
     << material_toml(material, material.model != fem::MaterialModel::linear);
   for (const auto& r : material_regions)
-    o << "\n[[material_region]]  # " << r.name << "\nset = \"" << r.set << "\"" << material_toml(r.material, r.material.model != material.model);
+    o << "\n[[material_region]]  # " << r.name << "\nset = \"" << r.set << "\""
+      << material_toml(r.material, r.material.model != material.model);
   o << "\n[boundary]\nfixed = [";
   for (std::size_t i = 0; i < fixed_sets.size(); ++i) o << (i ? ", " : "") << '"' << fixed_sets[i] << '"';
   o << "]\n";

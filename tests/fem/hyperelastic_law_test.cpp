@@ -76,12 +76,10 @@ TEST(OgdenElement, Tet4AndTet10ForceAndTangentAreTheEnergysDerivatives) {
   const Tet10Geometry g10 = tet10_geometry(x[0], x[1], x[2], x[3]);
   for (const Material* m : {&one_term_tissue, &two_term_tissue}) {
     const Ogden law = Ogden::of(*m);
-    const auto [f4, K4] = derivative_errors<4>(draw_displacements<4>(3, 0.1), [&](const auto& u, Evaluate what) {
-      return tet4_hyperelastic(g4, law, u, what);
-    });
-    const auto [f10, K10] = derivative_errors<10>(draw_displacements<10>(4, 0.05), [&](const auto& u, Evaluate what) {
-      return tet10_hyperelastic(g10, law, u, what);
-    });
+    const auto [f4, K4] = derivative_errors<4>(draw_displacements<4>(3, 0.1),
+                                               [&](const auto& u, Evaluate what) { return tet4_hyperelastic(g4, law, u, what); });
+    const auto [f10, K10] = derivative_errors<10>(
+        draw_displacements<10>(4, 0.05), [&](const auto& u, Evaluate what) { return tet10_hyperelastic(g10, law, u, what); });
     std::printf("Ogden, %zu term(s): tet4 |f - dE/du| = %.1e, |K - df/du| = %.1e; tet10 %.1e, %.1e (relative)\n",
                 law.terms().size(), f4, K4, f10, K10);
     EXPECT_LT(f4, 1e-6);
@@ -143,7 +141,8 @@ TEST(OgdenDiscreteGradient, ItsWorkIsTheEnergyIncrementAndItsTangentTheDerivativ
       if (step < 1e-6) continue;  // S_alg = S(E_mid) there: its derivative is the law's, checked by OgdenTest
       const Mat3 dH = law_test_gradient(rng, 1.0);
       const double h = 1e-4 * step;
-      const Mat3 fd = (discrete_gradient_stress(law, H_a, H_b + h * dH) - discrete_gradient_stress(law, H_a, H_b - h * dH)) / (2 * h);
+      const Mat3 fd =
+          (discrete_gradient_stress(law, H_a, H_b + h * dH) - discrete_gradient_stress(law, H_a, H_b - h * dH)) / (2 * h);
       const Mat3 F_b = Mat3::Identity() + H_b;
       const Mat3 dE_b = 0.5 * (F_b.transpose() * dH + dH.transpose() * F_b);
       const Eigen::Matrix<double, 9, 1> dS = D * Eigen::Map<const Eigen::Matrix<double, 9, 1>>(dE_b.data());
