@@ -168,7 +168,7 @@ mesh::TetMesh jittered_box(bool quadratic) {
   return quadratic ? mesh::with_midside_nodes(linear) : linear;
 }
 
-TEST(OgdenStatic, CompressionAndShearAreReproducedExactlyInsideADistortedMesh) {
+TEST(OgdenAssembly, StaticCompressionAndShearAreReproducedExactlyInsideADistortedMesh) {
   Mat3 compression = Mat3::Identity();
   compression(0, 0) = 0.85;
   Mat3 shear = Mat3::Identity();
