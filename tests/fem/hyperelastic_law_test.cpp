@@ -22,6 +22,7 @@
 #include "mesh/box_mesh.hpp"
 #include "mesh/mesh_checks.hpp"
 #include "mesh/quadratic_mesh.hpp"
+#include "test_support.hpp"
 
 namespace roifem::fem {
 namespace {
@@ -155,16 +156,9 @@ TEST(OgdenDiscreteGradient, ItsWorkIsTheEnergyIncrementAndItsTangentTheDerivativ
   }
 }
 
-/// An unstructured box with its interior nodes jittered.
+/// The distorted box (tests/test_support.hpp), linear or with midside nodes.
 mesh::TetMesh jittered_box(bool quadratic) {
-  mesh::TetMesh linear = mesh::unstructured_box_mesh(1.0, 0.8, 0.6, 0.25);
-  const std::vector<int> boundary = mesh::boundary_nodes(linear);
-  std::mt19937 rng(43);
-  std::uniform_real_distribution<double> jitter(-0.04, 0.04);
-  for (int n = 0; n < linear.num_nodes(); ++n)
-    if (!std::binary_search(boundary.begin(), boundary.end(), n))
-      linear.nodes.col(n) += Vec3(jitter(rng), jitter(rng), jitter(rng));
-  mesh::check_mesh(linear);
+  const mesh::TetMesh linear = test::distorted_box(0.25, 43);
   return quadratic ? mesh::with_midside_nodes(linear) : linear;
 }
 

@@ -22,6 +22,7 @@
 #include "mesh/box_mesh.hpp"
 #include "mesh/mesh_checks.hpp"
 #include "mesh/quadratic_mesh.hpp"
+#include "test_support.hpp"
 
 namespace roifem::fem {
 namespace {
@@ -306,16 +307,9 @@ TEST(HyperelasticElement, TheEightLaneExcessKernelIsTheElementByElementOneFromTi
   EXPECT_GT(largest_J, 4.0);
 }
 
-/// An unstructured box with its interior nodes jittered, and its boundary nodes.
+/// The distorted box (tests/test_support.hpp), linear or with midside nodes.
 mesh::TetMesh distorted_box(bool quadratic) {
-  mesh::TetMesh linear = mesh::unstructured_box_mesh(1.0, 0.8, 0.6, 0.25);
-  const std::vector<int> boundary = mesh::boundary_nodes(linear);
-  std::mt19937 rng(42);
-  std::uniform_real_distribution<double> jitter(-0.04, 0.04);
-  for (int n = 0; n < linear.num_nodes(); ++n)
-    if (!std::binary_search(boundary.begin(), boundary.end(), n))
-      linear.nodes.col(n) += Vec3(jitter(rng), jitter(rng), jitter(rng));
-  mesh::check_mesh(linear);
+  const mesh::TetMesh linear = test::distorted_box(0.25, 42);
   return quadratic ? mesh::with_midside_nodes(linear) : linear;
 }
 

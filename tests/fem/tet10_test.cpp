@@ -16,6 +16,7 @@
 #include "mesh/box_mesh.hpp"
 #include "mesh/mesh_checks.hpp"
 #include "mesh/quadratic_mesh.hpp"
+#include "test_support.hpp"
 
 namespace roifem::fem {
 namespace {
@@ -139,14 +140,7 @@ double bending_error(const mesh::TetMesh& mesh, const Material& material) {
 }
 
 TEST(Tet10, PassesTheQuadraticPatchTestOnADistortedMesh) {
-  mesh::TetMesh linear = mesh::unstructured_box_mesh(1.0, 0.8, 0.6, 0.2);
-  const std::vector<int> boundary = mesh::boundary_nodes(linear);
-  std::mt19937 rng(42);
-  std::uniform_real_distribution<double> jitter(-0.04, 0.04);
-  for (int n = 0; n < linear.num_nodes(); ++n)
-    if (!std::binary_search(boundary.begin(), boundary.end(), n))
-      linear.nodes.col(n) += Vec3(jitter(rng), jitter(rng), jitter(rng));
-  mesh::check_mesh(linear);
+  const mesh::TetMesh linear = test::distorted_box(0.2, 42);
   const mesh::TetMesh quadratic = mesh::with_midside_nodes(linear);
   for (const double nu : {0.3, 0.4999}) {
     const Material material = Material::from_young_poisson(3000, nu, 1000, 0);
