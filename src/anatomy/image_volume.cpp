@@ -3,6 +3,7 @@
 
 #include <nifti2_io.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -34,19 +35,29 @@ Eigen::Matrix4d affine(const nifti_dmat44& m) {
   return a;
 }
 
-/// InputError when the voxel data the header claims (nvox x nbyper bytes) cannot be in the file:
-/// beyond its end, or for a .gz beyond deflate's largest ratio (1032:1). libnifti allocates the
-/// claim before it reads: a corrupt header would ask for terabytes.
+/// InputError when the voxel data the header claims (nvox x nbyper bytes) cannot be in the file
+/// libnifti reads it from: the .nii itself, or the .img beside a .hdr (for a two-file header in a
+/// .nii, the .nii again), from vox_offset on, or its last bytes where vox_offset is negative; for a
+/// .gz, deflate's largest ratio (1032:1) bounds it. libnifti allocates the claim before it reads: a
+/// corrupt header would ask for terabytes.
 void check_data_fits_the_file(const std::string& name, const nifti_image& header) {
-  const auto file_bytes = static_cast<double>(std::filesystem::file_size(name));
-  const bool compressed = nifti_is_gzfile(name.c_str()) != 0;
+  const std::unique_ptr<char, decltype(&std::free)> found(
+      header.iname ? nifti_findimgname(header.iname, header.nifti_type) : nullptr, &std::free);
+  if (!found)
+    throw InputError(name + ": the header reads, but the file of its voxel data (" +
+                     std::string(header.iname ? header.iname : "unnamed") + ", or a .img or .nii beside it) is not there");
+  const std::string data_file = found.get();
+  const auto file_bytes = static_cast<double>(std::filesystem::file_size(data_file));
+  const bool compressed = nifti_is_gzfile(data_file.c_str()) != 0;
+  const double offset = static_cast<double>(std::max<std::int64_t>(header.iname_offset, 0));
   const double claimed = static_cast<double>(header.nvox) * static_cast<double>(header.nbyper);
-  const double room = compressed ? 1032.0 * file_bytes : file_bytes - static_cast<double>(header.iname_offset);
+  const double room = compressed ? 1032.0 * file_bytes : file_bytes - offset;
   if (header.nvox >= 0 && header.nbyper > 0 && claimed <= room) return;
+  const std::string file = data_file == name ? "the file" : "its data file " + data_file;
   throw InputError(name + ": the header claims " + std::to_string(header.nvox) + " voxels of " + std::to_string(header.nbyper) +
-                   " bytes (" + number_text(claimed) + " bytes), and the file, of " + number_text(file_bytes) + " bytes" +
+                   " bytes (" + number_text(claimed) + " bytes), and " + file + ", of " + number_text(file_bytes) + " bytes" +
                    (compressed ? " compressed, cannot hold them (a truncated file, or a corrupt header)"
-                               : " with the data at byte " + std::to_string(header.iname_offset) +
+                               : " with the data at byte " + number_text(offset) +
                                      ", does not hold them (a truncated file, or a corrupt header)"));
 }
 

@@ -53,8 +53,7 @@ TEST(NiftiReader, ReadsValuesAndTheSformAffine) {
 TEST(NiftiReader, NamesAMissingATruncatedAndA2dImage) {
   EXPECT_INPUT_ERROR(read_nifti(scratch("none.nii")), "none.nii: no such image file");
   const auto truncated = scratch("truncated.nii");
-  test::write_nifti(
-      truncated, {8, 8, 8}, 1.0, {0, 0, 0}, [](int, int, int) { return 1.0f; }, 352 + 100);
+  test::write_nifti(truncated, {8, 8, 8}, 1.0, {0, 0, 0}, [](int, int, int) { return 1.0f; }, {.truncate_to = 352 + 100});
   EXPECT_INPUT_ERROR(read_nifti(truncated),
                      "truncated.nii: the header claims 512 voxels of 4 bytes \\(2048 bytes\\), and the file, of 452 bytes "
                      "with the data at byte 352, does not hold them \\(a truncated file");
@@ -63,17 +62,52 @@ TEST(NiftiReader, NamesAMissingATruncatedAndA2dImage) {
   EXPECT_INPUT_ERROR(read_nifti(flat), "slice.nii: a 8 x 8 x 1 image; .*a 2D slice");
 }
 
+TEST(NiftiReader, BoundsTheDataOfATwoFileHeaderWithANegativeOffsetByTheFile) {
+  // A two-file header ("ni1") in a .nii: libnifti reads the voxels from the .nii itself, and a
+  // negative vox_offset means "the last bytes of the file". Found by libFuzzer: such a header
+  // claiming 2 GiB passed the bound (the file's size less a negative offset) and libnifti allocated
+  // it before it read.
+  const auto corrupt = scratch("negative-offset.nii");
+  test::write_nifti(corrupt, {1024, 1024, 512}, 1.0, {0, 0, 0}, [](int, int, int) { return 1.0f; },
+                    {.truncate_to = 352 + 64, .two_file = true, .vox_offset = -2147483648.0f});
+  EXPECT_INPUT_ERROR(
+      read_nifti(corrupt),
+      "negative-offset.nii: the header claims 536870912 voxels of 4 bytes \\(2.14748365e\\+09 bytes\\), and the file, "
+      "of 416 bytes with the data at byte 0, does not hold them");
+  // The same claim, sound: the voxels at the end of the file are read.
+  const auto sound = scratch("negative-offset-sound.nii");
+  test::write_nifti(sound, {4, 5, 6}, 1.0, {0, 0, 0},
+                    [](int i, int j, int k) { return static_cast<float>(i + 10 * j + 100 * k); },
+                    {.two_file = true, .vox_offset = -1});
+  EXPECT_EQ(read_nifti(sound).at(3, 2, 1), 123.0f);
+}
+
+TEST(NiftiReader, ReadsAHdrImgPairAndBoundsItsDataByTheImg) {
+  // ANALYZE-style pairs: the header in the .hdr (348 bytes), the voxels in the .img. The bound
+  // is the .img's size, not the header's.
+  const auto pair = scratch("pair.hdr");
+  test::write_nifti(pair, {4, 5, 6}, 2.0, {0, 0, 0}, [](int i, int j, int k) { return static_cast<float>(i + 10 * j + 100 * k); },
+                    {.two_file = true, .vox_offset = 0, .pair = true});
+  EXPECT_EQ(read_nifti(pair).at(3, 2, 1), 123.0f);
+  std::filesystem::resize_file(scratch("pair.img"), 100);
+  EXPECT_INPUT_ERROR(read_nifti(pair),
+                     "pair.hdr: the header claims 120 voxels of 4 bytes \\(480 bytes\\), and its data file "
+                     ".*pair.img, of 100 bytes with the data at byte 0, does not hold them");
+  std::filesystem::remove(scratch("pair.img"));
+  EXPECT_INPUT_ERROR(read_nifti(pair),
+                     "pair.hdr: the header reads, but the file of its voxel data \\(.*pair.img, or a .img "
+                     "or .nii beside it\\) is not there");
+}
+
 TEST(NiftiReader, NamesAVoxelSizeOfZeroWithoutATransform) {
   // libnifti reads pixdim 0 as 1 mm: such an image was meshed at 1 mm voxels without a word.
   const auto sizeless = scratch("sizeless.nii");
-  test::write_nifti(
-      sizeless, {8, 8, 8}, 0.0, {0, 0, 0}, [](int, int, int) { return 1.0f; }, 0, /*sform=*/false);
+  test::write_nifti(sizeless, {8, 8, 8}, 0.0, {0, 0, 0}, [](int, int, int) { return 1.0f; }, {.sform = false});
   EXPECT_INPUT_ERROR(read_nifti(sizeless),
                      "sizeless.nii: header field pixdim\\[1\\] \\(the voxel size along x\\) is 0.000000, and neither "
                      "sform_code nor qform_code gives a voxel-to-millimetre transform");
   const auto sized = scratch("sized.nii");  // the same without an sform, sized: read by its voxel sizes
-  test::write_nifti(
-      sized, {8, 8, 8}, 2.0, {0, 0, 0}, [](int, int, int) { return 1.0f; }, 0, /*sform=*/false);
+  test::write_nifti(sized, {8, 8, 8}, 2.0, {0, 0, 0}, [](int, int, int) { return 1.0f; }, {.sform = false});
   EXPECT_DOUBLE_EQ(read_nifti(sized).voxel_volume_mm3(), 8.0);
 }
 
