@@ -29,6 +29,7 @@ Ctrl-C / SIGTERM (every completed step kept).
 | `roifem roi-size scenarios/paper-setup1.toml --max-error-mm 0.5` | how large an ROI an error budget needs, per reduction | [paper.md](paper.md) |
 | `roifem convergence scenarios/paper-setup1.toml --nodes 800 5000 20000 --out results/convergence` | the brain at several sizes: observed orders, extrapolated values | [accuracy.md](accuracy.md) |
 | `roifem model-error scenarios/paper-setup1.toml --out results/model-error` | small strain against CalculiX's geometrically nonlinear answer | [accuracy.md](accuracy.md) |
+| `roifem fit data/budday2017-brain.csv --out results/fit` | a law fitted to measured tissue (Budday et al. 2017's human brain curves): parameters, RMSE per region and mode, plots, `[material]` tables | [materials.md](materials.md) |
 | `roifem mesh --nodes 800 --out results/brain.msh` | a brain mesh: the ellipsoid (Gmsh), or from an image (`--colin27`, `--image`; CGAL) | [anatomy.md](anatomy.md) |
 | `roifem info meshes/brain-800.msh` | a mesh's size, volume, quality, bounding box and named sets | |
 | `roifem serve scenarios/paper-setup1.toml` | a page on which you steer the brain live: drag a tool, see it deform, feel the force, switch models | [simulator.md](simulator.md) |
@@ -44,7 +45,7 @@ MD
   echo '```'
   "$roifem" --help
   echo '```'
-  for command in paper run compare energy roi-size convergence model-error mesh info serve; do
+  for command in paper run compare energy roi-size convergence model-error fit mesh info serve; do
     echo
     echo "## roifem $command"
     echo

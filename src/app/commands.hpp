@@ -18,6 +18,7 @@ void add_energy_command(CLI::App& app, Action& action);
 void add_roi_size_command(CLI::App& app, Action& action);
 void add_convergence_command(CLI::App& app, Action& action);
 void add_model_error_command(CLI::App& app, Action& action);
+void add_fit_command(CLI::App& app, Action& action);
 void add_serve_command(CLI::App& app, Action& action);
 
 }  // namespace roifem::app

@@ -37,6 +37,7 @@ int run_cli(int argc, char** argv) {
   roifem::app::add_roi_size_command(app, action);
   roifem::app::add_convergence_command(app, action);
   roifem::app::add_model_error_command(app, action);
+  roifem::app::add_fit_command(app, action);
   roifem::app::add_serve_command(app, action);
   roifem::app::add_help_command(app, action);
   if (const std::string misuse = roifem::app::find_misuse(app, argc, argv); !misuse.empty()) {
