@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "common/errors.hpp"
+#include "common/format.hpp"
 #include "common/number_text.hpp"
 
 namespace roifem::experiments {
@@ -88,7 +89,7 @@ std::vector<TissueCurve> read_tissue_curves(const std::filesystem::path& file) {
     const auto fields = fields_of(text);
     if (unit == 0) {  // the header
       if (fields.size() != 4 || fields[0] != "region" || fields[1] != "mode" || fields[2] != "deformation")
-        throw InputError(where + ": the header is '" + text + "'; the columns are " + expected_header);
+        throw InputError(format("%s: the header is '%s'; the columns are %s", where.c_str(), text.c_str(), expected_header));
       unit = stress_unit(where, fields[3]);
       continue;
     }

@@ -297,7 +297,7 @@ void run_tissue_fit(const TissueFitOptions& options, std::ostream& out) {
     write_material_table(options.out / name, f, options);
     written.push_back(name);
   }
-  if (io::run_plot_script("plot_fit.py", options.out, out)) written.push_back("fit-REGION.png (one per region)");
+  if (io::run_plot_script("plot_fit.py", options.out, out)) written.emplace_back("fit-REGION.png (one per region)");
   out << "written in " << options.out.string() << ":";
   for (const auto& name : written) out << " " << name;
   out << "\n";
