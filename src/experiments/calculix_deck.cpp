@@ -72,7 +72,8 @@ void write_model(const CalculixProblem& p, std::ostream& out, const std::string&
 
 int run_ccx(const fs::path& work_dir, const std::string& job) {
   if (!calculix_available()) throw SolverError("CalculiX (ccx) is not on the PATH: install calculix-ccx (scripts/setup.sh)");
-  const std::string command = "cd '" + work_dir.string() + "' && OMP_NUM_THREADS=${OMP_NUM_THREADS:-2} ccx -i " + job + " > " + job + ".log 2>&1";
+  const std::string command =
+      "cd '" + work_dir.string() + "' && OMP_NUM_THREADS=${OMP_NUM_THREADS:-2} ccx -i " + job + " > " + job + ".log 2>&1";
   return std::system(command.c_str());
 }
 

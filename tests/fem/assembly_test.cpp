@@ -68,7 +68,8 @@ TEST(Assembly, ThreadsFillTheirOwnColumnsSoAnyCountGivesTheSameMatrixBitForBit) 
   const SparseMatrix three = StiffnessAssembler(mesh, dofs).stiffness(m);
   omp_set_num_threads(before);
   ASSERT_EQ(one.nonZeros(), three.nonZeros());
-  EXPECT_EQ(Eigen::Map<const Vector>(one.valuePtr(), one.nonZeros()), Eigen::Map<const Vector>(three.valuePtr(), three.nonZeros()));
+  EXPECT_EQ(Eigen::Map<const Vector>(one.valuePtr(), one.nonZeros()),
+            Eigen::Map<const Vector>(three.valuePtr(), three.nonZeros()));
   EXPECT_LE((one - reference_stiffness(mesh, dofs, m)).norm(), 1e-12 * one.norm());
 }
 
