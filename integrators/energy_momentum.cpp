@@ -34,6 +34,10 @@ void EnergyMomentum::prepare(const model::SecondOrderSystem& system, const model
     throw InputError(std::string(name()) +
                      " does not take tools on a nonlinear model: their work would need a discrete gradient of its own; "
                      "run trapezoid, or drive the model by [[load]]s");
+  if (system.internal_force && !system.internal_force->has_discrete_gradient())
+    throw InputError(std::string(name()) + " needs the law's discrete gradient, which " + system.internal_force->describe() +
+                     " does not form (the nodal-pressure element at finite strain): run trapezoid, or give element = "
+                     "\"tet4\" or \"tet10\"");
   system_ = &system;
   const Stopwatch clock;
   inertia_ = (4.0 / (dt_ * dt_)) * system.M + (2.0 / dt_) * system.C;
@@ -159,7 +163,8 @@ std::vector<IntegratorInfo> energy_momentum_rows() {
            .summary = "Gonzalez's energy-momentum method: the midpoint rule with the discrete gradient of the strain "
                       "energy, which an undamped nonlinear run conserves; on a linear model the trapezoidal rule",
            .nonlinear = true,
-           .needs_nonlinear = true}};
+           .needs_nonlinear = true,
+           .needs_discrete_gradient = true}};
 }
 
 }  // namespace roifem::integrators

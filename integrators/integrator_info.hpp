@@ -55,6 +55,9 @@ struct IntegratorInfo {
   /// a method for nonlinear models (energy-momentum): it runs on a linear one when named, but
   /// `compare` lists it only on nonlinear ones, where it differs from the rest
   bool needs_nonlinear = false;
+  /// integrates by the law's discrete gradient (energy-momentum): not a force that forms none
+  /// (model::InternalForce::has_discrete_gradient: the nodal-pressure element at finite strain)
+  bool needs_discrete_gradient = false;
 };
 
 }  // namespace roifem::integrators

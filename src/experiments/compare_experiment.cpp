@@ -28,6 +28,11 @@ namespace roifem::experiments {
 
 namespace {
 
+/// A method that integrates by the law's discrete gradient, on a force that forms none.
+bool lacks_discrete_gradient(const integrators::IntegratorInfo& info, const model::SecondOrderSystem& system) {
+  return info.needs_discrete_gradient && system.internal_force && !system.internal_force->has_discrete_gradient();
+}
+
 /// The exact solution (or a tight run's) on the output grid, and what a run is measured against.
 struct Reference {
   std::string description;  ///< "the exact modal solution", or the tight run's method and tolerances
@@ -422,7 +427,8 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
   std::vector<std::string> names = o.integrators;
   auto applies = [&](const integrators::IntegratorInfo& info) {
     return (!info.needs_tools || system.constrained) && (!info.needs_uncondensed || system.uncondensed) &&
-           (!info.needs_nonlinear || system.is_nonlinear()) && (info.nonlinear || !system.is_nonlinear());
+           (!info.needs_nonlinear || system.is_nonlinear()) && (info.nonlinear || !system.is_nonlinear()) &&
+           !lacks_discrete_gradient(info, system);
   };
   if (names.empty())  // every integrator that applies: the tools' DAE forms where there are tools, ...
     for (const auto& info : integrators::integrator_table())
@@ -442,6 +448,9 @@ CompareResults run_compare(const scenario::Scenario& sc, const CompareOptions& o
     if (!info.nonlinear && system.is_nonlinear())
       throw InputError("compare: " + name + " does not take a nonlinear model (" + system.internal_force->describe() + ") and " +
                        sc.file.string() + " has one: the methods that do are marked 'nonlinear' in `roifem run --help`");
+    if (lacks_discrete_gradient(info, system))
+      throw InputError("compare: " + name + " needs the law's discrete gradient, which " + system.internal_force->describe() +
+                       " in " + sc.file.string() + " does not form (the nodal-pressure element at finite strain)");
   }
   for (const auto& name : {o.reference, o.reference_check}) integrators::integrator_info(name);  // named before any work
 

@@ -76,6 +76,9 @@ std::vector<std::string> methods_of(const scenario::Scenario& sc, const EnergySt
     if (sys.is_nonlinear() && !info.nonlinear)
       return "does not take a nonlinear model (" + sys.internal_force->describe() +
              "); the methods that do are marked [nonlinear] in roifem run --help";
+    if (info.needs_discrete_gradient && sys.internal_force && !sys.internal_force->has_discrete_gradient())
+      return "needs the law's discrete gradient, which " + sys.internal_force->describe() +
+             " does not form (the nodal-pressure element at finite strain)";
     return "";
   };
   std::vector<std::string> names;

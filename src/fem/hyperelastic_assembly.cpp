@@ -33,14 +33,30 @@ HyperelasticAssembler::HyperelasticAssembler(const mesh::TetMesh& mesh, const Do
 
 HyperelasticAssembler::HyperelasticAssembler(const mesh::TetMesh& mesh, const DofMap& dofs, const MaterialMap& materials,
                                              std::vector<Index> elements)
+    : HyperelasticAssembler(mesh, dofs, materials, std::move(elements), mesh.is_quadratic() ? Element::tet10 : Element::tet4) {}
+
+HyperelasticAssembler::HyperelasticAssembler(const mesh::TetMesh& mesh, const DofMap& dofs, const MaterialMap& materials,
+                                             std::vector<Index> elements, Element element)
     : mesh_(mesh), dofs_(dofs), materials_(materials), elements_(std::move(elements)) {
   for (const Index e : elements_)
     if (e < 0 || e >= mesh.num_tets())
       throw InputError("hyperelastic assembly: tetrahedron " + std::to_string(e) + " is not in the mesh");
-  pattern_ = StiffnessAssembler(mesh, dofs).stiffness(materials);
-  std::fill(pattern_.valuePtr(), pattern_.valuePtr() + pattern_.nonZeros(), 0.0);
-  cache_positions();
+  if (mesh.is_quadratic() != (element == Element::tet10))
+    throw Error("internal: hyperelastic assembly: " + std::string(element_name(element)) + " on a " +
+                (mesh.is_quadratic() ? "quadratic" : "linear") + " mesh");
   for (const Material& m : materials_.materials()) laws_.push_back(hyperelastic_law(m));
+  if (element == Element::nodal_pressure) {
+    std::vector<double> kappa(as_size(mesh.num_tets()));
+    for (Index e = 0; e < mesh.num_tets(); ++e)
+      kappa[as_size(e)] = std::visit([](const auto& law) { return law.kappa(); }, laws_[materials_.index_of(e)]);
+    nodal_ = std::make_shared<const NodalVolumetricEnergy>(mesh, dofs, std::move(kappa));
+    for (HyperelasticLaw& law : laws_) law = std::visit([](const auto& l) { return HyperelasticLaw(l.deviatoric_part()); }, law);
+    pattern_ = nodal_->pattern();
+  } else {
+    pattern_ = StiffnessAssembler(mesh, dofs).stiffness(materials);
+    std::fill(pattern_.valuePtr(), pattern_.valuePtr() + pattern_.nonZeros(), 0.0);
+  }
+  cache_positions();
   law_of_.reserve(elements_.size());
   bool all_neo_hookean = true;
   for (const Index e : elements_) {
@@ -188,14 +204,17 @@ void HyperelasticAssembler::scatter(std::size_t slot, std::span<const int> nodes
 
 void HyperelasticAssembler::force(const Vector& u_full, Eigen::Ref<Vector> f_int) const {
   add_forces(u_full, Evaluate::force, f_int);
+  if (nodal_) nodal_->add_force(u_full, f_int);
 }
 
 void HyperelasticAssembler::excess_force_free(const Vector& u_free, Eigen::Ref<Vector> g) const {
   if (u_free.size() != dofs_.num_free())
     throw InputError(format("hyperelastic assembly: %lld free displacement values for %lld free dofs",
                             static_cast<long long>(u_free.size()), static_cast<long long>(dofs_.num_free())));
-  if (excess_batches_.empty() && !elements_.empty()) {  // tet10, or a law other than neo-Hookean
-    add_forces(dofs_.prescribed() + dofs_.expand_homogeneous(u_free), Evaluate::excess, g);
+  if (nodal_ || (excess_batches_.empty() && !elements_.empty())) {  // tet10, nodal pressures, or a law other than neo-Hookean
+    const Vector u_full = dofs_.prescribed() + dofs_.expand_homogeneous(u_free);
+    add_forces(u_full, Evaluate::excess, g);
+    if (nodal_) nodal_->add_excess_force(u_full, g);
     return;
   }
   // A haptic tick's loop: kTet4Lanes elements at a time (fem/tet4_excess_batch.hpp), their dofs
@@ -268,10 +287,15 @@ void HyperelasticAssembler::force_and_tangent(const Vector& u_full, Eigen::Ref<V
         if (const int row = dofs_.free_dof(nodes[a], i); row >= 0) f_int[row] += r.force[3 * static_cast<Index>(a) + i];
     scatter(slot, nodes, r.tangent, K_t);
   });
+  if (nodal_) nodal_->add_force_and_tangent(u_full, f_int, K_t);
 }
 
 void HyperelasticAssembler::discrete_gradient(const Vector& u_a_full, const Vector& u_b_full, Eigen::Ref<Vector> f_alg,
                                               SparseMatrix* K_alg) const {
+  if (nodal_)
+    throw InputError(
+        "the discrete gradient (energy-momentum) is not formed for the nodal-pressure element at finite strain: give element = "
+        "\"tet4\" or \"tet10\", or another method");
   check_size(u_a_full);
   check_size(u_b_full);
   const Evaluate what = K_alg ? Evaluate::force_and_tangent : Evaluate::force;
@@ -307,6 +331,7 @@ void HyperelasticAssembler::discrete_gradient_and_tangent(const Vector& u_a_full
 double HyperelasticAssembler::energy(const Vector& u_full) const {
   double total = 0;
   for_each_element(u_full, Evaluate::energy, [&](std::size_t, std::span<const int>, const auto& r) { total += r.energy; });
+  if (nodal_) total += nodal_->energy(u_full);
   return total;
 }
 

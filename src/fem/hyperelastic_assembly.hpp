@@ -8,17 +8,25 @@
 /// strains the elements it touches as it does in the linear model's f_D = -K_fp u_p).
 /// K_t has the linear stiffness's pattern (fem/assembly.hpp), whatever the subset of elements, so a
 /// sparse factorization analysed once on K serves every K_t.
+/// With the nodal-pressure element (fem/element.hpp), each tetrahedron keeps its law's deviatoric
+/// part and the volumetric energy is taken at the nodes' averaged J over the whole mesh
+/// (fem/nodal_volumetric_energy.hpp): the force at the free dofs is then every element's, whatever
+/// the subset listed (which still names the elements whose deviatoric part counts), and K_t has the
+/// linear nodal-pressure stiffness's pattern (nodes two elements apart).
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
 #include "common/types.hpp"
 #include "fem/dof_map.hpp"
+#include "fem/element.hpp"
 #include "fem/hyperelastic_element.hpp"
 #include "fem/hyperelastic_law.hpp"
 #include "fem/material_map.hpp"
 #include "fem/neo_hookean.hpp"
+#include "fem/nodal_volumetric_energy.hpp"
 #include "fem/tet4.hpp"
 #include "fem/tet4_excess_batch.hpp"
 #include "mesh/tet_mesh.hpp"
@@ -32,6 +40,10 @@ class HyperelasticAssembler {
   HyperelasticAssembler(const mesh::TetMesh& mesh, const DofMap& dofs, const MaterialMap& materials);
   /// Only the tetrahedra listed (the hybrid ROI's nonlinear elements).
   HyperelasticAssembler(const mesh::TetMesh& mesh, const DofMap& dofs, const MaterialMap& materials, std::vector<Index> elements);
+  /// With `element` (tet4 or nodal-pressure on a linear mesh, tet10 on a quadratic one); the
+  /// nodal-pressure element takes every tetrahedron's bulk modulus from its material's law.
+  HyperelasticAssembler(const mesh::TetMesh& mesh, const DofMap& dofs, const MaterialMap& materials, std::vector<Index> elements,
+                        Element element);
 
   /// f_int at the full displacement u_full (3N). Throws ModelError naming the first tetrahedron
   /// that has inverted (det F <= 0 at a quadrature point), with its nodes and det F.
@@ -49,10 +61,13 @@ class HyperelasticAssembler {
   /// Gonzalez's algorithmic force between the full displacements u_a and u_b
   /// (fem/discrete_gradient.hpp): f_alg . (u_b - u_a) = energy(u_b) - energy(u_a) over the free
   /// dofs, when the prescribed values are the same in both. An inverted element as in force().
+  /// InputError with the nodal-pressure element, whose nodal energy has no discrete gradient here.
   void discrete_gradient(const Vector& u_a_full, const Vector& u_b_full, Eigen::Ref<Vector> f_alg) const;
   /// The same and K_alg = df_alg/du_b (not symmetric), in pattern()'s pattern as force_and_tangent.
   void discrete_gradient_and_tangent(const Vector& u_a_full, const Vector& u_b_full, Eigen::Ref<Vector> f_alg,
                                      SparseMatrix& K_alg) const;
+  /// Whether discrete_gradient is formed: not with the nodal-pressure element.
+  bool has_discrete_gradient() const { return nodal_ == nullptr; }
   /// The strain energy sum_e int W(F) dV (J).
   double energy(const Vector& u_full) const;
   /// The pattern of K_t (the linear K_ff's), values zero.
@@ -100,6 +115,8 @@ class HyperelasticAssembler {
   };
   std::vector<ExcessBatch> excess_batches_;
   void batch_excess();
+  /// The nodal-pressure element's volumetric energy (null for tet4 and tet10).
+  std::shared_ptr<const NodalVolumetricEnergy> nodal_;
 };
 
 }  // namespace roifem::fem

@@ -11,19 +11,21 @@
 namespace roifem::fem {
 
 namespace {
+constexpr std::string_view hyperelastic_elements =
+    "tet4, tet10; nodal-pressure in the full model (not the hybrid ROI, nor energy-momentum)";
 constexpr std::string_view elastic_keys = "lambda_Pa and mu_Pa, or young_Pa and poisson (mu > 0, nu in (-1, 0.5))";
 constexpr std::array<MaterialModelInfo, 3> material_models{{
     {MaterialModel::linear, "linear", "small-strain isotropic elasticity (the paper's): a constant K", elastic_keys,
      "tet4, tet10, nodal-pressure", false, false},
     {MaterialModel::neo_hookean, "neo-hookean",
      "compressible neo-Hookean, total Lagrangian, CalculiX's NEO HOOKE: W = mu/2 (I1bar - 3) + kappa/2 (J - 1)^2",
-     "as linear: mu and kappa = lambda + 2 mu/3 are its small-strain moduli", "tet4, tet10", true, false},
+     "as linear: mu and kappa = lambda + 2 mu/3 are its small-strain moduli", hyperelastic_elements, true, false},
     {MaterialModel::ogden, "ogden",
      "compressible N-term Ogden, total Lagrangian, CalculiX's OGDEN: W = sum_i 2 mu_i/alpha_i^2 (sum_k lbar_k^alpha_i - 3) "
      "+ kappa/2 (J - 1)^2",
      "ogden_alpha = [alpha_i] (each != 0) and ogden_mu_Pa = [mu_i] (each > 0; their sum is mu; one term may leave it out "
      "and take mu), with lambda_Pa or poisson for the bulk modulus",
-     "tet4, tet10", true, false},
+     hyperelastic_elements, true, false},
 }};
 }  // namespace
 

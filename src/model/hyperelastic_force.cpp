@@ -47,22 +47,21 @@ bool element_touches(const mesh::TetMesh& mesh, Index e, const std::vector<bool>
 }  // namespace
 
 HyperelasticForce::HyperelasticForce(std::shared_ptr<const fem::DofMap> dofs, const mesh::TetMesh& mesh,
-                                     const fem::MaterialMap& materials, std::vector<Index> elements, const SparseMatrix& K_lin,
-                                     bool K_lin_is_zero, std::string description, std::vector<Tool> tools)
+                                     const fem::MaterialMap& materials, fem::Element element, std::vector<Index> elements,
+                                     const SparseMatrix& K_lin, bool K_lin_is_zero, std::string description,
+                                     std::vector<Tool> tools)
     : dofs_(std::move(dofs)),
-      assembler_(std::make_shared<const fem::HyperelasticAssembler>(mesh, *dofs_, materials, std::move(elements))),
-      motion_(tools.empty() ? nullptr : make_motion(mesh, *dofs_, materials, assembler_->elements(), std::move(tools))),
+      assembler_(std::make_shared<const fem::HyperelasticAssembler>(mesh, *dofs_, materials, std::move(elements), element)),
+      motion_(tools.empty() ? nullptr : make_motion(mesh, *dofs_, materials, element, assembler_->elements(), std::move(tools))),
       K_lin_(K_lin),
       K_lin_is_zero_(K_lin_is_zero),
       assembler_in_K_(solvers::positions_in(assembler_->pattern(), K_lin_)),
       element_tangent_(assembler_->pattern()),
       description_(std::move(description)) {}
 
-std::shared_ptr<const HyperelasticForce::Motion> HyperelasticForce::make_motion(const mesh::TetMesh& mesh,
-                                                                                const fem::DofMap& dofs,
-                                                                                const fem::MaterialMap& materials,
-                                                                                const std::vector<Index>& elements,
-                                                                                std::vector<Tool> tools) {
+std::shared_ptr<const HyperelasticForce::Motion> HyperelasticForce::make_motion(
+    const mesh::TetMesh& mesh, const fem::DofMap& dofs, const fem::MaterialMap& materials, fem::Element element,
+    const std::vector<Index>& elements, std::vector<Tool> tools) {
   auto motion = std::make_shared<Motion>();
   const auto T = static_cast<Index>(tools.size());
   // Each tool node's component: 3 a + c, or -1.
@@ -87,7 +86,7 @@ std::shared_ptr<const HyperelasticForce::Motion> HyperelasticForce::make_motion(
   const fem::DofMap both(with_tools);
   SparseMatrix K_at_rest;
   Vector f(both.num_free());
-  fem::HyperelasticAssembler(mesh, both, materials, elements)
+  fem::HyperelasticAssembler(mesh, both, materials, elements, element)
       .force_and_tangent(both.expand(Vector::Zero(both.num_free())), f, K_at_rest);
   std::vector<Eigen::Triplet<double>> coupling;
   motion->K_gg = DenseMatrix::Zero(3 * T, 3 * T);
@@ -112,7 +111,8 @@ std::shared_ptr<const HyperelasticForce::Motion> HyperelasticForce::make_motion(
   std::vector<Index> touching;
   for (const Index e : elements)
     if (element_touches(mesh, e, tool_node)) touching.push_back(e);
-  motion->at_tools = std::make_shared<const fem::HyperelasticAssembler>(mesh, *motion->tool_dofs, materials, std::move(touching));
+  motion->at_tools =
+      std::make_shared<const fem::HyperelasticAssembler>(mesh, *motion->tool_dofs, materials, std::move(touching), element);
   for (Index i = 0; i < motion->tool_dofs->num_free(); ++i)
     motion->component.push_back(tool_component[static_cast<std::size_t>(motion->tool_dofs->full_dof(i))]);
   motion->tools = std::move(tools);
@@ -242,26 +242,41 @@ std::shared_ptr<const InternalForce> law_on(std::shared_ptr<const fem::DofMap> d
                                             const fem::MaterialMap& materials, std::vector<Index> elements, const SparseMatrix& K,
                                             const std::vector<Tool>& tools, const char* where,
                                             const SplitMatrix* K_split = nullptr) {
+  const fem::Element element = mesh.is_quadratic() ? fem::Element::tet10 : fem::Element::tet4;
   SparseMatrix K_at_rest;
   Vector f(dofs->num_free());
-  fem::HyperelasticAssembler(mesh, *dofs, materials, elements)
+  fem::HyperelasticAssembler(mesh, *dofs, materials, elements, element)
       .force_and_tangent(dofs->expand(Vector::Zero(dofs->num_free())), f, K_at_rest);
   SparseMatrix K_lin = K;
   K_lin.makeCompressed();
   const std::vector<int> at = solvers::positions_in(K_at_rest, K_lin);
   for (std::size_t i = 0; i < at.size(); ++i) K_lin.valuePtr()[at[i]] -= K_at_rest.valuePtr()[i];
   std::string description = description_of(materials, elements, mesh.num_tets(), where);
-  auto law = std::make_shared<HyperelasticForce>(std::move(dofs), mesh, materials, std::move(elements), std::move(K_lin), false,
-                                                 std::move(description), tools);
+  auto law = std::make_shared<HyperelasticForce>(std::move(dofs), mesh, materials, element, std::move(elements), std::move(K_lin),
+                                                 false, std::move(description), tools);
   if (K_split && !K_split->empty()) law->use_split_products(*K_split, K_at_rest);
   return law;
 }
 
+/// The hybrid ROI's law stops at the static part, where nodal averages would reach across it.
 void refuse_nodal_pressure(fem::Element element) {
   if (element == fem::Element::nodal_pressure)
     throw InputError(
-        "the nodal-pressure element does not take the neo-hookean law: give element = \"tet4\" or \"tet10\", or "
-        "[material] model = \"linear\"");
+        "the hybrid ROI does not take the nodal-pressure element at finite strain (its nodes' averaged volume would reach "
+        "into the linear condensed part): give element = \"tet4\" or \"tet10\", or run the full model");
+}
+
+/// The nodal-pressure element averages J over every element at a node: each must follow a law.
+void require_every_element_hyperelastic(const mesh::TetMesh& mesh, const fem::MaterialMap& materials, fem::Element element) {
+  if (element != fem::Element::nodal_pressure) return;
+  for (Index e = 0; e < mesh.num_tets(); ++e)
+    if (!follows_the_law(materials.of(e)))
+      throw InputError(
+          "the nodal-pressure element at finite strain takes a model whose every material follows a hyperelastic "
+          "law: tetrahedron " +
+          std::to_string(e) +
+          " is linear (give its region model = \"neo-hookean\" or \"ogden\", or element = "
+          "\"tet4\" or \"tet10\")");
 }
 
 /// The hybrid's nonlinear elements: neo-Hookean, with no node in the static part, and some node
@@ -286,7 +301,7 @@ std::shared_ptr<const InternalForce> hyperelastic_force(const mesh::TetMesh& mes
                                                         const fem::MaterialMap& materials, fem::Element element,
                                                         const std::vector<Tool>& tools) {
   if (!materials.nonlinear()) return nullptr;
-  refuse_nodal_pressure(element);
+  require_every_element_hyperelastic(mesh, materials, element);
   std::vector<Index> elements;
   for (Index e = 0; e < mesh.num_tets(); ++e)
     if (follows_the_law(materials.of(e))) elements.push_back(e);
@@ -295,7 +310,7 @@ std::shared_ptr<const InternalForce> hyperelastic_force(const mesh::TetMesh& mes
   SparseMatrix K_lin = fem::stiffness(mesh, dofs, linear_part(materials), element);
   std::string description = description_of(materials, elements, mesh.num_tets(), "");
   return std::make_shared<const HyperelasticForce>(std::shared_ptr<const fem::DofMap>(std::shared_ptr<void>(), &dofs), mesh,
-                                                   materials, std::move(elements), std::move(K_lin), every,
+                                                   materials, element, std::move(elements), std::move(K_lin), every,
                                                    std::move(description), tools);
 }
 

@@ -42,8 +42,8 @@ class HyperelasticForce final : public InternalForce {
   /// hybrid's) or borrow it (a FemModel's, through a non-owning pointer). `tools`: those whose
   /// nodes `dofs` holds (constrained), moving them along their paths.
   HyperelasticForce(std::shared_ptr<const fem::DofMap> dofs, const mesh::TetMesh& mesh, const fem::MaterialMap& materials,
-                    std::vector<Index> elements, const SparseMatrix& K_lin, bool K_lin_is_zero, std::string description,
-                    std::vector<Tool> tools = {});
+                    fem::Element element, std::vector<Index> elements, const SparseMatrix& K_lin, bool K_lin_is_zero,
+                    std::string description, std::vector<Tool> tools = {});
   /// Products with K_lin = K_split - K_elements through K_split's dense block (the hybrid ROI's
   /// K~), in place of K_lin's assembled entries; K_lin stays for the tangent.
   void use_split_products(SplitMatrix K_split, const SparseMatrix& K_elements) {
@@ -61,6 +61,7 @@ class HyperelasticForce final : public InternalForce {
   void discrete_gradient_and_tangent(const Vector& u_a, const Vector& u_b, Vector& f_alg, SparseMatrix& K_alg) const override;
   double energy(double t, const Vector& u) const override;
   bool has_motion() const override { return motion_ != nullptr; }
+  bool has_discrete_gradient() const override { return assembler_->has_discrete_gradient(); }
   Vector tool_force_correction(double t, const Vector& u) const override;
   std::shared_ptr<const InternalForce> with_ramp(const Ramp& ramp) const override;
   std::string describe() const override { return description_; }
@@ -80,8 +81,8 @@ class HyperelasticForce final : public InternalForce {
     Vector positions(double t) const;
   };
   static std::shared_ptr<const Motion> make_motion(const mesh::TetMesh& mesh, const fem::DofMap& dofs,
-                                                   const fem::MaterialMap& materials, const std::vector<Index>& elements,
-                                                   std::vector<Tool> tools);
+                                                   const fem::MaterialMap& materials, fem::Element element,
+                                                   const std::vector<Index>& elements, std::vector<Tool> tools);
   /// The full displacement the elements read: u, the prescribed values, the tools' positions g.
   /// The full displacement the elements read (valid until the next call).
   const Vector& displacement(const Vector& u, const Vector& g) const;
@@ -106,9 +107,11 @@ class HyperelasticForce final : public InternalForce {
   std::string description_;
 };
 
-/// The internal force of a full model when some material is neo-Hookean (else null): the
-/// neo-Hookean tetrahedra by the law, the others by their linear K. `tools`: those whose nodes
-/// `dofs` holds, on their paths.
+/// The internal force of a full model when some material is hyperelastic (else null): those
+/// tetrahedra by their law, the others by their linear K. `tools`: those whose nodes `dofs` holds,
+/// on their paths. The nodal-pressure element takes a model whose every material is hyperelastic
+/// (its nodal averages would mix the laws with linear elements): InputError naming the linear one
+/// otherwise.
 std::shared_ptr<const InternalForce> hyperelastic_force(const mesh::TetMesh& mesh, const fem::DofMap& dofs,
                                                         const fem::MaterialMap& materials, fem::Element element,
                                                         const std::vector<Tool>& tools = {});

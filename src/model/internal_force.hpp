@@ -44,6 +44,8 @@ class InternalForce {
   /// W(t, u), J: the potential of f_int. With tools, the tissue's strain energy less the linear
   /// coupling energy that model::ToolSet::coupling_energy adds back (model/energy.hpp).
   virtual double energy(double t, const Vector& u) const = 0;
+  /// Whether discrete_gradient is formed (not by the nodal-pressure element at finite strain).
+  virtual bool has_discrete_gradient() const { return true; }
   /// Whether tools move nodes of its elements, so that it depends on t.
   virtual bool has_motion() const { return false; }
   /// The tools' forces beyond the linear ones of their model::ToolSet (3 per tool, N): what the

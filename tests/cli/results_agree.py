@@ -1,25 +1,26 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""usage: results_agree.py A.h5 B.h5 RTOL -- passes when every floating-point dataset of two
-`roifem run` results files (the measured wall times apart) agrees to RTOL of its largest value:
-two laws, or two forms of one law, that must give the same motion."""
+"""usage: results_agree.py A.h5 B.h5 RTOL [PREFIX] -- passes when every floating-point dataset of
+two `roifem run` results files (the measured wall times apart; with PREFIX, those whose path starts
+with it: "fields" for the motion alone, where the methods' counters differ) agrees to RTOL of its
+largest value: two laws, or two forms of one law, that must give the same motion."""
 import sys
 
 import h5py
 import numpy as np
 
 
-def float_datasets(f):
+def float_datasets(f, prefix=""):
     names = []
     f.visititems(lambda name, obj: names.append(name)
                  if isinstance(obj, h5py.Dataset) and obj.dtype.kind == "f" else None)
-    return sorted(n for n in names if not n.endswith("wall_time_s"))
+    return sorted(n for n in names if not n.endswith("wall_time_s") and n.startswith(prefix))
 
 
-def main(a, b, rtol):
+def main(a, b, rtol, prefix=""):
     with h5py.File(a, "r") as fa, h5py.File(b, "r") as fb:
-        names = float_datasets(fa)
-        assert names and names == float_datasets(fb), "the files hold different datasets"
+        names = float_datasets(fa, prefix)
+        assert names and names == float_datasets(fb, prefix), "the files hold different datasets"
         worst, where = 0.0, ""
         for name in names:
             x, y = fa[name][()], fb[name][()]
@@ -37,6 +38,6 @@ def main(a, b, rtol):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 4:
+    if len(sys.argv) not in (4, 5):
         sys.exit(__doc__)
-    main(sys.argv[1], sys.argv[2], float(sys.argv[3]))
+    main(sys.argv[1], sys.argv[2], float(sys.argv[3]), *sys.argv[4:])
