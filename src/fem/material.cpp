@@ -3,6 +3,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 #include "common/did_you_mean.hpp"
 #include "common/errors.hpp"
@@ -17,6 +19,23 @@ std::string str(double v) {
 }  // namespace
 
 namespace roifem::fem {
+
+namespace {
+
+/// Budday et al. (2017)'s four regions, their one-term Ogden fits (docs/materials.md's fit table).
+struct MeasuredRegion {
+  std::string_view name;
+  double mu;     ///< Pa
+  double alpha;  ///< dimensionless
+};
+constexpr MeasuredRegion measured_regions[] = {
+    {"cortex", 1501.0, -18.17},
+    {"basal-ganglia", 730.0, -17.99},
+    {"corona-radiata", 702.0, -23.64},
+    {"corpus-callosum", 374.0, -24.98},
+};
+
+}  // namespace
 
 Material Material::from_young_poisson(double young, double poisson, double rho, double alpha) {
   if (!(young > 0) || !std::isfinite(young))
@@ -80,8 +99,25 @@ Material material_preset(std::string_view name) {
     const double mu = 1000.0, nu = 0.45;
     return Material::from_young_poisson(2 * mu * (1 + nu), nu, 1040.0, 5.0);
   }
-  throw InputError("material preset '" + std::string(name) + "' is unknown" + did_you_mean(name, {"paper", "brain"}) +
-                   " (valid: paper, brain)");
+  for (const MeasuredRegion& region : measured_regions)
+    if (name == region.name) {
+      // One Ogden term as `roifem fit data/budday2017-brain.csv` finds it, at the fit's bulk
+      // modulus kappa = 1000 mu (nu = 0.4995); density and damping as the brain preset's.
+      Material m{.lambda = (1000.0 - 2.0 / 3.0) * region.mu,
+                 .mu = region.mu,
+                 .rho = 1040.0,
+                 .alpha = 5.0,
+                 .model = MaterialModel::ogden,
+                 .ogden = {{.mu = region.mu, .alpha = region.alpha}}};
+      m.validate();
+      return m;
+    }
+  std::vector<std::string> names = {"paper", "brain"};
+  for (const MeasuredRegion& region : measured_regions) names.emplace_back(region.name);
+  std::string valid;
+  for (const std::string& n : names) valid += (valid.empty() ? "" : ", ") + n;
+  throw InputError("material preset '" + std::string(name) + "' is unknown" + did_you_mean(name, names) + " (valid: " + valid +
+                   ")");
 }
 
 }  // namespace roifem::fem

@@ -39,6 +39,10 @@ struct Material {
 ///  "paper": Hansen & Larsen (1998) Table 1 read in cm-g-s units: lambda = 0.4e5 dyn/cm^2 = 4000 Pa,
 ///           mu = 0.0012e5 dyn/cm^2 = 12 Pa, rho = 1 g/cm^3, alpha = 0.8 1/s.
 ///  "brain": literature values, see README.md: mu = 1 kPa, nu = 0.45, rho = 1040 kg/m^3, alpha = 5 1/s.
+///  "cortex", "basal-ganglia", "corona-radiata", "corpus-callosum": human brain tissue as Budday et
+///           al. (2017) measured it, one Ogden term each fitted by `roifem fit` to their tension,
+///           compression and shear curves (data/budday2017-brain.csv), nearly incompressible
+///           (kappa = 1000 mu), rho = 1040 kg/m^3, alpha = 5 1/s (docs/materials.md).
 /// Unknown names throw InputError listing the presets.
 Material material_preset(std::string_view name);
 

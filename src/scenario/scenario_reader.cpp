@@ -285,10 +285,14 @@ fem::RegionMaterial read_region_material(StrictTable& t, const fem::Material& ba
   if (!set) t.missing("set", " (the named volume set, e.g. white_matter)");
   fem::RegionMaterial region{.set = *set, .material = {}, .name = k.preset.value_or("custom")};
   try {
-    // Keys left out keep the brain's ([material]); a preset starts from the preset instead.
+    // Keys left out keep the brain's ([material]); a preset starts from the preset instead. A
+    // region keeps the brain's law unless it names its own, by model or by a measured tissue's
+    // preset (cortex, ...: an Ogden law).
     fem::Material start = k.preset ? fem::material_preset(*k.preset) : base;
-    start.model = base.model;  // a region keeps the brain's law unless it names its own
-    start.ogden = base.ogden;
+    if (start.model == fem::MaterialModel::linear) {
+      start.model = base.model;
+      start.ogden = base.ogden;
+    }
     region.material = merged_material(start, k);
   } catch (const InputError& e) {
     throw InputError(t.source() + ": [[material_region]] '" + region.set + "': " + e.what());
