@@ -8,7 +8,6 @@
 #include "common/format.hpp"
 #include "fem/neo_hookean.hpp"
 #include "fem/tet4.hpp"
-#include "solvers/sparse_positions.hpp"
 
 namespace roifem::fem {
 
@@ -76,26 +75,52 @@ NodalVolumetricEnergy::NodalVolumetricEnergy(const mesh::TetMesh& mesh, const Do
   }
   for (Index a = 0; a < N; ++a)
     if (nodal_volume_[a] > 0) nodal_kappa_[a] /= nodal_volume_[a];
-  G_pattern_.resize(N, dofs.num_free());
-  G_pattern_.setFromTriplets(g_entries.begin(), g_entries.end());
-  G_pattern_.makeCompressed();
-  pattern_ = SparseMatrix(G_pattern_.transpose() * G_pattern_);
+  SparseMatrix G0(N, dofs.num_free());
+  G0.setFromTriplets(g_entries.begin(), g_entries.end());
+  pattern_ = SparseMatrix(SparseMatrix(G0.transpose()) * G0);
   pattern_.makeCompressed();
   std::fill(pattern_.valuePtr(), pattern_.valuePtr() + pattern_.nonZeros(), 0.0);
-  std::fill(G_pattern_.valuePtr(), G_pattern_.valuePtr() + G_pattern_.nonZeros(), 0.0);
-  G_positions_.assign(as_size(48 * T), -1);
-  const int* outer = G_pattern_.outerIndexPtr();
-  const int* inner = G_pattern_.innerIndexPtr();
+  // The patches: G0's rows, as row-major.
+  const Eigen::SparseMatrix<double, Eigen::RowMajor, int> rows(G0);
+  patch_begin_.assign(rows.outerIndexPtr(), rows.outerIndexPtr() + N + 1);
+  patch_dofs_.assign(rows.innerIndexPtr(), rows.innerIndexPtr() + rows.nonZeros());
+  element_local_.assign(as_size(48 * T), -1);
   for (Index e = 0; e < T; ++e) {
     const auto& tet = mesh.tets[as_size(e)];
-    for (int k = 0; k < 12; ++k) {
-      const int dof = dofs.free_dof(tet[as_size(k / 3)], k % 3);
-      if (dof < 0) continue;
-      for (int a = 0; a < 4; ++a)
-        G_positions_[as_size(48 * e + 4 * k + a)] =
-            static_cast<int>(std::lower_bound(inner + outer[dof], inner + outer[dof + 1], tet[as_size(a)]) - inner);
+    for (int a = 0; a < 4; ++a) {
+      const int* begin = patch_dofs_.data() + patch_begin_[as_size(tet[as_size(a)])];
+      const int* end = patch_dofs_.data() + patch_begin_[as_size(tet[as_size(a)]) + 1];
+      for (int k = 0; k < 12; ++k)
+        if (const int dof = dofs.free_dof(tet[as_size(k / 3)], k % 3); dof >= 0)
+          element_local_[as_size(48 * e + 12 * a + k)] = static_cast<int>(std::lower_bound(begin, end, dof) - begin);
     }
   }
+  std::size_t entries = 0;
+  block_begin_.assign(as_size(N) + 1, 0);
+  for (Index a = 0; a < N; ++a) {
+    const auto m = static_cast<std::size_t>(patch_begin_[as_size(a) + 1] - patch_begin_[as_size(a)]);
+    entries += m * m;
+    block_begin_[as_size(a) + 1] = entries;
+  }
+  constexpr std::size_t budget = std::size_t{32} << 20;
+  if (entries > budget) return;
+  block_positions_.resize(entries);
+  for (Index a = 0; a < N; ++a) {
+    const int m = patch_begin_[as_size(a) + 1] - patch_begin_[as_size(a)];
+    for (int j = 0; j < m; ++j)
+      for (int i = 0; i < m; ++i)
+        block_positions_[block_begin_[as_size(a)] + as_size(j * m + i)] = position(pattern_, false, a, i, j);
+  }
+}
+
+int NodalVolumetricEnergy::position(const SparseMatrix& K, bool cached, Index a, int i, int j) const {
+  const int m = patch_begin_[as_size(a) + 1] - patch_begin_[as_size(a)];
+  if (cached) return block_positions_[block_begin_[as_size(a)] + as_size(j * m + i)];
+  const int* dofs = patch_dofs_.data() + patch_begin_[as_size(a)];
+  const int* inner = K.innerIndexPtr();
+  const int* begin = inner + K.outerIndexPtr()[dofs[j]];
+  const int* end = inner + K.outerIndexPtr()[dofs[j] + 1];
+  return static_cast<int>(std::lower_bound(begin, end, dofs[i]) - inner);
 }
 
 void NodalVolumetricEnergy::check_size(const Vector& u_full) const {
@@ -178,11 +203,10 @@ void NodalVolumetricEnergy::add_excess_force(const Vector& u_full, Eigen::Ref<Ve
 
 void NodalVolumetricEnergy::add_force_and_tangent(const Vector& u_full, Eigen::Ref<Vector> f, SparseMatrix& K) const {
   const Strains s = strains(u_full);
-  SparseMatrix G = G_pattern_;
-  double* G_values = G.valuePtr();
+  // Positions cached against pattern() hold for K in that very pattern.
+  const bool cached = !block_positions_.empty() && K.nonZeros() == pattern_.nonZeros() && K.rows() == pattern_.rows();
+  std::vector<double> G(patch_dofs_.size(), 0.0);  // G_a = dJ_a/dx over a's patch
   double* K_values = K.valuePtr();
-  const int* outer = K.outerIndexPtr();
-  const int* inner = K.innerIndexPtr();
   for (Index e = 0; e < mesh_.num_tets(); ++e) {
     const auto& tet = mesh_.tets[as_size(e)];
     const auto& g = grad_[as_size(e)];
@@ -192,34 +216,44 @@ void NodalVolumetricEnergy::add_force_and_tangent(const Vector& u_full, Eigen::R
     const Eigen::Matrix<double, 12, 1> dJ = element_vector(g, cof_F, 1.0);  // dJ_e/dx_e
     scatter(e, V * p * dJ, f);
     // dJ_a/dx = sum over a's elements of (V_e / 4) dJ_e/dx / V_a.
-    for (int k = 0; k < 12; ++k)
-      for (int a = 0; a < 4; ++a)
-        if (const int at = G_positions_[as_size(48 * e + 4 * k + a)]; at >= 0)
-          G_values[at] += V / 4 * dJ[k] / nodal_volume_[tet[as_size(a)]];
-    // V p d^2J/dx_bi dx_ck = V p sum_m eps_ikm (F (g_b x g_c))_m.
+    for (int a = 0; a < 4; ++a) {
+      const auto node = as_size(tet[as_size(a)]);
+      double* G_a = G.data() + patch_begin_[node];
+      const double share = V / 4 / nodal_volume_[tet[as_size(a)]];
+      for (int k = 0; k < 12; ++k)
+        if (const int l = element_local_[as_size(48 * e + 12 * a + k)]; l >= 0) G_a[l] += share * dJ[k];
+    }
+    // V p d^2J/dx_bi dx_ck = V p sum_m eps_ikm (F (g_b x g_c))_m, in corner 0's patch, which holds
+    // every dof of the element.
+    const int* local = element_local_.data() + 48 * e;
     for (int c = 0; c < 4; ++c)
       for (int k = 0; k < 3; ++k) {
-        const int column = dofs_.free_dof(tet[as_size(c)], k);
+        const int column = local[3 * c + k];
         if (column < 0) continue;
-        const int* begin = inner + outer[column];
-        const int* end = inner + outer[column + 1];
         for (int b = 0; b < 4; ++b) {
           if (b == c) continue;  // g_b x g_b = 0
           const Vec3 w = V * p * (F * Vec3(g.row(b)).cross(Vec3(g.row(c))));
           for (int i = 0; i < 3; ++i) {
-            if (i == k) continue;
-            const int row = dofs_.free_dof(tet[as_size(b)], i);
-            if (row < 0) continue;
+            const int row = local[3 * b + i];
+            if (i == k || row < 0) continue;
             const int m = 3 - i - k;
             const double sign = (i + 1) % 3 == k ? 1.0 : -1.0;  // eps_ikm
-            K_values[std::lower_bound(begin, end, row) - inner] += sign * w[m];
+            K_values[position(K, cached, tet[0], row, column)] += sign * w[m];
           }
         }
       }
   }
-  const SparseMatrix GtDG = SparseMatrix(G.transpose() * (nodal_volume_.cwiseProduct(nodal_kappa_)).asDiagonal() * G);
-  const std::vector<int> at = solvers::positions_in(GtDG, K);
-  for (std::size_t i = 0; i < at.size(); ++i) K_values[at[i]] += GtDG.valuePtr()[i];
+  // sum_a V_a kappa_a G_a G_a^T, block by block.
+  for (Index a = 0; a < mesh_.num_nodes(); ++a) {
+    const int m = patch_begin_[as_size(a) + 1] - patch_begin_[as_size(a)];
+    const double* G_a = G.data() + patch_begin_[as_size(a)];
+    const double weight = nodal_volume_[a] * nodal_kappa_[a];
+    for (int j = 0; j < m; ++j) {
+      const double column = weight * G_a[j];
+      if (column == 0) continue;
+      for (int i = 0; i < m; ++i) K_values[position(K, cached, a, i, j)] += column * G_a[i];
+    }
+  }
 }
 
 }  // namespace roifem::fem

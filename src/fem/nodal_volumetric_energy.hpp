@@ -63,10 +63,16 @@ class NodalVolumetricEnergy {
   Vector nodal_volume_;                            ///< V_a
   Vector nodal_kappa_;                             ///< kappa_a
   SparseMatrix pattern_;
-  /// G's pattern (N x n_free, column-major) and where each element's 4 x 12 entries land among its
-  /// values (-1: a constrained dof): G = dJ_a/dx is refilled in place at each tangent.
-  SparseMatrix G_pattern_;
-  std::vector<int> G_positions_;
+  /// Each node's patch: the free dofs of its elements, ascending (patch_dofs_ from
+  /// patch_begin_[a]), where G_a = dJ_a/dx lives; per element and corner, where each of its 12 dofs
+  /// lies in that corner's patch (-1: constrained).
+  std::vector<int> patch_begin_, patch_dofs_, element_local_;
+  /// Per node, where its patch's m x m block lands among pattern()'s values (column by column, from
+  /// block_begin_[a]); empty where it would pass 32M entries, and the tangent then searches.
+  std::vector<std::size_t> block_begin_;
+  std::vector<int> block_positions_;
+  /// The value index of (patch row i, patch column j) of node a's block in K.
+  int position(const SparseMatrix& K, bool cached, Index a, int i, int j) const;
 };
 
 }  // namespace roifem::fem
