@@ -32,7 +32,7 @@ const Material neo_hookean_tissue = [] {
   m.model = MaterialModel::neo_hookean;
   return m;
 }();
-const NeoHookean law = NeoHookean::of(neo_hookean_tissue);
+const NeoHookean tissue_law = NeoHookean::of(neo_hookean_tissue);
 
 /// A displacement gradient H = F - I with entries up to `amplitude`.
 Mat3 random_gradient(std::mt19937& rng, double amplitude) {
@@ -50,8 +50,8 @@ TEST(NeoHookean, StressIsTheEnergysDerivativeAndTheTangentTheStresss) {
     ASSERT_GT((Mat3::Identity() + F).determinant(), 0.2);
     Mat3 P;
     Mat9 A;
-    law.stress_and_tangent(F, P, A);
-    EXPECT_LT((P - law.stress(F)).norm(), 1e-12 * P.norm());
+    tissue_law.stress_and_tangent(F, P, A);
+    EXPECT_LT((P - tissue_law.stress(F)).norm(), 1e-12 * P.norm());
     EXPECT_NEAR(NeoHookean::J_minus_1(F), (Mat3::Identity() + F).determinant() - 1, 1e-15);
     const double h = 1e-6;
     Mat3 P_fd;
@@ -61,8 +61,8 @@ TEST(NeoHookean, StressIsTheEnergysDerivativeAndTheTangentTheStresss) {
         Mat3 Fp = F, Fm = F;
         Fp(k, L) += h;
         Fm(k, L) -= h;
-        P_fd(k, L) = (law.energy(Fp) - law.energy(Fm)) / (2 * h);
-        const Mat3 dP = (law.stress(Fp) - law.stress(Fm)) / (2 * h);
+        P_fd(k, L) = (tissue_law.energy(Fp) - tissue_law.energy(Fm)) / (2 * h);
+        const Mat3 dP = (tissue_law.stress(Fp) - tissue_law.stress(Fm)) / (2 * h);
         for (int i = 0; i < 3; ++i)
           for (int J = 0; J < 3; ++J) A_fd(3 * i + J, 3 * k + L) = dP(i, J);
       }
@@ -75,9 +75,9 @@ TEST(NeoHookean, StressIsTheEnergysDerivativeAndTheTangentTheStresss) {
 TEST(NeoHookean, TangentAtRestIsTheLinearLawWithTheSameLameConstants) {
   Mat3 P;
   Mat9 A;
-  law.stress_and_tangent(Mat3::Zero(), P, A);
+  tissue_law.stress_and_tangent(Mat3::Zero(), P, A);
   EXPECT_EQ(P.norm(), 0.0);
-  EXPECT_EQ(law.energy(Mat3::Zero()), 0.0);
+  EXPECT_EQ(tissue_law.energy(Mat3::Zero()), 0.0);
   for (int i = 0; i < 3; ++i)
     for (int J = 0; J < 3; ++J)
       for (int k = 0; k < 3; ++k)
@@ -96,14 +96,15 @@ TEST(NeoHookean, FirstPiolaStressEqualsTheSpatialFormOfTheLaw) {
     const Mat3 F = Mat3::Identity() + H;
     const double J = F.determinant();
     const Mat3 bbar = std::pow(J, -2.0 / 3.0) * F * F.transpose();
-    const Mat3 sigma = law.mu() / J * (bbar - bbar.trace() / 3 * Mat3::Identity()) + law.kappa() * (J - 1) * Mat3::Identity();
+    const Mat3 sigma =
+        tissue_law.mu() / J * (bbar - bbar.trace() / 3 * Mat3::Identity()) + tissue_law.kappa() * (J - 1) * Mat3::Identity();
     const Mat3 P = J * sigma * F.inverse().transpose();
-    EXPECT_LT((law.stress(H) - P).norm() / P.norm(), 1e-13);
+    EXPECT_LT((tissue_law.stress(H) - P).norm() / P.norm(), 1e-13);
     // W in the textbook form, at a strain where it loses nothing.
-    const double W = law.C10 * (std::pow(J, -2.0 / 3.0) * F.squaredNorm() - 3) + (J - 1) * (J - 1) / law.D1;
-    EXPECT_NEAR(law.energy(H) / W, 1.0, 1e-13);
+    const double W = tissue_law.C10 * (std::pow(J, -2.0 / 3.0) * F.squaredNorm() - 3) + (J - 1) * (J - 1) / tissue_law.D1;
+    EXPECT_NEAR(tissue_law.energy(H) / W, 1.0, 1e-13);
   }
-  EXPECT_DOUBLE_EQ(law.kappa(), neo_hookean_tissue.lambda + 2 * neo_hookean_tissue.mu / 3);
+  EXPECT_DOUBLE_EQ(tissue_law.kappa(), neo_hookean_tissue.lambda + 2 * neo_hookean_tissue.mu / 3);
 }
 
 TEST(NeoHookean, KeepsItsDigitsAtTinyStrainWhereItIsTheLinearLaw) {
@@ -117,11 +118,11 @@ TEST(NeoHookean, KeepsItsDigitsAtTinyStrainWhereItIsTheLinearLaw) {
   const Mat3 eps = 0.5 * (H + H.transpose());
   const Mat3 sigma = neo_hookean_tissue.lambda * eps.trace() * Mat3::Identity() + 2 * neo_hookean_tissue.mu * eps;
   const double W = 0.5 * (sigma.array() * eps.array()).sum();
-  EXPECT_LT((law.stress(H) - sigma).norm() / sigma.norm(), 1e-7);
-  EXPECT_NEAR(law.energy(H) / W, 1.0, 1e-7);
+  EXPECT_LT((tissue_law.stress(H) - sigma).norm() / sigma.norm(), 1e-7);
+  EXPECT_NEAR(tissue_law.energy(H) / W, 1.0, 1e-7);
   Mat3 P;
   Mat9 A;
-  law.stress_and_tangent(H, P, A);
+  tissue_law.stress_and_tangent(H, P, A);
   EXPECT_LT((P - sigma).norm() / sigma.norm(), 1e-7);
 }
 
@@ -158,7 +159,7 @@ TEST(HyperelasticElement, Tet4ForceAndTangentMatchFiniteDifferences) {
   std::uniform_real_distribution<double> draw(-0.15, 0.15);
   Eigen::Matrix<double, 12, 1> ue;
   for (int i = 0; i < 12; ++i) ue[i] = draw(rng);
-  expect_consistent<4>(ue, [&](const auto& u, Evaluate what) { return tet4_hyperelastic(g, law, u, what); });
+  expect_consistent<4>(ue, [&](const auto& u, Evaluate what) { return tet4_hyperelastic(g, tissue_law, u, what); });
 }
 
 TEST(HyperelasticElement, Tet10ForceAndTangentMatchFiniteDifferences) {
@@ -168,20 +169,20 @@ TEST(HyperelasticElement, Tet10ForceAndTangentMatchFiniteDifferences) {
   std::uniform_real_distribution<double> draw(-0.08, 0.08);
   Eigen::Matrix<double, 30, 1> ue;
   for (int i = 0; i < 30; ++i) ue[i] = draw(rng);
-  expect_consistent<10>(ue, [&](const auto& u, Evaluate what) { return tet10_hyperelastic(g, law, u, what); });
+  expect_consistent<10>(ue, [&](const auto& u, Evaluate what) { return tet10_hyperelastic(g, tissue_law, u, what); });
 }
 
 TEST(HyperelasticElement, SmallDisplacementGivesTheLinearElementsForceAndStiffness) {
   const auto x = skewed_tetrahedron();
   const Tet4Geometry g = tet4_geometry(x[0], x[1], x[2], x[3]);
   const ElementMatrix K = tet4_stiffness(g, neo_hookean_tissue);
-  const auto at_rest = tet4_hyperelastic(g, law, Eigen::Matrix<double, 12, 1>::Zero(), Evaluate::force_and_tangent);
+  const auto at_rest = tet4_hyperelastic(g, tissue_law, Eigen::Matrix<double, 12, 1>::Zero(), Evaluate::force_and_tangent);
   EXPECT_LT((at_rest.tangent - K).norm() / K.norm(), 1e-13);
   std::mt19937 rng(8);
   std::uniform_real_distribution<double> draw(-1, 1);
   Eigen::Matrix<double, 12, 1> ue;
   for (int i = 0; i < 12; ++i) ue[i] = 1e-7 * draw(rng);
-  const auto r = tet4_hyperelastic(g, law, ue, Evaluate::force);
+  const auto r = tet4_hyperelastic(g, tissue_law, ue, Evaluate::force);
   EXPECT_LT((r.force - K * ue).norm() / (K * ue).norm(), 1e-5);  // the difference is O(|u|)
 }
 
@@ -192,11 +193,11 @@ TEST(HyperelasticElement, RigidRotationBy90DegreesGivesNoForceWhereTheLinearElem
   const Mat3 R = Eigen::AngleAxisd(M_PI / 2, Vec3(1, 2, 3).normalized()).toRotationMatrix();
   Eigen::Matrix<double, 12, 1> u4;
   for (int a = 0; a < 4; ++a) u4.segment<3>(3 * a) = (R - Mat3::Identity()) * x[a];
-  const auto r4 = tet4_hyperelastic(g4, law, u4, Evaluate::energy);
+  const auto r4 = tet4_hyperelastic(g4, tissue_law, u4, Evaluate::energy);
   // The scale: the force of a 10% stretch of the same element.
   Eigen::Matrix<double, 12, 1> stretch;
   for (int a = 0; a < 4; ++a) stretch.segment<3>(3 * a) = Vec3(0.1 * x[a].x(), 0, 0);
-  const double scale = tet4_hyperelastic(g4, law, stretch, Evaluate::force).force.norm();
+  const double scale = tet4_hyperelastic(g4, tissue_law, stretch, Evaluate::force).force.norm();
   EXPECT_LT(r4.force.norm(), 1e-12 * scale);
   EXPECT_NEAR(r4.energy, 0, 1e-12 * scale);
   const double linear = (tet4_stiffness(g4, neo_hookean_tissue) * u4).norm();
@@ -208,7 +209,7 @@ TEST(HyperelasticElement, RigidRotationBy90DegreesGivesNoForceWhereTheLinearElem
   for (int a = 0; a < 4; ++a) u10.segment<3>(3 * a) = u4.segment<3>(3 * a);
   for (int k = 0; k < 6; ++k)
     u10.segment<3>(3 * (4 + k)) = 0.5 * (u4.segment<3>(3 * tet10_edges[k][0]) + u4.segment<3>(3 * tet10_edges[k][1]));
-  EXPECT_LT(tet10_hyperelastic(g10, law, u10, Evaluate::force).force.norm(), 1e-12 * scale);
+  EXPECT_LT(tet10_hyperelastic(g10, tissue_law, u10, Evaluate::force).force.norm(), 1e-12 * scale);
 }
 
 TEST(HyperelasticElement, TheExcessIsTheForceLessTheLinearElementsAndVanishesQuadratically) {
@@ -229,10 +230,10 @@ TEST(HyperelasticElement, TheExcessIsTheForceLessTheLinearElementsAndVanishesQua
   for (const double size : {0.1, 1e-2, 1e-3}) {
     const Eigen::Matrix<double, 12, 1> a4 = size * u4;
     const Eigen::Matrix<double, 30, 1> a10 = 0.5 * size * u10;
-    const auto f4 = tet4_hyperelastic(g4, law, a4, Evaluate::force);
-    const auto e4 = tet4_hyperelastic(g4, law, a4, Evaluate::excess);
-    const auto f10 = tet10_hyperelastic(g10, law, a10, Evaluate::force);
-    const auto e10 = tet10_hyperelastic(g10, law, a10, Evaluate::excess);
+    const auto f4 = tet4_hyperelastic(g4, tissue_law, a4, Evaluate::force);
+    const auto e4 = tet4_hyperelastic(g4, tissue_law, a4, Evaluate::excess);
+    const auto f10 = tet10_hyperelastic(g10, tissue_law, a10, Evaluate::force);
+    const auto e10 = tet10_hyperelastic(g10, tissue_law, a10, Evaluate::excess);
     EXPECT_LT((e4.force - (f4.force - K4 * a4)).norm(), 1e-13 * (K4 * a4).norm()) << size;
     EXPECT_LT((e10.force - (f10.force - K10 * a10)).norm(), 1e-13 * (K10 * a10).norm()) << size;
     small.push_back(e4.force.norm() / (K4 * a4).norm());

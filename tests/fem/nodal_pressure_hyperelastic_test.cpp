@@ -258,7 +258,7 @@ TEST(NodalPressureHyperelastic, DISABLED_PaperBrainNearlyIncompressibleTable) {
     if (model == MaterialModel::ogden) material.ogden = {{.mu = material.mu, .alpha = -20.0}};
     std::printf("\n%s, nu = 0.4999, 4 mN per wall: static opening (mm)\n| element |",
                 std::string(material_model_name(model)).c_str());
-    for (const auto& m : meshes) std::printf(" %d nodes |", m.num_nodes());
+    for (const auto& m : meshes) std::printf(" %lld nodes |", static_cast<long long>(m.num_nodes()));
     std::printf("\n|---|---|---|---|\n");
     for (const Element element : {Element::tet4, Element::nodal_pressure, Element::tet10}) {
       std::printf("| %s |", std::string(element_name(element)).c_str());
