@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <numeric>
 #include <random>
 
 #include "common/errors.hpp"
@@ -36,24 +37,40 @@ Material tissue(MaterialModel model, double poisson) {
   return m;
 }
 
-/// A box of two regions: "near" (x < 0.25) of `soft`, the rest of `stiff`.
+/// Every tetrahedron of `mesh`, in order.
+std::vector<Index> every_element(const mesh::TetMesh& mesh) {
+  std::vector<Index> all(static_cast<std::size_t>(mesh.num_tets()));
+  std::iota(all.begin(), all.end(), Index{0});
+  return all;
+}
+
+/// A box of two regions, "near" (x < 0.25) of `soft` and the rest of `stiff`, held at x = 0.
 struct TwoRegionBox {
   mesh::TetMesh mesh;
   MaterialMap materials;
+  DofMap dofs;
 };
 
 TwoRegionBox two_region_box(const Material& stiff, const Material& soft) {
-  TwoRegionBox box{.mesh = mesh::unstructured_box_mesh(0.5, 0.4, 0.3, 0.15), .materials = {}};
+  mesh::TetMesh mesh = mesh::unstructured_box_mesh(0.5, 0.4, 0.3, 0.15);
   mesh::NamedSet near;
   near.dim = 3;
-  for (int e = 0; e < box.mesh.num_tets(); ++e) {
+  for (int e = 0; e < mesh.num_tets(); ++e) {
     Vec3 centre = Vec3::Zero();
-    for (int n : box.mesh.tets[static_cast<std::size_t>(e)]) centre += box.mesh.node(n) / 4;
+    for (int n : mesh.tets[static_cast<std::size_t>(e)]) centre += mesh.node(n) / 4;
     if (centre.x() < 0.25) near.tets.push_back(e);
   }
-  box.mesh.sets["near"] = near;
-  box.materials = MaterialMap(box.mesh, stiff, {{.set = "near", .material = soft, .name = "soft"}});
-  return box;
+  mesh.sets["near"] = near;
+  MaterialMap materials(mesh, stiff, {{.set = "near", .material = soft, .name = "soft"}});
+  Constraints constraints(mesh.num_nodes());
+  constraints.fix_set(mesh, "x0");
+  const DofMap dofs(constraints);
+  return {.mesh = std::move(mesh), .materials = std::move(materials), .dofs = dofs};
+}
+
+/// The box's every element on the nodal-pressure tetrahedron (keeps references to the box).
+HyperelasticAssembler nodal_pressure_assembler(const TwoRegionBox& box) {
+  return HyperelasticAssembler(box.mesh, box.dofs, box.materials, every_element(box.mesh), Element::nodal_pressure);
 }
 
 Vector random_displacement(Index size, unsigned seed, double amplitude) {
@@ -67,17 +84,8 @@ Vector random_displacement(Index size, unsigned seed, double amplitude) {
 TEST(NodalPressureHyperelastic, ForceIsTheEnergysGradientAndTheTangentTheForcesForBothLaws) {
   for (const MaterialModel model : {MaterialModel::neo_hookean, MaterialModel::ogden}) {
     const TwoRegionBox box = two_region_box(tissue(model, 0.49), tissue(model, 0.45));
-    Constraints constraints(box.mesh.num_nodes());
-    constraints.fix_set(box.mesh, "x0");
-    const DofMap dofs(constraints);
-    const HyperelasticAssembler assembler(
-        box.mesh, dofs, box.materials,
-        [&] {
-          std::vector<Index> all(static_cast<std::size_t>(box.mesh.num_tets()));
-          for (Index e = 0; e < box.mesh.num_tets(); ++e) all[static_cast<std::size_t>(e)] = e;
-          return all;
-        }(),
-        Element::nodal_pressure);
+    const DofMap& dofs = box.dofs;
+    const HyperelasticAssembler assembler = nodal_pressure_assembler(box);
     const Vector x = random_displacement(dofs.num_free(), 11, 0.01);  // strains of a few percent
     Vector f(x.size()), fp(x.size()), fm(x.size());
     SparseMatrix K;
@@ -108,12 +116,8 @@ TEST(NodalPressureHyperelastic, ForceIsTheEnergysGradientAndTheTangentTheForcesF
 TEST(NodalPressureHyperelastic, TheTangentAtRestIsTheLinearNodalPressureStiffness) {
   for (const MaterialModel model : {MaterialModel::neo_hookean, MaterialModel::ogden}) {
     const TwoRegionBox box = two_region_box(tissue(model, 0.4999), tissue(model, 0.45));
-    Constraints constraints(box.mesh.num_nodes());
-    constraints.fix_set(box.mesh, "x0");
-    const DofMap dofs(constraints);
-    std::vector<Index> all(static_cast<std::size_t>(box.mesh.num_tets()));
-    for (Index e = 0; e < box.mesh.num_tets(); ++e) all[static_cast<std::size_t>(e)] = e;
-    const HyperelasticAssembler assembler(box.mesh, dofs, box.materials, all, Element::nodal_pressure);
+    const DofMap& dofs = box.dofs;
+    const HyperelasticAssembler assembler = nodal_pressure_assembler(box);
     Vector f(dofs.num_free());
     SparseMatrix K_t;
     assembler.force_and_tangent(dofs.expand(Vector::Zero(dofs.num_free())), f, K_t);
@@ -125,12 +129,8 @@ TEST(NodalPressureHyperelastic, TheTangentAtRestIsTheLinearNodalPressureStiffnes
 
 TEST(NodalPressureHyperelastic, TheExcessIsTheForceLessTheLinearProductAndQuadraticAtTinyStrain) {
   const TwoRegionBox box = two_region_box(tissue(MaterialModel::ogden, 0.499), tissue(MaterialModel::ogden, 0.45));
-  Constraints constraints(box.mesh.num_nodes());
-  constraints.fix_set(box.mesh, "x0");
-  const DofMap dofs(constraints);
-  std::vector<Index> all(static_cast<std::size_t>(box.mesh.num_tets()));
-  for (Index e = 0; e < box.mesh.num_tets(); ++e) all[static_cast<std::size_t>(e)] = e;
-  const HyperelasticAssembler assembler(box.mesh, dofs, box.materials, all, Element::nodal_pressure);
+  const DofMap& dofs = box.dofs;
+  const HyperelasticAssembler assembler = nodal_pressure_assembler(box);
   const SparseMatrix K = nodal_pressure_stiffness(box.mesh, dofs, box.materials, 0.0);
   const Vector x = random_displacement(dofs.num_free(), 12, 0.005);
   Vector f(x.size()), g(x.size());
@@ -154,9 +154,7 @@ double homogeneous_error(const mesh::TetMesh& mesh, const Mat3& F, const Materia
   Constraints constraints(mesh.num_nodes());
   for (int n : mesh::boundary_nodes(mesh)) constraints.fix_node(n, (F - Mat3::Identity()) * mesh.node(n));
   const DofMap dofs(constraints);
-  std::vector<Index> all(static_cast<std::size_t>(mesh.num_tets()));
-  for (Index e = 0; e < mesh.num_tets(); ++e) all[static_cast<std::size_t>(e)] = e;
-  const HyperelasticAssembler assembler(mesh, dofs, MaterialMap(material), all, Element::nodal_pressure);
+  const HyperelasticAssembler assembler(mesh, dofs, MaterialMap(material), every_element(mesh), Element::nodal_pressure);
   const auto solution = solve_hyperelastic_static(assembler, dofs, Vector::Zero(dofs.num_free()), {1.0});
   const Vector u = dofs.prescribed() + dofs.expand_homogeneous(solution.back().u_free);
   double worst = 0;
@@ -199,9 +197,7 @@ double compressed_block_strain(double h, Element element, const Material& materi
   }
   const DofMap dofs(constraints);
   const Vector f = dofs.restrict_to_free(set_force(mesh, "z1", Vec3(0, 0, -force)));
-  std::vector<Index> all(static_cast<std::size_t>(mesh.num_tets()));
-  for (Index e = 0; e < mesh.num_tets(); ++e) all[static_cast<std::size_t>(e)] = e;
-  const HyperelasticAssembler assembler(mesh, dofs, MaterialMap(material), all, element);
+  const HyperelasticAssembler assembler(mesh, dofs, MaterialMap(material), every_element(mesh), element);
   const auto solution = solve_hyperelastic_static(assembler, dofs, f, {1.0});
   const Vector u = dofs.prescribed() + dofs.expand_homogeneous(solution.back().u_free);
   return -set_mean_displacement(mesh, "z1", u).z();
@@ -237,9 +233,7 @@ double brain_opening(const mesh::TetMesh& linear, Element element, const Materia
   const DofMap dofs(constraints);
   const Vector f = dofs.restrict_to_free(set_force(mesh, "opening_left", Vec3(-force, 0, 0)) +
                                          set_force(mesh, "opening_right", Vec3(force, 0, 0)));
-  std::vector<Index> all(static_cast<std::size_t>(mesh.num_tets()));
-  for (Index e = 0; e < mesh.num_tets(); ++e) all[static_cast<std::size_t>(e)] = e;
-  const HyperelasticAssembler assembler(mesh, dofs, MaterialMap(material), all, element);
+  const HyperelasticAssembler assembler(mesh, dofs, MaterialMap(material), every_element(mesh), element);
   const auto solution = solve_hyperelastic_static(assembler, dofs, f, {1.0});
   const Vector u = dofs.prescribed() + dofs.expand_homogeneous(solution.back().u_free);
   return set_mean_displacement(mesh, "opening_right", u).x() - set_mean_displacement(mesh, "opening_left", u).x();
